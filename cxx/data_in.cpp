@@ -1,0 +1,536 @@
+#include "data_in.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "ffi.hpp"
+
+namespace mpm3d {
+
+static const char* const kOutputVars[] = {"seqv", "epef", "mat", "pres", "volu", "engk", "engi",
+                                          "velx", "vely", "velz", "cels", "fail", "sspd", "damg"};
+
+bool is_output_variable(const std::string& name) {
+  for (const char* v : kOutputVars)
+    if (name == v) return true;
+  return false;
+}
+
+namespace {
+
+class Reader {
+ public:
+  Reader(TokenStream ts) : ts_(std::move(ts)) {}
+  Model read();
+
+ private:
+  TokenStream ts_;
+  Model m_;
+  int nparticles_ = 0;  // particles read so far
+  bool ended_ = false;
+
+  [[noreturn]] void fail(int line, const std::string& what) { ts_.fail(line, what); }
+  bool on_off(const Token& key);
+  void need_counts(const Token& key, bool particles, bool materials, bool bodies);
+  void read_materials(const Token& key);
+  void read_particles(const Token& key);
+  void add_particle(int line, int mat, double mass, double vol, double x, double y, double z);
+  void read_velocities(const Token& key);
+  void read_loads(const Token& key);
+  void read_eos(const Token& key);
+  int body_index(const Token& at, long ib);
+  int particle_index(const Token& at, long pid);
+  std::string output_var(int line);
+  void finish(int line);
+};
+
+bool Reader::on_off(const Token& key) {
+  if (ts_.at_end()) fail(key.line, "'" + key.text + "' needs 'on' or 'off'");
+  const Token& t = ts_.next();
+  const std::string k = key4(t.text);
+  if (k == "on") return true;
+  if (k == "off") return false;
+  fail(t.line, "'" + key.text + "' needs 'on' or 'off', found '" + t.text + "'");
+}
+
+void Reader::need_counts(const Token& key, bool particles, bool materials, bool bodies) {
+  if (particles && m_.nbmp < 0) fail(key.line, "'" + key.text + "' before 'nbmp' (number of particles)");
+  if (materials && m_.nmat < 0) fail(key.line, "'" + key.text + "' before 'nmat' (number of materials)");
+  if (bodies && m_.nbbo < 0) fail(key.line, "'" + key.text + "' before 'nbbo' (number of bodies)");
+}
+
+Model Reader::read() {
+  m_.deck_path = ts_.name();
+  while (!ts_.at_end()) {
+    const Token key = ts_.next();
+    const std::string k = key4(key.text);
+    if (k == "mpm3") {
+      m_.title = ts_.rest_of_line(key);
+    } else if (k == "nbmp" || k == "nbco" || k == "nbbo" || k == "nmat") {
+      const long n = ts_.integer(key.text.c_str());
+      if (n < 1 || n > 200000000) fail(key.line, "'" + key.text + "' must be a positive count, got " + std::to_string(n));
+      if (k == "nbmp") {
+        if (m_.nbmp >= 0) fail(key.line, "'nbmp' given twice");
+        m_.nbmp = int(n);
+        m_.particles.resize(int(n));
+      } else if (k == "nbco") {
+        if (n > 2) fail(key.line, "'nbco' must be 1 or 2");
+        m_.nbco = int(n);
+      } else if (k == "nbbo") {
+        m_.nbbo = int(n);
+      } else {
+        if (n > 1000) fail(key.line, "'nmat' too large");
+        m_.nmat = int(n);
+        m_.mats.assign(size_t(n), MaterialParams{});
+        for (auto& mp : m_.mats) mp.type = 0;
+      }
+    } else if (k == "endt") {
+      m_.endtime = ts_.real("the end time");
+      if (!(m_.endtime > 0.0)) fail(key.line, "end time must be positive");
+      m_.outtime = m_.endtime;
+    } else if (k == "grid") {
+      for (int a = 0; a < 3; ++a) {
+        m_.box_lo[a] = ts_.real("the grid box");
+        m_.box_hi[a] = ts_.real("the grid box");
+        m_.box_set[a] = true;
+      }
+    } else if (k == "spx" || k == "spy" || k == "spz") {
+      const int a = k[2] - 'x';
+      m_.box_lo[a] = ts_.real("the box minimum");
+      m_.box_hi[a] = ts_.real("the box maximum");
+      m_.box_set[a] = true;
+      if (!(m_.box_hi[a] > m_.box_lo[a])) fail(key.line, "'" + key.text + "': maximum must exceed minimum");
+    } else if (k == "dcel") {
+      m_.dcell = ts_.real("the cell size");
+      if (!(m_.dcell > 0.0)) fail(key.line, "cell size must be positive");
+    } else if (k == "dtsc") {
+      m_.dtscale = ts_.real("the time-step scale");
+      if (!(m_.dtscale > 0.0) || m_.dtscale > 2.5) fail(key.line, "time-step scale must lie in (0, 2.5]");
+    } else if (k == "outt") {
+      m_.outtime = ts_.real("the output interval");
+      if (!(m_.outtime > 0.0)) fail(key.line, "output interval must be positive");
+    } else if (k == "rptt") {
+      m_.rpttime = ts_.real("the report interval");
+      if (!(m_.rpttime > 0.0)) fail(key.line, "report interval must be positive");
+    } else if (k == "fixe") {
+      for (int f = 0; f < 6; ++f) {
+        const long v = ts_.integer("a face condition");
+        if (v < 0 || v > 2) fail(key.line, "face conditions are 0 (free), 1 (fixed) or 2 (symmetry)");
+        m_.fix[f] = int(v);
+      }
+    } else if (k == "mate") {
+      read_materials(key);
+    } else if (k == "part") {
+      read_particles(key);
+    } else if (k == "musl" || k == "usf" || k == "usl") {
+      if (on_off(key)) m_.scheme = k == "musl" ? SCHEME_MUSL : (k == "usf" ? SCHEME_USF : SCHEME_USL);
+    } else if (k == "jaum") {
+      m_.jaumann = on_off(key);
+      if (!m_.jaumann) m_.warnings.push_back("jaum off: stresses are rotated with the Jaumann rate all the same");
+    } else if (k == "load") {
+      read_loads(key);
+    } else if (k == "velo") {
+      read_velocities(key);
+    } else if (k == "seos") {
+      read_eos(key);
+    } else if (k == "outr") {
+      m_.anim_vars.push_back(output_var(key.line));
+    } else if (k == "curv") {
+      CurveRequest c;
+      c.var = output_var(key.line);
+      long pid = 1;
+      if (!ts_.at_end() && ts_.peek().line == key.line && parse_integer(ts_.peek().text, pid)) ts_.next();
+      need_counts(key, true, false, false);
+      c.particle = particle_index(key, pid);
+      m_.curves.push_back(c);
+    } else if (k == "curx") {
+      CurveRequest c;
+      c.var = output_var(key.line);
+      double xyz[3];
+      for (double& v : xyz) v = ts_.real("a curve position");
+      if (nparticles_ == 0) fail(key.line, "'curx' must follow the particle cards");
+      const double tol = 0.25 * m_.dcell;
+      int found = -1;
+      for (int p = 0; p < nparticles_ && found < 0; ++p) {
+        const double* x = &m_.particles.x[3 * size_t(p)];
+        if (std::fabs(x[0] - xyz[0]) <= tol && std::fabs(x[1] - xyz[1]) <= tol && std::fabs(x[2] - xyz[2]) <= tol)
+          found = p;
+      }
+      if (found < 0) fail(key.line, "'curx': no particle within 0.25 h of the point");
+      c.particle = found;
+      m_.curves.push_back(c);
+    } else if (k == "pt2d") {
+      for (double& v : m_.pt2d) v = ts_.real("the pt2d box");
+      m_.has_pt2d = true;
+    } else if (k == "tecp" || k == "para") {
+      bool on = true;
+      if (!ts_.at_end() && (key4(ts_.peek().text) == "on" || key4(ts_.peek().text) == "off")) on = on_off(key);
+      (k == "tecp" ? m_.tecplot : m_.paraview) = on;
+    } else if (k == "deto") {
+      for (int a = 0; a < 3; ++a) ts_.real("the detonation point");
+      fail(key.line, "'deto' (detonation points for hiex) is not yet supported");
+    } else if (k == "bulk") {
+      ts_.real("q1");
+      ts_.real("q2");
+      fail(key.line, "'bulk' (artificial bulk viscosity) is not yet supported");
+    } else if (k == "gimp") {
+      fail(key.line, "'gimp' (GIMP shape functions) is not yet supported");
+    } else if (k == "cont") {
+      fail(key.line, "'cont' (multi-velocity contact) is not yet supported");
+    } else if (k == "endi") {
+      ended_ = true;
+      finish(key.line);
+      break;
+    } else {
+      fail(key.line, "unknown keyword '" + key.text + "'");
+    }
+  }
+  if (!ended_) fail(ts_.line(), "end of file reached before 'endi'");
+  return std::move(m_);
+}
+
+std::string Reader::output_var(int line) {
+  if (ts_.at_end()) fail(line, "missing output variable name");
+  const Token& t = ts_.next();
+  std::string v = t.text;
+  for (char& ch : v) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+  if (v.size() > 4) v = v.substr(0, 4);
+  if (!is_output_variable(v)) fail(t.line, "unknown output variable '" + t.text + "'");
+  return v;
+}
+
+int Reader::body_index(const Token& at, long ib) {
+  if (ib < 1 || ib > long(m_.bodies.size()))
+    fail(at.line, "body " + std::to_string(ib) + " does not exist (" + std::to_string(m_.bodies.size()) +
+                      " bodies defined so far)");
+  return int(ib - 1);
+}
+
+int Reader::particle_index(const Token& at, long pid) {
+  if (pid < 1 || pid > m_.nbmp)
+    fail(at.line, "particle " + std::to_string(pid) + " out of range 1.." + std::to_string(m_.nbmp));
+  return int(pid - 1);
+}
+
+void Reader::read_materials(const Token& key) {
+  need_counts(key, false, true, false);
+  for (;;) {
+    const Token& idt = ts_.peek();
+    const long num = ts_.integer("a material number");
+    if (num < 1 || num > m_.nmat)
+      fail(idt.line, "material number " + std::to_string(num) + " out of range 1.." + std::to_string(m_.nmat));
+    const Token typ = ts_.next();
+    const std::string t = key4(typ.text);
+    MaterialParams& mp = m_.mats[size_t(num - 1)];
+    const int line = typ.line;
+    mp = MaterialParams{};
+    auto R = [&](const char* what) { return ts_.real(what); };
+    if (t == "elas" || t == "pla1" || t == "pla2") {
+      mp.type = t == "elas" ? MAT_ELAS : (t == "pla1" ? MAT_PLA1 : MAT_PLA2);
+      mp.rho0 = R("density");
+      mp.young = R("Young's modulus");
+      mp.poisson = R("Poisson's ratio");
+      if (mp.type != MAT_ELAS) mp.yield0 = R("yield stress");
+      if (mp.type == MAT_PLA2) {
+        const double et = R("tangent modulus");
+        if (!(et >= 0.0 && et < mp.young)) fail(line, "tangent modulus must lie in [0, E)");
+        mp.hardening = (mp.young * et) / (mp.young - et);
+      }
+    } else if (t == "john" || t == "jcf") {
+      mp.type = t == "john" ? MAT_JOHN : MAT_JCF;
+      mp.rho0 = R("density");
+      mp.young = R("Young's modulus");
+      mp.poisson = R("Poisson's ratio");
+      mp.yield0 = R("A");
+      mp.hardening = R("B");
+      mp.jc_n = R("n");
+      mp.jc_c = R("C");
+      mp.jc_m = R("m");
+      mp.t_room = R("room temperature");
+      mp.t_melt = R("melting temperature");
+      mp.heat_cap = R("specific heat");
+      mp.eps0dot = R("reference strain rate");
+      if (mp.type == MAT_JCF) mp.fail_strain = R("failure strain");
+      if (!(mp.t_melt > mp.t_room)) fail(line, "melting temperature must exceed room temperature");
+      if (!(mp.heat_cap > 0.0)) fail(line, "specific heat must be positive");
+    } else if (t == "sjc" || t == "sjcf") {
+      mp.type = t == "sjc" ? MAT_SJC : MAT_SJCF;
+      mp.rho0 = R("density");
+      mp.young = R("Young's modulus");
+      mp.poisson = R("Poisson's ratio");
+      mp.yield0 = R("A");
+      mp.hardening = R("B");
+      mp.jc_n = R("n");
+      mp.jc_c = R("C");
+      mp.eps0dot = R("reference strain rate");
+      if (mp.type == MAT_SJCF) mp.fail_strain = R("failure strain");
+    } else if (t == "hiex" || t == "null" || t == "dpm") {
+      fail(line, "material '" + typ.text + "' is not yet supported");
+    } else {
+      fail(line, "unknown material type '" + typ.text + "'");
+    }
+    if (mp.type == MAT_SJC || mp.type == MAT_SJCF || mp.type == MAT_JOHN || mp.type == MAT_JCF) {
+      if (!(mp.jc_n > 0.0)) fail(line, "Johnson-Cook n must be positive");
+      if (mp.jc_c != 0.0 && !(mp.eps0dot > 0.0)) fail(line, "reference strain rate must be positive");
+    }
+    if (mp.fail_strain < 0.0) fail(line, "failure strain must not be negative");
+    const std::string err = material_derive(mp);
+    if (!err.empty()) fail(line, "material " + std::to_string(num) + ": " + err);
+    if (num == m_.nmat) break;
+  }
+}
+
+void Reader::read_eos(const Token& key) {
+  need_counts(key, false, true, false);
+  const Token& at = ts_.peek();
+  const long mid = ts_.integer("a material number");
+  if (mid < 1 || mid > m_.nmat) fail(at.line, "material number " + std::to_string(mid) + " out of range 1.." + std::to_string(m_.nmat));
+  MaterialParams& mp = m_.mats[size_t(mid - 1)];
+  if (mp.type == 0) fail(at.line, "'seos' for material " + std::to_string(mid) + " before its 'mate' card");
+  const long et = ts_.integer("an EOS type");
+  if (et == 1) {
+    for (int i = 0; i < 7; ++i) mp.eos[i] = ts_.real("an EOS coefficient");
+    mp.eos_e0 = ts_.real("E0");
+  } else if (et == 2) {
+    for (int i = 0; i < 3; ++i) mp.eos[i] = ts_.real("an EOS coefficient");
+    mp.eos_e0 = ts_.real("E0");
+    if (!(mp.eos[0] > 0.0)) fail(key.line, "Mie-Gruneisen c0 must be positive");
+  } else if (et == 3) {
+    for (int i = 0; i < 6; ++i) ts_.real("a JWL coefficient");
+    fail(key.line, "EOS type 3 (JWL) is not yet supported");
+  } else {
+    fail(key.line, "unknown EOS type " + std::to_string(et) + " (1 linear polynomial, 2 Mie-Gruneisen, 3 JWL)");
+  }
+  mp.eos_type = int(et);
+}
+
+void Reader::add_particle(int line, int mat, double mass, double vol, double x, double y, double z) {
+  if (nparticles_ >= m_.nbmp)
+    fail(line, "more particles than 'nbmp' = " + std::to_string(m_.nbmp));
+  const int p = nparticles_++;
+  Particles& P = m_.particles;
+  P.mass[p] = mass;
+  P.vol[p] = vol;
+  P.x[3 * size_t(p)] = x;
+  P.x[3 * size_t(p) + 1] = y;
+  P.x[3 * size_t(p) + 2] = z;
+  P.mat[p] = mat;
+  P.body[p] = int(m_.bodies.size()) - 1;
+}
+
+void Reader::read_particles(const Token& key) {
+  need_counts(key, true, true, true);
+  if (int(m_.bodies.size()) >= m_.nbbo)
+    fail(key.line, "more particle cards than 'nbbo' = " + std::to_string(m_.nbbo) + " bodies");
+  const Token kind = ts_.next();
+  const std::string k = key4(kind.text);
+  const Token& ct = ts_.peek();
+  const long comp = ts_.integer("a component number");
+  if (comp < 1 || comp > m_.nbco) fail(ct.line, "component " + std::to_string(comp) + " out of range 1.." + std::to_string(m_.nbco));
+  Body b;
+  b.first = nparticles_;
+  b.component = int(comp);
+  m_.bodies.push_back(b);
+  auto material = [&]() {
+    const Token& at = ts_.peek();
+    const long id = ts_.integer("a material number");
+    if (id < 1 || id > m_.nmat) fail(at.line, "material number " + std::to_string(id) + " out of range 1.." + std::to_string(m_.nmat));
+    if (m_.mats[size_t(id - 1)].type == 0) fail(at.line, "material " + std::to_string(id) + " is used before its 'mate' card");
+    return int(id - 1);
+  };
+  if (k == "poin") {
+    const Token& nt = ts_.peek();
+    const long n = ts_.integer("the number of points");
+    if (n < 1) fail(nt.line, "number of points must be positive");
+    if (nparticles_ + n > m_.nbmp)
+      fail(nt.line, "'part poin' with " + std::to_string(n) + " points exceeds 'nbmp' = " + std::to_string(m_.nbmp));
+    long last = 0;
+    for (long i = 0; i < n; ++i) {
+      const Token& pt = ts_.peek();
+      const long pid = ts_.integer("a particle id");
+      if (pid <= last) fail(pt.line, "particle ids must ascend (" + std::to_string(pid) + " after " + std::to_string(last) + ")");
+      last = pid;
+      const int mat = material();
+      const double mass = ts_.real("the particle mass");
+      if (!(mass > 0.0)) fail(pt.line, "particle mass must be positive");
+      const double x = ts_.real("x"), y = ts_.real("y"), z = ts_.real("z");
+      add_particle(pt.line, mat, mass, mass / m_.mats[size_t(mat)].rho0, x, y, z);
+    }
+  } else if (k == "bloc" || k == "sphe" || k == "cyli") {
+    const int mat = material();
+    const double rho = ts_.real("the density");
+    const double dp = ts_.real("the particle spacing");
+    if (!(rho > 0.0) || !(dp > 0.0)) fail(kind.line, "density and spacing must be positive");
+    const double vol = (dp * dp) * dp;
+    const double mass = rho * vol;
+    if (k == "bloc") {
+      double o[3];
+      long n[3];
+      for (double& v : o) v = ts_.real("the block origin");
+      for (long& v : n) {
+        v = ts_.integer("a block count");
+        if (v < 1 || v > 100000) fail(kind.line, "block counts must be positive");
+      }
+      if (nparticles_ + n[0] * n[1] * n[2] > m_.nbmp)
+        fail(kind.line, "block of " + std::to_string(n[0] * n[1] * n[2]) + " particles exceeds 'nbmp' = " + std::to_string(m_.nbmp));
+      // Book version: x outermost, z index fastest.
+      for (long i = 0; i < n[0]; ++i)
+        for (long j = 0; j < n[1]; ++j)
+          for (long l = 0; l < n[2]; ++l)
+            add_particle(kind.line, mat, mass, vol, o[0] + (double(i) + 0.5) * dp,
+                         o[1] + (double(j) + 0.5) * dp, o[2] + (double(l) + 0.5) * dp);
+    } else if (k == "sphe") {
+      double c[3];
+      for (double& v : c) v = ts_.real("the sphere centre");
+      const long nr = ts_.integer("the sphere radius in spacings");
+      if (nr < 1 || nr > 10000) fail(kind.line, "sphere radius (in spacings) must be positive");
+      const double r2 = double(nr * nr);
+      for (long i = -nr; i < nr; ++i)
+        for (long j = -nr; j < nr; ++j)
+          for (long l = -nr; l < nr; ++l) {
+            const double a = double(i) + 0.5, bb = double(j) + 0.5, cc = double(l) + 0.5;
+            if ((a * a + bb * bb) + cc * cc > r2) continue;
+            add_particle(kind.line, mat, mass, vol, c[0] + a * dp, c[1] + bb * dp, c[2] + cc * dp);
+          }
+    } else {
+      // Extension: 'part cyli comID matID density dp cx cy z0 R L' - a cylinder along z,
+      // axis through (cx, cy), from z0 to z0 + L, radius R, on the lattice of spacing dp.
+      const double cx = ts_.real("the cylinder axis x"), cy = ts_.real("the cylinder axis y");
+      const double z0 = ts_.real("the cylinder base z");
+      const double radius = ts_.real("the cylinder radius"), length = ts_.real("the cylinder length");
+      if (!(radius > 0.0) || !(length > 0.0)) fail(kind.line, "cylinder radius and length must be positive");
+      const long nr = long(std::ceil(radius / dp));
+      const long nz = long(std::floor(length / dp + 0.5));
+      if (nr > 100000 || nz > 1000000) fail(kind.line, "cylinder too large for its spacing");
+      const double r2 = (radius / dp) * (radius / dp) * (1.0 + 1e-12);
+      for (long i = -nr; i < nr; ++i)
+        for (long j = -nr; j < nr; ++j) {
+          const double a = double(i) + 0.5, bb = double(j) + 0.5;
+          if (a * a + bb * bb > r2) continue;
+          for (long l = 0; l < nz; ++l)
+            add_particle(kind.line, mat, mass, vol, cx + a * dp, cy + bb * dp, z0 + (double(l) + 0.5) * dp);
+        }
+    }
+  } else {
+    fail(kind.line, "unknown particle card '" + kind.text + "' (poin, bloc, sphe or cyli)");
+  }
+  Body& back = m_.bodies.back();
+  back.count = nparticles_ - back.first;
+  if (back.count == 0) fail(kind.line, "particle card generated no particles");
+}
+
+void Reader::read_velocities(const Token& key) {
+  need_counts(key, true, false, false);
+  for (;;) {
+    const Token t = ts_.next();
+    const std::string k = key4(t.text);
+    if (k == "endv") return;
+    double v[3];
+    if (k == "node") {
+      const long pid = ts_.integer("a particle id");
+      const int p = particle_index(t, pid);
+      if (p >= nparticles_) fail(t.line, "velocity for particle " + std::to_string(pid) + " before it is defined");
+      for (double& c : v) c = ts_.real("a velocity");
+      for (int a = 0; a < 3; ++a) m_.particles.v[3 * size_t(p) + a] = v[a];
+    } else if (k == "body") {
+      const int ib = body_index(t, ts_.integer("a body number"));
+      for (double& c : v) c = ts_.real("a velocity");
+      const Body& b = m_.bodies[size_t(ib)];
+      for (int p = b.first; p < b.first + b.count; ++p)
+        for (int a = 0; a < 3; ++a) m_.particles.v[3 * size_t(p) + a] = v[a];
+    } else {
+      fail(t.line, "in 'velo': expected 'node', 'body' or 'endv', found '" + t.text + "'");
+    }
+  }
+}
+
+void Reader::read_loads(const Token& key) {
+  need_counts(key, true, false, false);
+  for (;;) {
+    const Token t = ts_.next();
+    const std::string k = key4(t.text);
+    if (k == "endl") return;
+    double f[3];
+    if (k == "node" || k == "body") {
+      Particles& P = m_.particles;
+      if (P.fext.empty()) P.fext.assign(3 * size_t(P.np), 0.0);
+      m_.has_loads = true;
+      int first, count;
+      if (k == "node") {
+        first = particle_index(t, ts_.integer("a particle id"));
+        count = 1;
+      } else {
+        const Body& b = m_.bodies[size_t(body_index(t, ts_.integer("a body number")))];
+        first = b.first;
+        count = b.count;
+      }
+      for (double& c : f) c = ts_.real("a force");
+      for (int p = first; p < first + count; ++p)
+        for (int a = 0; a < 3; ++a) P.fext[3 * size_t(p) + a] = P.fext[3 * size_t(p) + a] + f[a];
+    } else if (k == "grav") {
+      const int ib = body_index(t, ts_.integer("a body number"));
+      for (double& c : f) c = ts_.real("an acceleration");
+      for (int a = 0; a < 3; ++a) m_.bodies[size_t(ib)].gravity[a] = f[a];
+      m_.has_gravity = true;
+    } else {
+      fail(t.line, "in 'load': expected 'node', 'body', 'grav' or 'endl', found '" + t.text + "'");
+    }
+  }
+}
+
+void Reader::finish(int line) {
+  if (m_.nbmp < 0) fail(line, "no 'nbmp' (number of particles) before 'endi'");
+  if (m_.nmat < 0) fail(line, "no 'nmat' (number of materials) before 'endi'");
+  if (nparticles_ != m_.nbmp)
+    fail(line, "'nbmp' = " + std::to_string(m_.nbmp) + " but the particle cards define " + std::to_string(nparticles_));
+  if (m_.nbbo >= 0 && int(m_.bodies.size()) != m_.nbbo)
+    fail(line, "'nbbo' = " + std::to_string(m_.nbbo) + " but " + std::to_string(m_.bodies.size()) + " particle cards were read");
+  for (int i = 0; i < m_.nmat; ++i)
+    if (m_.mats[size_t(i)].type == 0) fail(line, "material " + std::to_string(i + 1) + " has no 'mate' card");
+  for (int a = 0; a < 3; ++a)
+    if (!m_.box_set[a]) fail(line, std::string("no grid box along ") + char('x' + a) + " (spx/spy/spz or grid)");
+  if (!(m_.dcell > 0.0)) fail(line, "no cell size ('dcel')");
+  if (!(m_.endtime > 0.0)) fail(line, "no end time ('endt')");
+  if (m_.rpttime <= 0.0) m_.rpttime = m_.outtime;
+  for (int a = 0; a < 3; ++a) {
+    const double n = (m_.box_hi[a] - m_.box_lo[a]) / m_.dcell;
+    if (std::fabs(n - std::floor(n + 0.5)) > 1e-6 * n)
+      m_.warnings.push_back(std::string("box length along ") + char('x' + a) +
+                            " is not a whole number of cells; rounded to " + std::to_string(long(std::floor(n + 0.5))));
+  }
+  // Initial internal energy from E0 (per unit initial volume).
+  Particles& P = m_.particles;
+  bool thermal = false;
+  for (const auto& mp : m_.mats) thermal = thermal || mp.type == MAT_JOHN || mp.type == MAT_JCF;
+  if (thermal) P.temp.assign(size_t(P.np), 0.0);
+  double c_max = 0.0, rho_sum = 0.0;
+  for (const auto& mp : m_.mats) {
+    c_max = std::max(c_max, mp.wave_speed);
+    rho_sum += mp.rho0;
+  }
+  for (int p = 0; p < P.np; ++p) {
+    const MaterialParams& mp = m_.mats[size_t(P.mat[p])];
+    if (mp.eos_type != EOS_NONE) P.ie[p] = mp.eos_e0 * (P.mass[p] / mp.rho0);
+    if (thermal) P.temp[p] = mp.t_room;
+  }
+  // dt = dtscale * h / c_max (the dilatational wave speed), fixed for the run as in the original.
+  m_.dt = m_.dtscale * m_.dcell / c_max;
+  m_.mass_cutoff = 1.0e-5 * (rho_sum / double(m_.nmat)) * ((m_.dcell * m_.dcell) * m_.dcell);
+  // Base name: the deck's file name up to its first '.'.
+  std::string base = m_.deck_path;
+  const size_t slash = base.find_last_of('/');
+  if (slash != std::string::npos) base = base.substr(slash + 1);
+  const size_t dot = base.find('.');
+  if (dot != std::string::npos && dot > 0) base = base.substr(0, dot);
+  m_.base_name = base.empty() ? "mpm3d" : base;
+}
+
+}  // namespace
+
+Model read_deck(const std::string& path) { return Reader(TokenStream::from_file(path)).read(); }
+
+Model read_deck_text(const std::string& text, const std::string& name) {
+  return Reader(TokenStream::from_string(text, name)).read();
+}
+
+}  // namespace mpm3d

@@ -1,0 +1,49 @@
+// DataIn: reads a legacy MPM3D deck into a Model (particles generated, dt computed).
+#pragma once
+#include <string>
+#include <vector>
+
+#include "material.hpp"
+#include "particle.hpp"
+#include "update_step.hpp"
+
+namespace mpm3d {
+
+// A time curve (curv/curx): a variable at one particle.
+struct CurveRequest {
+  std::string var;
+  int particle = 0;  // 0-based
+};
+
+struct Model {
+  std::string deck_path, base_name, title;
+  int nbmp = -1, nbco = 1, nbbo = -1, nmat = -1;
+  double endtime = 0.0, outtime = 0.0, rpttime = 0.0, dtscale = 0.9;
+  double box_lo[3] = {0, 0, 0}, box_hi[3] = {0, 0, 0};
+  bool box_set[3] = {false, false, false};
+  double dcell = 0.0;
+  int fix[6] = {0, 0, 0, 0, 0, 0};
+  int scheme = SCHEME_MUSL;
+  bool jaumann = true;
+  bool tecplot = false, paraview = false;
+  bool has_pt2d = false;
+  double pt2d[6] = {0, 0, 0, 0, 0, 0};
+  std::vector<MaterialParams> mats;
+  Particles particles;
+  std::vector<Body> bodies;
+  bool has_gravity = false, has_loads = false;
+  std::vector<std::string> anim_vars;  // outr
+  std::vector<CurveRequest> curves;    // curv, curx
+  double dt = 0.0;                     // initial time step
+  double mass_cutoff = 0.0;
+  std::vector<std::string> warnings;
+};
+
+// Reads the deck; throws DeckError (file, line, problem) on any input error.
+Model read_deck(const std::string& path);
+Model read_deck_text(const std::string& text, const std::string& name);
+
+// Names accepted by outr, curv and curx.
+bool is_output_variable(const std::string& name);
+
+}  // namespace mpm3d

@@ -1,0 +1,62 @@
+// FFI: free-format deck tokenizer (the original's FFI module).
+// Rules (DECK_FORMAT.md): lines <= 256 characters, tabs are blanks, '!' comments,
+// tokens separated by blanks and/or commas, keywords recognised by their first four
+// characters case-insensitively, Fortran list-directed numbers (d/D exponents).
+#pragma once
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace mpm3d {
+
+// An input error: names the file, the line (0 when none applies) and the problem.
+class DeckError : public std::runtime_error {
+ public:
+  DeckError(const std::string& file, int line, const std::string& what);
+  const std::string& file() const { return file_; }
+  int line() const { return line_; }
+ private:
+  std::string file_;
+  int line_;
+};
+
+struct Token {
+  std::string text;
+  int line = 0;
+};
+
+class TokenStream {
+ public:
+  // Reads and tokenizes a whole deck; throws DeckError when it cannot be read.
+  static TokenStream from_file(const std::string& path);
+  static TokenStream from_string(const std::string& text, const std::string& name = "<string>");
+
+  bool at_end() const { return pos_ >= tokens_.size(); }
+  const Token& peek() const;
+  const Token& next();  // throws "unexpected end of file" past the end
+  // The rest of the current token's line, as written (used for the title).
+  std::string rest_of_line(const Token& after);
+  void skip_line(const Token& of);
+  int line() const;      // line of the next token (or the last line at the end)
+  const std::string& name() const { return name_; }
+
+  double real(const char* what);   // next token as a real number
+  long integer(const char* what);  // next token as an integer
+  std::string word(const char* what);
+
+  [[noreturn]] void fail(int line, const std::string& what) const;
+
+ private:
+  std::string name_;
+  std::vector<Token> tokens_;
+  std::vector<std::string> lines_;
+  size_t pos_ = 0;
+};
+
+// First four characters, lower case: the keyword as the original recognises it.
+std::string key4(const std::string& token);
+// Fortran list-directed real; false when the token is not a complete number.
+bool parse_real(const std::string& token, double& value);
+bool parse_integer(const std::string& token, long& value);
+
+}  // namespace mpm3d

@@ -1,0 +1,3 @@
+#include "mpm3d.hpp"
+
+int main(int argc, char** argv) { return mpm3d::run_main(argc, argv); }

@@ -1,0 +1,56 @@
+// MaterialData: material and equation-of-state parameters (the original's MaterialData).
+// MaterialParams is a plain C struct so the Fortran reference can read the same table.
+#pragma once
+#include <string>
+
+extern "C" {
+
+enum MaterialType {
+  MAT_ELAS = 1,  // linear elastic (hypoelastic, Jaumann rate)
+  MAT_PLA1 = 2,  // elastic-perfectly plastic, J2
+  MAT_PLA2 = 3,  // J2 with linear isotropic hardening
+  MAT_JOHN = 4,  // Johnson-Cook with thermal softening, adiabatic heating
+  MAT_SJC = 5,   // simplified Johnson-Cook (no thermal term)
+  MAT_SJCF = 6,  // simplified Johnson-Cook with failure strain
+  MAT_JCF = 7,   // Johnson-Cook with failure strain
+  MAT_HIEX = 8,  // high explosive (programmed burn)
+  MAT_NULL = 9,  // null material
+  MAT_DPM = 10   // Drucker-Prager
+};
+
+enum EosType { EOS_NONE = 0, EOS_LINEAR = 1, EOS_MIE_GRUNEISEN = 2, EOS_JWL = 3 };
+
+// One material set. Derived constants (shear, lambda, hardening, wave speed) are
+// computed once by the deck reader with the formulas of material.cpp.
+struct MaterialParams {
+  double rho0;        // initial density
+  double young;       // Young's modulus E
+  double poisson;     // Poisson's ratio nu
+  double shear;       // G = E / (2 (1 + nu))
+  double lambda;      // Lame lambda = E nu / ((1 + nu)(1 - 2 nu))
+  double yield0;      // initial yield stress (pla1, pla2) or Johnson-Cook A
+  double hardening;   // pla2: plastic modulus Ep = E Et / (E - Et); JC: B
+  double jc_n;        // JC hardening exponent n
+  double jc_c;        // JC strain-rate coefficient C
+  double jc_m;        // JC thermal exponent m
+  double t_room;      // room temperature
+  double t_melt;      // melting temperature
+  double heat_cap;    // specific heat c_p
+  double eps0dot;     // reference strain rate
+  double fail_strain; // equivalent plastic strain at failure (sjcf, jcf); 0 = none
+  double wave_speed;  // dilatational wave speed sqrt((lambda + 2G) / rho0)
+  double eos[8];      // EOS parameters as in the deck (seos)
+  double eos_e0;      // initial internal energy per unit initial volume
+  int type;           // MaterialType
+  int eos_type;       // EosType
+};
+
+}  // extern "C"
+
+namespace mpm3d {
+
+const char* material_keyword(int type);
+// Fills the derived constants of m from the deck values; returns an error text or "".
+std::string material_derive(MaterialParams& m);
+
+}  // namespace mpm3d

@@ -1,0 +1,407 @@
+#include "mpm3d.hpp"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "data_out.hpp"
+#include "ffi.hpp"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace mpm3d {
+
+Simulation::Simulation(Model m, int patch_cells) : model(std::move(m)), stages_(cxx_stages()) {
+  if (patch_cells < 1) throw std::invalid_argument("patch size must be at least one cell");
+  double hi[3];
+  for (int a = 0; a < 3; ++a) hi[a] = model.box_hi[a];
+  grid.setup(model.box_lo, hi, model.dcell, patch_cells);
+  for (int f = 0; f < 6; ++f) grid.fix[f] = model.fix[f];
+  grid.mass_cutoff = model.mass_cutoff;
+  const size_t np = size_t(model.particles.np);
+  lx_.assign(3 * np, 0.0);
+  cell_.assign(np, -1);
+  grid.patch_part.assign(np, 0);
+  bind();
+  measure();
+  initial_total_energy = kinetic + internal;
+}
+
+void Simulation::bind() {
+  Particles& P = model.particles;
+  StepContext& c = ctx;
+  c.x = P.x.data();
+  c.v = P.v.data();
+  c.sig = P.sig.data();
+  c.mass = P.mass.data();
+  c.vol = P.vol.data();
+  c.epeff = P.epeff.data();
+  c.ie = P.ie.data();
+  c.temp = P.temp.empty() ? nullptr : P.temp.data();
+  c.fext = P.fext.empty() ? nullptr : P.fext.data();
+  c.lx = lx_.data();
+  c.mat = P.mat.data();
+  c.body = P.body.data();
+  c.cell = cell_.data();
+  std::vector<double>& grav = gravity_;
+  grav.assign(3 * model.bodies.size(), 0.0);
+  for (size_t b = 0; b < model.bodies.size(); ++b)
+    for (int a = 0; a < 3; ++a) grav[3 * b + a] = model.bodies[b].gravity[a];
+  c.gravity = grav.data();
+  c.mats = model.mats.data();
+  c.gmass = grid.mass.data();
+  c.gmom = grid.mom.data();
+  c.gforce = grid.force.data();
+  c.patch_start = grid.patch_start.data();
+  c.patch_part = grid.patch_part.data();
+  c.patch_slot = grid.patch_slot.data();
+  c.patch_buf = grid.patch_buf.data();
+  c.reduce_block = 4096;
+  partials_.assign(size_t(kReduceFields) * (P.np / c.reduce_block + 1), 0.0);
+  c.partials = partials_.data();
+  for (int a = 0; a < 3; ++a) {
+    c.origin[a] = grid.origin[a];
+    c.nc[a] = grid.nc[a];
+    c.nn[a] = grid.nn[a];
+    c.npd[a] = grid.npd[a];
+  }
+  c.h = grid.h;
+  c.inv_h = 1.0 / grid.h;
+  c.dt = model.dt;
+  c.dt_int = model.dt;
+  c.mass_cutoff = grid.mass_cutoff;
+  c.np = P.np;
+  c.nbody = int(model.bodies.size());
+  c.nmat = int(model.mats.size());
+  c.nnode = grid.nnode();
+  c.patch_cells = grid.patch_cells;
+  c.npatch = grid.npatch;
+  for (int f = 0; f < 6; ++f) c.fix[f] = grid.fix[f];
+  c.scheme = model.scheme;
+  c.has_body_force = (model.has_gravity || model.has_loads) ? 1 : 0;
+}
+
+void Simulation::ensure_patch_buffers() {
+  const size_t need = size_t(ctx.nslot) * size_t(grid.patch_nodes) * kNodeFields;
+  if (grid.patch_buf.size() < need) {
+    grid.patch_buf.resize(need + need / 4);
+    ctx.patch_buf = grid.patch_buf.data();
+  }
+}
+
+void Simulation::step() {
+  StepContext* c = &ctx;
+  c->dt = model.dt;
+  c->dt_int = steps == 0 ? 0.5 * model.dt : model.dt;  // first step: momentum with dt/2
+  const StageFn* f = stages_.fn;
+  f[ST_BIN](c);
+  ensure_patch_buffers();
+  f[ST_P2G](c);
+  if (c->scheme == SCHEME_USF) {
+    f[ST_STRESS](c);
+    f[ST_FORCES](c);
+  }
+  f[ST_INTEGRATE](c);
+  f[ST_G2P](c);
+  if (c->scheme != SCHEME_USF) f[ST_STRESS](c);
+  f[ST_ENERGY](c);
+  outside = c->noutside;
+  kinetic = c->result[0];
+  internal = c->result[1];
+  for (int a = 0; a < 3; ++a) momentum[a] = c->result[2 + a];
+  ++steps;
+  time += model.dt;
+  health_check();
+}
+
+void Simulation::measure() {
+  stages_.fn[ST_ENERGY](&ctx);
+  kinetic = ctx.result[0];
+  internal = ctx.result[1];
+  for (int a = 0; a < 3; ++a) momentum[a] = ctx.result[2 + a];
+}
+
+void Simulation::health_check() {
+  if (std::isfinite(kinetic) && std::isfinite(internal)) return;
+  const Particles& P = model.particles;
+  for (int p = 0; p < P.np; ++p) {
+    const char* what = nullptr;
+    for (int a = 0; a < 3 && !what; ++a) {
+      if (!std::isfinite(P.x[3 * size_t(p) + a])) what = "position";
+      else if (!std::isfinite(P.v[3 * size_t(p) + a])) what = "velocity";
+    }
+    for (int s = 0; s < 6 && !what; ++s)
+      if (!std::isfinite(P.sig[6 * size_t(p) + s])) what = "stress";
+    if (!what && !std::isfinite(P.ie[p])) what = "internal energy";
+    if (!what && !(P.vol[p] > 0.0)) what = "volume";
+    if (what) {
+      std::ostringstream os;
+      os << "numerical breakdown at step " << steps << " (t = " << time << "): particle " << p + 1 << " (body "
+         << P.body[p] + 1 << ") has a non-finite " << what;
+      throw HealthError(os.str());
+    }
+  }
+  throw HealthError("numerical breakdown at step " + std::to_string(steps) + ": non-finite energy");
+}
+
+// ---------------------------------------------------------------- command line
+
+namespace {
+
+const char* kVersion = "mpm3d (MPM3D-CXX) 0.1.0";
+
+const char* kUsage =
+    "usage: mpm3d [options] DECK.mpm\n"
+    "  --threads N        OpenMP threads (default: OMP_NUM_THREADS or all cores)\n"
+    "  --steps N          stop after N steps\n"
+    "  --end-time T       stop at time T instead of the deck's end time\n"
+    "  --out-dir DIR      where result files go (default: the current directory)\n"
+    "  --no-output        no animation, curve or log files\n"
+    "  --summary F.json   write a summary of the run\n"
+    "  --state F.h5       write the final particle state (HDF5)\n"
+    "  --patch-cells N    cells per patch edge of the grid decomposition (default 8)\n"
+    "  --quiet            no progress lines\n"
+    "  --help, --version\n";
+
+struct Options {
+  std::string deck, out_dir = ".", summary, state;
+  long max_steps = -1;
+  double end_time = -1.0;
+  int threads = 0, patch_cells = 8;
+  bool no_output = false, quiet = false;
+};
+
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+long to_long(const std::string& opt, const char* s) {
+  long v;
+  if (!parse_integer(s, v)) throw UsageError(opt + " needs an integer, got '" + s + "'");
+  return v;
+}
+
+Options parse_args(int argc, char** argv, bool& exit_now) {
+  Options o;
+  exit_now = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> const char* {
+      if (i + 1 >= argc) throw UsageError(a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "--help" || a == "-h") {
+      std::cout << kUsage;
+      exit_now = true;
+      return o;
+    } else if (a == "--version") {
+      std::cout << kVersion << "\n";
+      exit_now = true;
+      return o;
+    } else if (a == "--threads") {
+      o.threads = int(to_long(a, value()));
+      if (o.threads < 1) throw UsageError("--threads must be at least 1");
+    } else if (a == "--steps") {
+      o.max_steps = to_long(a, value());
+      if (o.max_steps < 0) throw UsageError("--steps must not be negative");
+    } else if (a == "--end-time") {
+      const char* s = value();
+      if (!parse_real(s, o.end_time) || !(o.end_time > 0.0)) throw UsageError("--end-time needs a positive number");
+    } else if (a == "--out-dir") {
+      o.out_dir = value();
+    } else if (a == "--no-output") {
+      o.no_output = true;
+    } else if (a == "--summary") {
+      o.summary = value();
+    } else if (a == "--state") {
+      o.state = value();
+    } else if (a == "--patch-cells") {
+      o.patch_cells = int(to_long(a, value()));
+      if (o.patch_cells < 1 || o.patch_cells > 64) throw UsageError("--patch-cells must lie in 1..64");
+    } else if (a == "--quiet" || a == "-q") {
+      o.quiet = true;
+    } else if (!a.empty() && a[0] == '-') {
+      throw UsageError("unknown option " + a);
+    } else if (o.deck.empty()) {
+      o.deck = a;
+    } else {
+      throw UsageError("more than one deck given ('" + o.deck + "' and '" + a + "')");
+    }
+  }
+  if (o.deck.empty()) throw UsageError("no deck given");
+  return o;
+}
+
+std::string json_escape(const std::string& s) {
+  std::string r;
+  for (char ch : s) {
+    if (ch == '"' || ch == '\\') r += '\\', r += ch;
+    else if (static_cast<unsigned char>(ch) < 32) r += ' ';
+    else r += ch;
+  }
+  return r;
+}
+
+std::string num(double v) {
+  if (!std::isfinite(v)) return "null";
+  char b[40];
+  std::snprintf(b, sizeof b, "%.17g", v);
+  return b;
+}
+
+void write_text_atomic(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream f(tmp, std::ios::binary);
+    if (!f) throw std::runtime_error("cannot write " + path);
+    f << text;
+    if (!f) throw std::runtime_error("cannot write " + path);
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) throw std::runtime_error("cannot write " + path);
+}
+
+bool dir_writable(const std::string& dir) {
+  struct stat st;
+  return stat(dir.c_str(), &st) == 0 && S_ISDIR(st.st_mode) && access(dir.c_str(), W_OK) == 0;
+}
+
+}  // namespace
+
+int run_main(int argc, char** argv) {
+  Options opt;
+  try {
+    bool exit_now;
+    opt = parse_args(argc, argv, exit_now);
+    if (exit_now) return 0;
+  } catch (const UsageError& e) {
+    std::cerr << "mpm3d: " << e.what() << " (see --help)\n";
+    return 2;
+  }
+  try {
+    Model model = read_deck(opt.deck);
+    if (!dir_writable(opt.out_dir)) throw std::runtime_error("output directory '" + opt.out_dir + "' is not writable");
+    for (const std::string* f : {&opt.summary, &opt.state}) {
+      if (f->empty()) continue;
+      const size_t slash = f->find_last_of('/');
+      const std::string d = slash == std::string::npos ? "." : f->substr(0, slash == 0 ? 1 : slash);
+      if (!dir_writable(d)) throw std::runtime_error("cannot write '" + *f + "': directory not writable");
+    }
+#ifdef _OPENMP
+    if (opt.threads > 0) omp_set_num_threads(opt.threads);
+    const int threads = omp_get_max_threads();
+#else
+    const int threads = 1;
+#endif
+    const auto t_start = std::chrono::steady_clock::now();
+    Simulation sim(std::move(model), opt.patch_cells);
+    const Model& m = sim.model;
+    const double end_time = opt.end_time > 0.0 ? opt.end_time : m.endtime;
+    LegacyOutput out;
+    if (!opt.no_output) out.open(m, opt.out_dir);
+    std::ostringstream head;
+    head << "MPM3D-CXX: " << m.title << "\n  deck " << opt.deck << ", " << m.particles.np << " particles, "
+         << m.bodies.size() << " bodies, " << m.nmat << " materials\n  grid " << sim.grid.nc[0] << " x "
+         << sim.grid.nc[1] << " x " << sim.grid.nc[2] << " cells of " << m.dcell << ", " << sim.grid.npatch
+         << " patches of " << sim.grid.patch_cells << "^3 cells\n  scheme "
+         << (m.scheme == SCHEME_MUSL ? "MUSL" : m.scheme == SCHEME_USL ? "USL" : "USF") << ", dt " << m.dt
+         << ", end time " << end_time << ", threads " << threads;
+    for (const auto& w : m.warnings) head << "\n  warning: " << w;
+    out.log(head.str());
+    if (!opt.quiet) std::cout << head.str() << std::endl;
+
+    double step_seconds = 0.0, dt_min = m.dt, dt_max = m.dt, max_epeff = 0.0;
+    double next_out = m.outtime, next_rpt = m.rpttime;
+    if (!opt.no_output && (m.tecplot || m.paraview)) out.frame(m, 0.0);
+    const double eps = 1e-9 * m.dt;
+    std::string failure;
+    while (sim.time < end_time - eps && (opt.max_steps < 0 || sim.steps < opt.max_steps)) {
+      const auto t0 = std::chrono::steady_clock::now();
+      try {
+        sim.step();
+      } catch (const HealthError& e) {
+        failure = e.what();
+      }
+      step_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      if (!failure.empty()) break;
+      if (!opt.no_output) {
+        out.step(m, sim.time, sim.kinetic, sim.internal, sim.momentum);
+        if (sim.time >= next_out - eps) {
+          if (m.tecplot || m.paraview) out.frame(m, sim.time);
+          next_out += m.outtime;
+        }
+      }
+      if (sim.time >= next_rpt - eps || sim.time >= end_time - eps) {
+        next_rpt += m.rpttime;
+        const double left = (end_time - sim.time) / m.dt * (step_seconds / double(sim.steps));
+        char line[256];
+        std::snprintf(line, sizeof line, "step %7ld  t %.4e  KE %.4e  IE %.4e  E %.4e  outside %d  eta %.1f s",
+                      sim.steps, sim.time, sim.kinetic, sim.internal, sim.kinetic + sim.internal, sim.outside,
+                      left > 0 ? left : 0.0);
+        out.log(line);
+        if (!opt.quiet) std::cout << line << std::endl;
+      }
+    }
+    const Particles& P = m.particles;
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (int p = 0; p < P.np; ++p) {
+      max_epeff = std::max(max_epeff, P.epeff[p]);
+      for (int a = 0; a < 3; ++a) {
+        lo[a] = std::min(lo[a], P.x[3 * size_t(p) + a]);
+        hi[a] = std::max(hi[a], P.x[3 * size_t(p) + a]);
+      }
+    }
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+    const double ns = sim.steps > 0 ? step_seconds * 1e9 / (double(P.np) * double(sim.steps)) : 0.0;
+    std::vector<std::string> warnings = m.warnings;
+    if (sim.outside > 0)
+      warnings.push_back(std::to_string(sim.outside) + " particles left the grid and were frozen");
+    if (!failure.empty()) warnings.push_back(failure);
+    if (!opt.state.empty()) write_state_h5(opt.state, m, sim.time, sim.steps, m.dt);
+    if (!opt.summary.empty()) {
+      std::ostringstream js;
+      js << "{\n  \"deck\": \"" << json_escape(opt.deck) << "\",\n  \"title\": \"" << json_escape(m.title)
+         << "\",\n  \"particles\": " << P.np << ",\n  \"steps\": " << sim.steps << ",\n  \"time\": " << num(sim.time)
+         << ",\n  \"dt_min\": " << num(dt_min) << ",\n  \"dt_max\": " << num(dt_max) << ",\n  \"threads\": " << threads
+         << ",\n  \"wall_seconds\": " << num(wall) << ",\n  \"ns_per_particle_step\": " << num(ns)
+         << ",\n  \"kinetic_energy\": " << num(sim.kinetic) << ",\n  \"internal_energy\": " << num(sim.internal)
+         << ",\n  \"initial_total_energy\": " << num(sim.initial_total_energy) << ",\n  \"momentum\": ["
+         << num(sim.momentum[0]) << ", " << num(sim.momentum[1]) << ", " << num(sim.momentum[2])
+         << "],\n  \"bbox_min\": [" << num(lo[0]) << ", " << num(lo[1]) << ", " << num(lo[2]) << "],\n  \"bbox_max\": ["
+         << num(hi[0]) << ", " << num(hi[1]) << ", " << num(hi[2]) << "],\n  \"max_epeff\": " << num(max_epeff)
+         << ",\n  \"particles_outside_grid\": " << sim.outside << ",\n  \"warnings\": [";
+      for (size_t i = 0; i < warnings.size(); ++i) js << (i ? ", " : "") << "\"" << json_escape(warnings[i]) << "\"";
+      js << "]\n}\n";
+      write_text_atomic(opt.summary, js.str());
+    }
+    char tail[256];
+    std::snprintf(tail, sizeof tail, "done: %ld steps, t %.6g, %.2f s wall, %.1f ns per particle-step", sim.steps,
+                  sim.time, wall, ns);
+    out.log(tail);
+    if (!opt.quiet) std::cout << tail << std::endl;
+    for (const auto& w : warnings)
+      if (!opt.quiet || w == failure) std::cerr << "mpm3d: warning: " << w << "\n";
+    out.close();
+    if (!failure.empty()) {
+      std::cerr << "mpm3d: " << failure << "\n";
+      return 3;
+    }
+    return 0;
+  } catch (const DeckError& e) {
+    std::cerr << "mpm3d: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "mpm3d: " << opt.deck << ": " << e.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace mpm3d

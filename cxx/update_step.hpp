@@ -1,0 +1,65 @@
+// update_step: the stages of one explicit MPM time step.
+// Every stage takes one StepContext, a plain C struct of pointers and sizes, so the
+// same stage can come from C++ or from the Fortran reference (bind(C)), in any mix.
+#pragma once
+#include "material.hpp"
+
+extern "C" {
+
+enum UpdateScheme { SCHEME_MUSL = 0, SCHEME_USL = 1, SCHEME_USF = 2 };
+
+struct StepContext {
+  // Particles (np): x, v (3,np); sig (6,np); lx (3,np) local cell coordinates.
+  double *x, *v, *sig, *mass, *vol, *epeff, *ie;
+  double *temp;     // (np) or null: only with thermal Johnson-Cook materials
+  double *fext;     // (3,np) or null: only with point or body loads
+  double *lx;       // (3,np) written by the bin stage
+  int *mat, *body;  // 0-based
+  int *cell;        // (np) base cell index written by the bin stage; -1: outside the grid
+  double *gravity;  // (3,nbody) or null
+  const MaterialParams *mats;
+  // Grid nodes (nnode): mass, momentum (3,nnode), force (3,nnode).
+  double *gmass, *gmom, *gforce;
+  // Patches: start (npatch+1), particle list (np), slot (npatch), buffers.
+  int *patch_start, *patch_part, *patch_slot;
+  double *patch_buf;
+  double *partials;  // (kReduceFields, nblock) scratch of the energy stage
+  double result[8];  // energy stage: kinetic, internal, momentum (3)
+  double origin[3];
+  double h, inv_h, dt, dt_int, mass_cutoff;
+  int np, nbody, nmat, nnode;
+  int nc[3], nn[3];
+  int patch_cells, npd[3], npatch, nslot;
+  int fix[6];
+  int scheme;
+  int has_body_force;  // gravity or loads present: forces carry N * (m g + f_ext)
+  int noutside;        // bin stage: particles outside the grid
+  int reduce_block;    // particles per block of the deterministic reductions
+};
+
+typedef void (*StageFn)(StepContext*);
+
+// The C++ stages.
+void mpm3d_cxx_bin(StepContext* c);        // shape cache, patch lists, buffer slots
+void mpm3d_cxx_p2g(StepContext* c);        // mass, momentum (+ forces unless USF); BC on momentum
+void mpm3d_cxx_forces(StepContext* c);     // USF: internal and body forces after the stress update
+void mpm3d_cxx_integrate(StepContext* c);  // p += f dt_int; boundary conditions
+void mpm3d_cxx_g2p(StepContext* c);        // v, x from the grid; MUSL: momentum remap and BC
+void mpm3d_cxx_stress(StepContext* c);     // strain and spin increments, volume, stress
+void mpm3d_cxx_energy(StepContext* c);     // kinetic, internal energy, momentum
+
+}  // extern "C"
+
+namespace mpm3d {
+
+enum Stage { ST_BIN, ST_P2G, ST_FORCES, ST_INTEGRATE, ST_G2P, ST_STRESS, ST_ENERGY, ST_COUNT };
+extern const char* const kStageNames[ST_COUNT];
+constexpr int kReduceFields = 5;
+
+// The stage table: which implementation each stage uses.
+struct StageTable {
+  StageFn fn[ST_COUNT];
+};
+StageTable cxx_stages();
+
+}  // namespace mpm3d
