@@ -169,11 +169,14 @@ const char* kUsage =
     "  --summary F.json   write a summary of the run\n"
     "  --state F.h5       write the final particle state (HDF5)\n"
     "  --patch-cells N    cells per patch edge of the grid decomposition (default 8)\n"
+    "  --kernel cxx|fortran       take every step stage from one language\n"
+    "  --kernels STAGE=LANG,...   take single stages from a language (see --list-stages)\n"
+    "  --list-stages      print the stage names, one per line\n"
     "  --quiet            no progress lines\n"
     "  --help, --version\n";
 
 struct Options {
-  std::string deck, out_dir = ".", summary, state;
+  std::string deck, out_dir = ".", summary, state, kernel, kernels;
   long max_steps = -1;
   double end_time = -1.0;
   int threads = 0, patch_cells = 8;
@@ -227,6 +230,14 @@ Options parse_args(int argc, char** argv, bool& exit_now) {
     } else if (a == "--patch-cells") {
       o.patch_cells = int(to_long(a, value()));
       if (o.patch_cells < 1 || o.patch_cells > 64) throw UsageError("--patch-cells must lie in 1..64");
+    } else if (a == "--kernel") {
+      o.kernel = value();
+    } else if (a == "--kernels") {
+      o.kernels = value();
+    } else if (a == "--list-stages") {
+      for (const char* n : kStageNames) std::cout << n << "\n";
+      exit_now = true;
+      return o;
     } else if (a == "--quiet" || a == "-q") {
       o.quiet = true;
     } else if (!a.empty() && a[0] == '-') {
@@ -282,8 +293,14 @@ int run_main(int argc, char** argv) {
     bool exit_now;
     opt = parse_args(argc, argv, exit_now);
     if (exit_now) return 0;
+    StageTable probe = cxx_stages();
+    if (!opt.kernel.empty()) select_stages(probe, opt.kernel, false);
+    if (!opt.kernels.empty()) select_stages(probe, opt.kernels, true);
   } catch (const UsageError& e) {
     std::cerr << "mpm3d: " << e.what() << " (see --help)\n";
+    return 2;
+  } catch (const std::exception& e) {  // bad --kernel/--kernels
+    std::cerr << "mpm3d: " << e.what() << "\n";
     return 2;
   }
   try {
@@ -303,6 +320,12 @@ int run_main(int argc, char** argv) {
 #endif
     const auto t_start = std::chrono::steady_clock::now();
     Simulation sim(std::move(model), opt.patch_cells);
+    {
+      StageTable t = cxx_stages();
+      if (!opt.kernel.empty()) select_stages(t, opt.kernel, false);
+      if (!opt.kernels.empty()) select_stages(t, opt.kernels, true);
+      sim.set_stages(t);
+    }
     const Model& m = sim.model;
     const double end_time = opt.end_time > 0.0 ? opt.end_time : m.endtime;
     LegacyOutput out;

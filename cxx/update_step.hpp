@@ -2,6 +2,8 @@
 // Every stage takes one StepContext, a plain C struct of pointers and sizes, so the
 // same stage can come from C++ or from the Fortran reference (bind(C)), in any mix.
 #pragma once
+#include <string>
+
 #include "material.hpp"
 
 extern "C" {
@@ -48,6 +50,15 @@ void mpm3d_cxx_g2p(StepContext* c);        // v, x from the grid; MUSL: momentum
 void mpm3d_cxx_stress(StepContext* c);     // strain and spin increments, volume, stress
 void mpm3d_cxx_energy(StepContext* c);     // kinetic, internal energy, momentum
 
+// The Fortran reference stages (fortran_ref/update_step.f90, bind(C)), same contracts.
+void mpm3d_f_bin(StepContext* c);
+void mpm3d_f_p2g(StepContext* c);
+void mpm3d_f_forces(StepContext* c);
+void mpm3d_f_integrate(StepContext* c);
+void mpm3d_f_g2p(StepContext* c);
+void mpm3d_f_stress(StepContext* c);
+void mpm3d_f_energy(StepContext* c);
+
 }  // extern "C"
 
 namespace mpm3d {
@@ -61,5 +72,11 @@ struct StageTable {
   StageFn fn[ST_COUNT];
 };
 StageTable cxx_stages();
+// True when the Fortran reference kernels are linked in (MPM3D_HAVE_FORTRAN).
+bool have_fortran_stages();
+StageTable fortran_stages();  // throws std::runtime_error without them
+// Applies "--kernel cxx|fortran" or "--kernels stage=lang,..." to a table; throws
+// std::invalid_argument naming the bad stage or language.
+void select_stages(StageTable& t, const std::string& spec, bool per_stage);
 
 }  // namespace mpm3d
