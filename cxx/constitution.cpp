@@ -56,8 +56,10 @@ void yield_stress(const MaterialParams& m, double epeff, double strain_rate, dou
     default: {  // Johnson-Cook family
       double hard = m.yield0, slope;
       if (epeff > 0.0) {
-        hard = m.yield0 + m.hardening * std::pow(epeff, m.jc_n);
-        slope = (m.jc_n * m.hardening) * std::pow(epeff, m.jc_n - 1.0);
+        // pow(e, 1) == e and pow(e, 0) == 1 exactly: the shortcut keeps the bits.
+        const bool linear = m.jc_n == 1.0;
+        hard = m.yield0 + m.hardening * (linear ? epeff : std::pow(epeff, m.jc_n));
+        slope = (m.jc_n * m.hardening) * (linear ? 1.0 : std::pow(epeff, m.jc_n - 1.0));
       } else {
         slope = m.jc_n == 1.0 ? m.hardening : 0.0;
       }
@@ -112,7 +114,9 @@ void stress_update(const MaterialParams& m, const double de[6], const double dw[
   const double two_g = 2.0 * m.shear;
   const double vavg = 0.5 * (vol_old + vol_new);
   // Equivalent deviatoric strain rate (for the Johnson-Cook rate term).
-  const double strain_rate = std::sqrt((2.0 / 3.0) * double_dot(dev, dev)) / dt;
+  // Only the Johnson-Cook rate term reads it; it is formed only when that term is on.
+  const double strain_rate =
+      m.jc_c != 0.0 ? std::sqrt((2.0 / 3.0) * double_dot(dev, dev)) / dt : 0.0;
   const double temp = st.temp ? *st.temp : 0.0;
 
   const double mean_r = ((sig_r[0] + sig_r[1]) + sig_r[2]) / 3.0;

@@ -52,6 +52,10 @@ void Simulation::bind() {
   c.mat = P.mat.data();
   c.body = P.body.data();
   c.cell = cell_.data();
+  pscratch_.assign(size_t(P.np), 0);
+  c.pscratch = pscratch_.data();
+  gvel_.assign(3 * size_t(grid.nnode()), 0.0);
+  c.gvel = gvel_.data();
   std::vector<double>& grav = gravity_;
   grav.assign(3 * model.bodies.size(), 0.0);
   for (size_t b = 0; b < model.bodies.size(); ++b)
@@ -102,18 +106,22 @@ void Simulation::step() {
   StepContext* c = &ctx;
   c->dt = model.dt;
   c->dt_int = steps == 0 ? 0.5 * model.dt : model.dt;  // first step: momentum with dt/2
-  const StageFn* f = stages_.fn;
-  f[ST_BIN](c);
+  auto run = [&](int s) {
+    const auto t0 = std::chrono::steady_clock::now();
+    stages_.fn[s](c);
+    stage_seconds[s] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  run(ST_BIN);
   ensure_patch_buffers();
-  f[ST_P2G](c);
+  run(ST_P2G);
   if (c->scheme == SCHEME_USF) {
-    f[ST_STRESS](c);
-    f[ST_FORCES](c);
+    run(ST_STRESS);
+    run(ST_FORCES);
   }
-  f[ST_INTEGRATE](c);
-  f[ST_G2P](c);
-  if (c->scheme != SCHEME_USF) f[ST_STRESS](c);
-  f[ST_ENERGY](c);
+  run(ST_INTEGRATE);
+  run(ST_G2P);
+  if (c->scheme != SCHEME_USF) run(ST_STRESS);
+  run(ST_ENERGY);
   outside = c->noutside;
   kinetic = c->result[0];
   internal = c->result[1];
@@ -404,6 +412,16 @@ int run_main(int argc, char** argv) {
       for (size_t i = 0; i < warnings.size(); ++i) js << (i ? ", " : "") << "\"" << json_escape(warnings[i]) << "\"";
       js << "]\n}\n";
       write_text_atomic(opt.summary, js.str());
+    }
+    {
+      std::ostringstream st;
+      st << "stage shares:";
+      double total = 0;
+      for (double v : sim.stage_seconds) total += v;
+      for (int s = 0; s < ST_COUNT; ++s)
+        if (sim.stage_seconds[s] > 0) st << " " << kStageNames[s] << " " << int(100.0 * sim.stage_seconds[s] / total + 0.5) << "%";
+      out.log(st.str());
+      if (!opt.quiet) std::cout << st.str() << std::endl;
     }
     char tail[256];
     std::snprintf(tail, sizeof tail, "done: %ld steps, t %.6g, %.2f s wall, %.1f ns per particle-step", sim.steps,

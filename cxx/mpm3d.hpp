@@ -34,6 +34,7 @@ class Simulation {
   double kinetic = 0.0, internal = 0.0, momentum[3] = {0, 0, 0};
   double initial_total_energy = 0.0;
   int outside = 0;  // particles outside the grid after the last step
+  double stage_seconds[ST_COUNT] = {};  // wall time spent in each stage
 
   // Energies and momentum of the current state (the energy stage on its own).
   void measure();
@@ -41,7 +42,8 @@ class Simulation {
  private:
   StageTable stages_;
   std::vector<double> lx_, partials_;
-  std::vector<int> cell_;
+  std::vector<int> cell_, pscratch_;
+  std::vector<double> gvel_;
   std::vector<double> gravity_;
   void bind();  // points ctx at the arrays
   void ensure_patch_buffers();

@@ -1,8 +1,14 @@
 #include "update_step.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <stdexcept>
+#include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include "constitution.hpp"
 #include "grid.hpp"
@@ -63,11 +69,32 @@ void select_stages(StageTable& t, const std::string& spec, bool per_stage) {
 
 namespace {
 
+// Exact division of a non-negative 32-bit integer by a fixed divisor with one 128-bit
+// multiply (Lemire, Kaser & Kurz 2019): the integer index decoding of the hot loops.
+struct FastDiv {
+  uint64_t m;
+  explicit FastDiv(uint32_t d) : m(UINT64_C(0xFFFFFFFFFFFFFFFF) / d + 1) {}
+  uint32_t operator()(uint32_t n) const { return uint32_t((__uint128_t(m) * n) >> 64); }
+};
+
+// Cell index -> (i, j, k).
+struct CellDecoder {
+  FastDiv div0, div1;
+  int nc0, nc1;
+  explicit CellDecoder(const StepContext* c)
+      : div0(uint32_t(c->nc[0])), div1(uint32_t(c->nc[1])), nc0(c->nc[0]), nc1(c->nc[1]) {}
+  void operator()(int cell, int& i, int& j, int& k) const {
+    const int r = int(div0(uint32_t(cell)));
+    i = cell - r * nc0;
+    k = int(div1(uint32_t(r)));
+    j = r - k * nc1;
+  }
+};
+
 // Global node index of the base node of a cell.
-inline int base_node(const StepContext* c, int cell) {
-  const int i = cell % c->nc[0];
-  const int j = (cell / c->nc[0]) % c->nc[1];
-  const int k = cell / (c->nc[0] * c->nc[1]);
+inline int base_node(const StepContext* c, const CellDecoder& dec, int cell) {
+  int i, j, k;
+  dec(cell, i, j, k);
   return i + c->nn[0] * (j + c->nn[1] * k);
 }
 
@@ -81,14 +108,18 @@ inline double* patch_buffer(const StepContext* c, int slot) {
   return c->patch_buf + size_t(slot) * size_t(pn) * kNodeFields;
 }
 
-// Local node index, in its patch buffer, of the base node of particle p's cell.
-inline int patch_base(const StepContext* c, int q, int cell) {
+// Local node index, in the buffer of patch (qx, qy, qz), of the base node of a cell.
+inline int patch_base(const StepContext* c, const CellDecoder& dec, const int q3[3], int cell) {
   const int P = c->patch_cells, Q = P + 1;
-  const int qx = q % c->npd[0], qy = (q / c->npd[0]) % c->npd[1], qz = q / (c->npd[0] * c->npd[1]);
-  const int i = cell % c->nc[0] - qx * P;
-  const int j = (cell / c->nc[0]) % c->nc[1] - qy * P;
-  const int k = cell / (c->nc[0] * c->nc[1]) - qz * P;
-  return i + Q * (j + Q * k);
+  int i, j, k;
+  dec(cell, i, j, k);
+  return (i - q3[0] * P) + Q * ((j - q3[1] * P) + Q * (k - q3[2] * P));
+}
+
+inline void patch_coords(const StepContext* c, int q, int q3[3]) {
+  q3[0] = q % c->npd[0];
+  q3[1] = (q / c->npd[0]) % c->npd[1];
+  q3[2] = q / (c->npd[0] * c->npd[1]);
 }
 
 inline int patch_local(int P, int k) {
@@ -99,46 +130,61 @@ inline int patch_local(int P, int k) {
 // Canonical assembly (DESIGN.md section 4): each node's value is 0.0 plus the values of
 // the non-empty patches holding it, in ascending patch index (x fastest, then y, z).
 // Fields first..first+count-1 of the buffers go to dst_mass (field 0), dst_mom (1-3)
-// and dst_force (4-6).
+// and dst_force (4-6). Every node is written by exactly one owner patch (the patch whose
+// lower corner region holds it), so owners run in parallel.
 void assemble(const StepContext* c, int first, int count, double* dst_mass, double* dst_mom,
               double* dst_force) {
   const int P = c->patch_cells, Q = P + 1;
-  for (int k = 0; k < c->nn[2]; ++k) {
-    int qz_lo = (k > 0 && k % P == 0) ? k / P - 1 : k / P;
-    int qz_hi = k / P;
-    if (qz_hi > c->npd[2] - 1) qz_hi = c->npd[2] - 1;
-    if (qz_lo > qz_hi) qz_lo = qz_hi;
-    for (int j = 0; j < c->nn[1]; ++j) {
-      int qy_lo = (j > 0 && j % P == 0) ? j / P - 1 : j / P;
-      int qy_hi = j / P;
-      if (qy_hi > c->npd[1] - 1) qy_hi = c->npd[1] - 1;
-      if (qy_lo > qy_hi) qy_lo = qy_hi;
-      for (int i = 0; i < c->nn[0]; ++i) {
-        int qx_lo = (i > 0 && i % P == 0) ? i / P - 1 : i / P;
-        int qx_hi = i / P;
-        if (qx_hi > c->npd[0] - 1) qx_hi = c->npd[0] - 1;
-        if (qx_lo > qx_hi) qx_lo = qx_hi;
-        double sum[kNodeFields];
-        for (int f = 0; f < count; ++f) sum[f] = 0.0;
-        for (int qz = qz_lo; qz <= qz_hi; ++qz)
-          for (int qy = qy_lo; qy <= qy_hi; ++qy)
-            for (int qx = qx_lo; qx <= qx_hi; ++qx) {
-              const int q = qx + c->npd[0] * (qy + c->npd[1] * qz);
-              const int slot = c->patch_slot[q];
-              if (slot < 0) continue;
-              const int ln = (i - qx * P) + Q * ((j - qy * P) + Q * (k - qz * P));
-              const double* b = patch_buffer(c, slot) + size_t(ln) * kNodeFields + first;
-              for (int f = 0; f < count; ++f) sum[f] += b[f];
-            }
-        const int n = i + c->nn[0] * (j + c->nn[1] * k);
-        for (int f = 0; f < count; ++f) {
-          const int field = first + f;
-          if (field == 0) dst_mass[n] = sum[f];
-          else if (field <= 3) dst_mom[3 * n + field - 1] = sum[f];
-          else dst_force[3 * n + field - 4] = sum[f];
+  const int npd0 = c->npd[0], npd1 = c->npd[1], npd2 = c->npd[2];
+  const int pn = Q * Q * Q;
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int q = 0; q < c->npatch; ++q) {
+    const int qx = q % npd0, qy = (q / npd0) % npd1, qz = q / (npd0 * npd1);
+    // Slots of the patch and its lower neighbours: nb[cz][cy][cx], c = 0 lower, 1 self.
+    const double* nb[2][2][2];
+    bool any = false;
+    for (int cz = 0; cz < 2; ++cz)
+      for (int cy = 0; cy < 2; ++cy)
+        for (int cx = 0; cx < 2; ++cx) {
+          const int px = qx - 1 + cx, py = qy - 1 + cy, pz = qz - 1 + cz;
+          const double* b = nullptr;
+          if (px >= 0 && py >= 0 && pz >= 0) {
+            const int slot = c->patch_slot[px + npd0 * (py + npd1 * pz)];
+            if (slot >= 0) b = c->patch_buf + size_t(slot) * size_t(pn) * kNodeFields;
+          }
+          nb[cz][cy][cx] = b;
+          any = any || b;
         }
-      }
-    }
+    const int i0 = qx * P, j0 = qy * P, k0 = qz * P;
+    const int i1 = qx == npd0 - 1 ? c->nn[0] : i0 + P;
+    const int j1 = qy == npd1 - 1 ? c->nn[1] : j0 + P;
+    const int k1 = qz == npd2 - 1 ? c->nn[2] : k0 + P;
+    for (int k = k0; k < k1; ++k)
+      for (int j = j0; j < j1; ++j)
+        for (int i = i0; i < i1; ++i) {
+          const int n = i + c->nn[0] * (j + c->nn[1] * k);
+          double sum[kNodeFields] = {0, 0, 0, 0, 0, 0, 0};
+          if (any) {
+            const int czlo = (k == k0 && qz > 0) ? 0 : 1;
+            const int cylo = (j == j0 && qy > 0) ? 0 : 1;
+            const int cxlo = (i == i0 && qx > 0) ? 0 : 1;
+            for (int cz = czlo; cz < 2; ++cz)
+              for (int cy = cylo; cy < 2; ++cy)
+                for (int cx = cxlo; cx < 2; ++cx) {
+                  const double* b = nb[cz][cy][cx];
+                  if (!b) continue;
+                  const int ln = (i - (qx - 1 + cx) * P) + Q * ((j - (qy - 1 + cy) * P) + Q * (k - (qz - 1 + cz) * P));
+                  const double* v = b + size_t(ln) * kNodeFields + first;
+                  for (int f = 0; f < count; ++f) sum[f] += v[f];
+                }
+          }
+          for (int f = 0; f < count; ++f) {
+            const int field = first + f;
+            if (field == 0) dst_mass[n] = sum[f];
+            else if (field <= 3) dst_mom[3 * n + field - 1] = sum[f];
+            else dst_force[3 * n + field - 4] = sum[f];
+          }
+        }
   }
 }
 
@@ -173,16 +219,20 @@ void apply_bc(const StepContext* c, double* a) {
 void scatter_p2g(StepContext* c, bool with_mass_mom, bool with_forces) {
   const int P = c->patch_cells;
   const int pn = (P + 1) * (P + 1) * (P + 1);
+  const CellDecoder dec(c);
+#pragma omp parallel for schedule(dynamic, 1)
   for (int q = 0; q < c->npatch; ++q) {
     const int slot = c->patch_slot[q];
     if (slot < 0) continue;
+    int q3[3];
+    patch_coords(c, q, q3);
     double* buf = patch_buffer(c, slot);
     std::memset(buf, 0, sizeof(double) * size_t(pn) * kNodeFields);
     for (int idx = c->patch_start[q]; idx < c->patch_start[q + 1]; ++idx) {
       const int p = c->patch_part[idx];
       double N[8], G[24];
       shape_linear(c->lx + 3 * p, c->inv_h, N, G);
-      const int base = patch_base(c, q, c->cell[p]);
+      const int base = patch_base(c, dec, q3, c->cell[p]);
       const double mp = c->mass[p];
       const double* vp = c->v + 3 * p;
       double vs[6] = {0, 0, 0, 0, 0, 0}, fb[3] = {0, 0, 0};
@@ -232,10 +282,11 @@ using namespace mpm3d;
 
 extern "C" void mpm3d_cxx_bin(StepContext* c) {
   const int P = c->patch_cells;
-  int* start = c->patch_start;
-  for (int q = 0; q <= c->npatch; ++q) start[q] = 0;
+  const int np = c->np, npatch = c->npatch;
+  int* patch_of = c->pscratch;  // patch of each particle, -1 outside
   int outside = 0;
-  for (int p = 0; p < c->np; ++p) {
+#pragma omp parallel for schedule(static) reduction(+ : outside)
+  for (int p = 0; p < np; ++p) {
     int idx[3];
     bool in = true;
     for (int a = 0; a < 3; ++a) {
@@ -250,31 +301,52 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
     }
     if (!in) {
       c->cell[p] = -1;
+      patch_of[p] = -1;
       ++outside;
       continue;
     }
     c->cell[p] = idx[0] + c->nc[0] * (idx[1] + c->nc[1] * idx[2]);
-    const int q = idx[0] / P + c->npd[0] * (idx[1] / P + c->npd[1] * (idx[2] / P));
-    ++start[q + 1];
+    patch_of[p] = idx[0] / P + c->npd[0] * (idx[1] / P + c->npd[1] * (idx[2] / P));
   }
-  int nslot = 0;
-  for (int q = 0; q < c->npatch; ++q) {
-    c->patch_slot[q] = start[q + 1] > 0 ? nslot++ : -1;
-    start[q + 1] += start[q];
+  // Stable counting sort of the particles by patch: ascending particle index within each
+  // patch whatever the number of chunks, so the lists do not depend on the thread count.
+  int nchunk = 1;
+#ifdef _OPENMP
+  nchunk = omp_get_max_threads();
+#endif
+  if (nchunk > np / 1024 + 1) nchunk = np / 1024 + 1;
+  std::vector<int> counts(size_t(nchunk) * size_t(npatch), 0);
+#pragma omp parallel for schedule(static, 1) num_threads(nchunk)
+  for (int t = 0; t < nchunk; ++t) {
+    int* cnt = counts.data() + size_t(t) * npatch;
+    const int p0 = int(int64_t(np) * t / nchunk), p1 = int(int64_t(np) * (t + 1) / nchunk);
+    for (int p = p0; p < p1; ++p)
+      if (patch_of[p] >= 0) ++cnt[patch_of[p]];
+  }
+  int* start = c->patch_start;
+  int offset = 0, nslot = 0;
+  for (int q = 0; q < npatch; ++q) {
+    start[q] = offset;
+    int total = 0;
+    for (int t = 0; t < nchunk; ++t) {
+      int& cnt = counts[size_t(t) * npatch + q];
+      const int n = cnt;
+      cnt = offset + total;  // becomes this chunk's fill pointer
+      total += n;
+    }
+    c->patch_slot[q] = total > 0 ? nslot++ : -1;
+    offset += total;
+  }
+  start[npatch] = offset;
+#pragma omp parallel for schedule(static, 1) num_threads(nchunk)
+  for (int t = 0; t < nchunk; ++t) {
+    int* fill = counts.data() + size_t(t) * npatch;
+    const int p0 = int(int64_t(np) * t / nchunk), p1 = int(int64_t(np) * (t + 1) / nchunk);
+    for (int p = p0; p < p1; ++p)
+      if (patch_of[p] >= 0) c->patch_part[fill[patch_of[p]]++] = p;
   }
   c->nslot = nslot;
   c->noutside = outside;
-  // Second pass: particles in ascending index within each patch (a stable counting sort).
-  // The end offsets are rebuilt as fill pointers and restored afterwards.
-  for (int q = c->npatch; q > 0; --q) start[q] = start[q - 1];
-  start[0] = 0;
-  for (int p = 0; p < c->np; ++p) {
-    const int cell = c->cell[p];
-    if (cell < 0) continue;
-    const int i = cell % c->nc[0], j = (cell / c->nc[0]) % c->nc[1], k = cell / (c->nc[0] * c->nc[1]);
-    const int q = i / P + c->npd[0] * (j / P + c->npd[1] * (k / P));
-    c->patch_part[start[q + 1]++] = p;
-  }
 }
 
 extern "C" void mpm3d_cxx_p2g(StepContext* c) {
@@ -291,8 +363,11 @@ extern "C" void mpm3d_cxx_forces(StepContext* c) {
 
 extern "C" void mpm3d_cxx_integrate(StepContext* c) {
   const double dt = c->dt_int;
-  for (int n = 0; n < c->nnode; ++n)
-    for (int a = 0; a < 3; ++a) c->gmom[3 * n + a] = c->gmom[3 * n + a] + c->gforce[3 * n + a] * dt;
+  const int n3 = 3 * c->nnode;
+  double* mom = c->gmom;
+  const double* f = c->gforce;
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n3; ++i) mom[i] = mom[i] + f[i] * dt;
   apply_bc(c, c->gmom);
   apply_bc(c, c->gforce);
 }
@@ -301,9 +376,14 @@ extern "C" void mpm3d_cxx_g2p(StepContext* c) {
   const bool remap = c->scheme == SCHEME_MUSL;
   const int P = c->patch_cells;
   const int pn = (P + 1) * (P + 1) * (P + 1);
+  const double cutoff = c->mass_cutoff, dt = c->dt, dt_int = c->dt_int;
+  const CellDecoder dec(c);
+#pragma omp parallel for schedule(dynamic, 1)
   for (int q = 0; q < c->npatch; ++q) {
     const int slot = c->patch_slot[q];
     if (slot < 0) continue;
+    int q3[3];
+    patch_coords(c, q, q3);
     double* buf = patch_buffer(c, slot);
     if (remap)
       for (int ln = 0; ln < pn; ++ln)
@@ -312,26 +392,32 @@ extern "C" void mpm3d_cxx_g2p(StepContext* c) {
       const int p = c->patch_part[idx];
       double N[8], G[24];
       shape_linear(c->lx + 3 * p, c->inv_h, N, G);
-      const int base = base_node(c, c->cell[p]);
-      double acc[3] = {0.0, 0.0, 0.0}, vel[3] = {0.0, 0.0, 0.0};
+      const int base = base_node(c, dec, c->cell[p]);
+      double ax = 0.0, ay = 0.0, az = 0.0, ux = 0.0, uy = 0.0, uz = 0.0;
       for (int k = 0; k < 8; ++k) {
         const int n = node_of(c, base, k);
         const double m = c->gmass[n];
-        if (!(m > c->mass_cutoff)) continue;
+        if (!(m > cutoff)) continue;
         const double r = N[k] / m;
-        for (int a = 0; a < 3; ++a) {
-          acc[a] += c->gforce[3 * n + a] * r;
-          vel[a] += c->gmom[3 * n + a] * r;
-        }
+        const double* f = c->gforce + 3 * n;
+        const double* pm = c->gmom + 3 * n;
+        ax += f[0] * r;
+        ay += f[1] * r;
+        az += f[2] * r;
+        ux += pm[0] * r;
+        uy += pm[1] * r;
+        uz += pm[2] * r;
       }
       double* vp = c->v + 3 * p;
       double* xp = c->x + 3 * p;
-      for (int a = 0; a < 3; ++a) {
-        vp[a] = vp[a] + acc[a] * c->dt_int;
-        xp[a] = xp[a] + vel[a] * c->dt;
-      }
+      vp[0] = vp[0] + ax * dt_int;
+      vp[1] = vp[1] + ay * dt_int;
+      vp[2] = vp[2] + az * dt_int;
+      xp[0] = xp[0] + ux * dt;
+      xp[1] = xp[1] + uy * dt;
+      xp[2] = xp[2] + uz * dt;
       if (remap) {
-        const int pbase = patch_base(c, q, c->cell[p]);
+        const int pbase = patch_base(c, dec, q3, c->cell[p]);
         const double mp = c->mass[p];
         for (int k = 0; k < 8; ++k) {
           double* b = buf + size_t(pbase + patch_local(P, k)) * kNodeFields;
@@ -350,23 +436,41 @@ extern "C" void mpm3d_cxx_g2p(StepContext* c) {
 }
 
 extern "C" void mpm3d_cxx_stress(StepContext* c) {
-  const double dt = c->dt;
+  const double dt = c->dt, cutoff = c->mass_cutoff;
+  // Node velocities once per node (the same division p/m as per particle, so the same bits).
+  double* gvel = c->gvel;
+#pragma omp parallel for schedule(static)
+  for (int n = 0; n < c->nnode; ++n) {
+    const double m = c->gmass[n];
+    if (!(m > cutoff)) continue;
+    for (int a = 0; a < 3; ++a) gvel[3 * n + a] = c->gmom[3 * n + a] / m;
+  }
+  const CellDecoder dec(c);
+#pragma omp parallel for schedule(dynamic, 256)
   for (int p = 0; p < c->np; ++p) {
     const int cell = c->cell[p];
     if (cell < 0) continue;
     double N[8], G[24];
     shape_linear(c->lx + 3 * p, c->inv_h, N, G);
-    const int base = base_node(c, cell);
-    double L[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};  // L[3a+b] = d v_a / d x_b
+    const int base = base_node(c, dec, cell);
+    // Velocity gradient L[3a+b] = d v_a / d x_b, summed over the nodes in order k = 0..7.
+    double l0 = 0, l1 = 0, l2 = 0, l3 = 0, l4 = 0, l5 = 0, l6 = 0, l7 = 0, l8 = 0;
     for (int k = 0; k < 8; ++k) {
       const int n = node_of(c, base, k);
-      const double m = c->gmass[n];
-      if (!(m > c->mass_cutoff)) continue;
-      for (int a = 0; a < 3; ++a) {
-        const double va = c->gmom[3 * n + a] / m;
-        for (int b = 0; b < 3; ++b) L[3 * a + b] += va * G[3 * k + b];
-      }
+      if (!(c->gmass[n] > cutoff)) continue;
+      const double vx = gvel[3 * n], vy = gvel[3 * n + 1], vz = gvel[3 * n + 2];
+      const double gx = G[3 * k], gy = G[3 * k + 1], gz = G[3 * k + 2];
+      l0 += vx * gx;
+      l1 += vx * gy;
+      l2 += vx * gz;
+      l3 += vy * gx;
+      l4 += vy * gy;
+      l5 += vy * gz;
+      l6 += vz * gx;
+      l7 += vz * gy;
+      l8 += vz * gz;
     }
+    const double L[9] = {l0, l1, l2, l3, l4, l5, l6, l7, l8};
     const double de[6] = {L[0] * dt, L[4] * dt, L[8] * dt, (0.5 * (L[5] + L[7])) * dt,
                           (0.5 * (L[2] + L[6])) * dt, (0.5 * (L[1] + L[3])) * dt};
     const double dw[3] = {(0.5 * (L[5] - L[7])) * dt, (0.5 * (L[2] - L[6])) * dt,
@@ -382,6 +486,7 @@ extern "C" void mpm3d_cxx_stress(StepContext* c) {
 extern "C" void mpm3d_cxx_energy(StepContext* c) {
   const int B = c->reduce_block;
   const int nblock = (c->np + B - 1) / B;
+#pragma omp parallel for schedule(static)
   for (int blk = 0; blk < nblock; ++blk) {
     double part[kReduceFields] = {0, 0, 0, 0, 0};
     const int end = (blk + 1) * B < c->np ? (blk + 1) * B : c->np;
@@ -396,6 +501,7 @@ extern "C" void mpm3d_cxx_energy(StepContext* c) {
     }
     for (int f = 0; f < kReduceFields; ++f) c->partials[kReduceFields * blk + f] = part[f];
   }
+  // Fixed-order fold of the block partials: the same sums for any thread count.
   for (int f = 0; f < kReduceFields; ++f) {
     double s = 0.0;
     for (int blk = 0; blk < nblock; ++blk) s += c->partials[kReduceFields * blk + f];

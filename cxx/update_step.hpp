@@ -37,6 +37,10 @@ struct StepContext {
   int has_body_force;  // gravity or loads present: forces carry N * (m g + f_ext)
   int noutside;        // bin stage: particles outside the grid
   int reduce_block;    // particles per block of the deterministic reductions
+  // Fields after this point are stage-internal scratch of the C++ kernels (a Fortran
+  // mirror of the struct may stop before them).
+  double *gvel;        // (3,nnode) node velocities p/m, formed once per stress stage
+  int *pscratch;       // (np) patch of each particle during binning
 };
 
 typedef void (*StageFn)(StepContext*);
