@@ -26,7 +26,7 @@ build: deps $(BUILD)/CMakeCache.txt
 	cmake --build $(BUILD) -j $(JOBS)
 
 run: build
-	python3 tools/taylor_run.py $(BUILD)/cxx/mpm3d $(DECK)
+	tools/taylor_run.sh $(BUILD) $(DECK)
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
