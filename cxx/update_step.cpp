@@ -1,6 +1,7 @@
 #include "update_step.hpp"
 
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>
@@ -127,6 +128,34 @@ inline int patch_local(int P, int k) {
   return (k & 1) + Q * (((k >> 1) & 1) + Q * ((k >> 2) & 1));
 }
 
+// Nodes owned by patch q: [lo, hi) per axis; the last patch of an axis also owns the
+// grid's last node layer. A patch is active when it or one of its seven lower neighbours
+// holds particles; nodes of inactive patches are never read by any stage, so node loops
+// skip them (their values are left as they were).
+struct OwnedNodes {
+  int lo[3], hi[3];
+  bool active;
+};
+
+inline OwnedNodes owned_nodes(const StepContext* c, int q) {
+  OwnedNodes o;
+  const int P = c->patch_cells;
+  int q3[3] = {q % c->npd[0], (q / c->npd[0]) % c->npd[1], q / (c->npd[0] * c->npd[1])};
+  for (int a = 0; a < 3; ++a) {
+    o.lo[a] = q3[a] * P;
+    o.hi[a] = q3[a] == c->npd[a] - 1 ? c->nn[a] : o.lo[a] + P;
+  }
+  o.active = false;
+  for (int cz = 0; cz < 2 && !o.active; ++cz)
+    for (int cy = 0; cy < 2 && !o.active; ++cy)
+      for (int cx = 0; cx < 2 && !o.active; ++cx) {
+        const int px = q3[0] - 1 + cx, py = q3[1] - 1 + cy, pz = q3[2] - 1 + cz;
+        if (px >= 0 && py >= 0 && pz >= 0 && c->patch_slot[px + c->npd[0] * (py + c->npd[1] * pz)] >= 0)
+          o.active = true;
+      }
+  return o;
+}
+
 // Canonical assembly (DESIGN.md section 4): each node's value is 0.0 plus the values of
 // the non-empty patches holding it, in ascending patch index (x fastest, then y, z).
 // Fields first..first+count-1 of the buffers go to dst_mass (field 0), dst_mom (1-3)
@@ -155,29 +184,39 @@ void assemble(const StepContext* c, int first, int count, double* dst_mass, doub
           nb[cz][cy][cx] = b;
           any = any || b;
         }
+    if (!any) continue;  // inactive: no stage reads these nodes
     const int i0 = qx * P, j0 = qy * P, k0 = qz * P;
     const int i1 = qx == npd0 - 1 ? c->nn[0] : i0 + P;
     const int j1 = qy == npd1 - 1 ? c->nn[1] : j0 + P;
     const int k1 = qz == npd2 - 1 ? c->nn[2] : k0 + P;
     for (int k = k0; k < k1; ++k)
-      for (int j = j0; j < j1; ++j)
+      for (int j = j0; j < j1; ++j) {
+        // Row pointers of the contributing buffers, in ascending patch order: (cz, cy)
+        // ascending, and within each the lower x patch (cx = 0) before the own one.
+        const double* row[8];
+        int cxs[8], nrow = 0;
+        const int czlo = (k == k0 && qz > 0) ? 0 : 1;
+        const int cylo = (j == j0 && qy > 0) ? 0 : 1;
+        for (int cz = czlo; cz < 2; ++cz)
+          for (int cy = cylo; cy < 2; ++cy)
+            for (int cx = 0; cx < 2; ++cx) {
+              const double* b = nb[cz][cy][cx];
+              if (!b) continue;
+              const int lj = j - (qy - 1 + cy) * P, lk = k - (qz - 1 + cz) * P;
+              // Buffer node of x index i is at (i - (qx - 1 + cx) P) + Q (lj + Q lk).
+              row[nrow] = b + std::ptrdiff_t(Q * (lj + Q * lk) - (qx - 1 + cx) * P) * kNodeFields;
+              cxs[nrow++] = cx;
+            }
+        const int nbase = c->nn[0] * (j + c->nn[1] * k);
         for (int i = i0; i < i1; ++i) {
-          const int n = i + c->nn[0] * (j + c->nn[1] * k);
+          const bool lower_x = (i == i0 && qx > 0);
           double sum[kNodeFields] = {0, 0, 0, 0, 0, 0, 0};
-          if (any) {
-            const int czlo = (k == k0 && qz > 0) ? 0 : 1;
-            const int cylo = (j == j0 && qy > 0) ? 0 : 1;
-            const int cxlo = (i == i0 && qx > 0) ? 0 : 1;
-            for (int cz = czlo; cz < 2; ++cz)
-              for (int cy = cylo; cy < 2; ++cy)
-                for (int cx = cxlo; cx < 2; ++cx) {
-                  const double* b = nb[cz][cy][cx];
-                  if (!b) continue;
-                  const int ln = (i - (qx - 1 + cx) * P) + Q * ((j - (qy - 1 + cy) * P) + Q * (k - (qz - 1 + cz) * P));
-                  const double* v = b + size_t(ln) * kNodeFields + first;
-                  for (int f = 0; f < count; ++f) sum[f] += v[f];
-                }
+          for (int r = 0; r < nrow; ++r) {
+            if (cxs[r] == 0 && !lower_x) continue;
+            const double* v = row[r] + size_t(i) * kNodeFields + first;
+            for (int f = 0; f < count; ++f) sum[f] += v[f];
           }
+          const int n = i + nbase;
           for (int f = 0; f < count; ++f) {
             const int field = first + f;
             if (field == 0) dst_mass[n] = sum[f];
@@ -185,6 +224,7 @@ void assemble(const StepContext* c, int first, int count, double* dst_mass, doub
             else dst_force[3 * n + field - 4] = sum[f];
           }
         }
+      }
   }
 }
 
@@ -363,11 +403,18 @@ extern "C" void mpm3d_cxx_forces(StepContext* c) {
 
 extern "C" void mpm3d_cxx_integrate(StepContext* c) {
   const double dt = c->dt_int;
-  const int n3 = 3 * c->nnode;
   double* mom = c->gmom;
   const double* f = c->gforce;
-#pragma omp parallel for schedule(static)
-  for (int i = 0; i < n3; ++i) mom[i] = mom[i] + f[i] * dt;
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int q = 0; q < c->npatch; ++q) {
+    const OwnedNodes o = owned_nodes(c, q);
+    if (!o.active) continue;
+    for (int k = o.lo[2]; k < o.hi[2]; ++k)
+      for (int j = o.lo[1]; j < o.hi[1]; ++j) {
+        const int row = 3 * (c->nn[0] * (j + c->nn[1] * k));
+        for (int i = row + 3 * o.lo[0]; i < row + 3 * o.hi[0]; ++i) mom[i] = mom[i] + f[i] * dt;
+      }
+  }
   apply_bc(c, c->gmom);
   apply_bc(c, c->gforce);
 }
@@ -439,11 +486,18 @@ extern "C" void mpm3d_cxx_stress(StepContext* c) {
   const double dt = c->dt, cutoff = c->mass_cutoff;
   // Node velocities once per node (the same division p/m as per particle, so the same bits).
   double* gvel = c->gvel;
-#pragma omp parallel for schedule(static)
-  for (int n = 0; n < c->nnode; ++n) {
-    const double m = c->gmass[n];
-    if (!(m > cutoff)) continue;
-    for (int a = 0; a < 3; ++a) gvel[3 * n + a] = c->gmom[3 * n + a] / m;
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int q = 0; q < c->npatch; ++q) {
+    const OwnedNodes o = owned_nodes(c, q);
+    if (!o.active) continue;
+    for (int k = o.lo[2]; k < o.hi[2]; ++k)
+      for (int j = o.lo[1]; j < o.hi[1]; ++j)
+        for (int i = o.lo[0]; i < o.hi[0]; ++i) {
+          const int n = i + c->nn[0] * (j + c->nn[1] * k);
+          const double m = c->gmass[n];
+          if (!(m > cutoff)) continue;
+          for (int a = 0; a < 3; ++a) gvel[3 * n + a] = c->gmom[3 * n + a] / m;
+        }
   }
   const CellDecoder dec(c);
 #pragma omp parallel for schedule(dynamic, 256)
