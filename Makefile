@@ -32,7 +32,7 @@ test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 bench: build
-	python3 tools/bench.py $(BUILD)
+	tools/bench.sh $(BUILD)
 
 report: build
 	python3 tools/report.py $(BUILD)
