@@ -54,8 +54,6 @@ void Simulation::bind() {
   c.cell = cell_.data();
   pscratch_.assign(size_t(P.np), 0);
   c.pscratch = pscratch_.data();
-  gvel_.assign(3 * size_t(grid.nnode()), 0.0);
-  c.gvel = gvel_.data();
   std::vector<double>& grav = gravity_;
   grav.assign(3 * model.bodies.size(), 0.0);
   for (size_t b = 0; b < model.bodies.size(); ++b)

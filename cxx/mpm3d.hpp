@@ -43,7 +43,6 @@ class Simulation {
   StageTable stages_;
   std::vector<double> lx_, partials_;
   std::vector<int> cell_, pscratch_;
-  std::vector<double> gvel_;
   std::vector<double> gravity_;
   void bind();  // points ctx at the arrays
   void ensure_patch_buffers();

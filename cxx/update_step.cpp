@@ -485,7 +485,9 @@ extern "C" void mpm3d_cxx_g2p(StepContext* c) {
 extern "C" void mpm3d_cxx_stress(StepContext* c) {
   const double dt = c->dt, cutoff = c->mass_cutoff;
   // Node velocities once per node (the same division p/m as per particle, so the same bits).
-  double* gvel = c->gvel;
+  // They are kept in the force array, which no stage reads again before the next p2g or
+  // forces stage overwrites it (USF: stress runs before forces).
+  double* gvel = c->gforce;
 #pragma omp parallel for schedule(dynamic, 1)
   for (int q = 0; q < c->npatch; ++q) {
     const OwnedNodes o = owned_nodes(c, q);

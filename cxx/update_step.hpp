@@ -39,7 +39,6 @@ struct StepContext {
   int reduce_block;    // particles per block of the deterministic reductions
   // Fields after this point are stage-internal scratch of the C++ kernels (a Fortran
   // mirror of the struct may stop before them).
-  double *gvel;        // (3,nnode) node velocities p/m, formed once per stress stage
   int *pscratch;       // (np) patch of each particle during binning
 };
 
