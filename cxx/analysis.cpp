@@ -7,6 +7,19 @@
 
 namespace mpm3d {
 
+namespace {
+// Silences HDF5's error printing for one call and restores the caller's handler.
+struct H5ErrorSilencer {
+  H5E_auto2_t func = nullptr;
+  void* data = nullptr;
+  H5ErrorSilencer() {
+    H5Eget_auto2(H5E_DEFAULT, &func, &data);
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  }
+  ~H5ErrorSilencer() { H5Eset_auto2(H5E_DEFAULT, func, data); }
+};
+}  // namespace
+
 TaylorMeasures taylor_measures(const std::vector<double>& x, double dp, double l0) {
   const size_t n = x.size() / 3;
   if (n == 0) throw std::invalid_argument("no particles");
@@ -31,7 +44,7 @@ TaylorMeasures taylor_measures(const std::vector<double>& x, double dp, double l
 }
 
 std::vector<double> read_state_dataset(const std::string& path, const std::string& name) {
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  const H5ErrorSilencer quiet;  // our own messages instead; the caller's handler is restored
   hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   if (f < 0) throw std::runtime_error("cannot open " + path);
   hid_t d = H5Dopen2(f, ("/particles/" + name).c_str(), H5P_DEFAULT);

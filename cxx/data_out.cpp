@@ -10,6 +10,19 @@
 
 namespace mpm3d {
 
+namespace {
+// Silences HDF5's error printing for one call and restores the caller's handler.
+struct H5ErrorSilencer {
+  H5E_auto2_t func = nullptr;
+  void* data = nullptr;
+  H5ErrorSilencer() {
+    H5Eget_auto2(H5E_DEFAULT, &func, &data);
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  }
+  ~H5ErrorSilencer() { H5Eset_auto2(H5E_DEFAULT, func, data); }
+};
+}  // namespace
+
 std::string fortran_e12_4(double v) {
   char buf[64];
   if (v == 0.0 || !std::isfinite(v)) {
@@ -87,7 +100,7 @@ void write_attr(hid_t obj, const char* name, hid_t type, const void* v) {
 
 void write_state_h5(const std::string& path, const Model& m, double time, long step, double dt) {
   const std::string tmp = path + ".tmp";
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  const H5ErrorSilencer quiet;  // our own messages instead; the caller's handler is restored
   {
     H5File f{H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT)};
     if (f.id < 0) throw std::runtime_error("cannot create the state file " + path);

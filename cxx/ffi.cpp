@@ -30,7 +30,7 @@ TokenStream TokenStream::from_string(const std::string& text, const std::string&
   std::string line;
   int lineno = 0;
   size_t i = 0;
-  while (i <= text.size()) {
+  while (i < text.size() || (i == 0 && text.empty())) {
     size_t j = text.find('\n', i);
     if (j == std::string::npos) j = text.size();
     line.assign(text, i, j - i);
