@@ -1,0 +1,125 @@
+// DataIn: the deck reader (particle generation, derived material constants, dt).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "data_in.hpp"
+#include "ffi.hpp"
+
+namespace {
+
+std::string deck(const std::string& mate, const std::string& extra = "") {
+  return "mpm3d *** reader test\n"
+         "nbmp 12\nnbbo 1\nnmat 1\n"
+         "spx 0 4\nspy 0 4\nspz 0 4\ndcel 1.0\ndtsc 0.5\nendt 1.0\n"
+         "mate\n" + mate + "\n" + extra +
+         "part bloc 1 1 2.0 0.5 1.0 1.5 2.0 2 3 2\n"
+         "endi\n";
+}
+
+}  // namespace
+
+TEST(DataIn, BlockParticlesZFastest) {
+  mpm3d::Model m = mpm3d::read_deck_text(deck("1 elas 2.0 200.0 0.25"), "b.mpm");
+  EXPECT_EQ(m.title, "*** reader test");
+  const auto& P = m.particles;
+  ASSERT_EQ(P.np, 12);
+  // Particle (i, j, l), 0-based, is number l + 2 (j + 3 i) (z fastest, then y, then x),
+  // at o + (index + 1/2) dp = (1.0 + 0.5 (i + 0.5), 1.5 + 0.5 (j + 0.5), 2.0 + 0.5 (l + 0.5)).
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 3; ++j)
+      for (int l = 0; l < 2; ++l) {
+        const int p = l + 2 * (j + 3 * i);
+        EXPECT_EQ(P.x[3 * p + 0], 1.0 + 0.5 * (i + 0.5)) << p;
+        EXPECT_EQ(P.x[3 * p + 1], 1.5 + 0.5 * (j + 0.5)) << p;
+        EXPECT_EQ(P.x[3 * p + 2], 2.0 + 0.5 * (l + 0.5)) << p;
+        // mass = density dp^3 = 2 * 0.125 = 0.25; volume dp^3 = 0.125 (exact in binary).
+        EXPECT_EQ(P.mass[p], 0.25);
+        EXPECT_EQ(P.vol[p], 0.125);
+        EXPECT_EQ(P.mat[p], 0);
+        EXPECT_EQ(P.body[p], 0);
+      }
+  ASSERT_EQ(m.bodies.size(), 1u);
+  EXPECT_EQ(m.bodies[0].first, 0);
+  EXPECT_EQ(m.bodies[0].count, 12);
+}
+
+TEST(DataIn, ElasticConstantsTimeStepAndCutoff) {
+  mpm3d::Model m = mpm3d::read_deck_text(deck("1 elas 2.0 200.0 0.25"), "e.mpm");
+  const MaterialParams& mp = m.mats[0];
+  // G = E / (2 (1 + nu)) = 200 / 2.5 = 80; lambda = E nu / ((1 + nu)(1 - 2 nu)) = 50 / 0.625 = 80.
+  EXPECT_EQ(mp.shear, 80.0);
+  EXPECT_EQ(mp.lambda, 80.0);
+  // c = sqrt((lambda + 2 G) / rho) = sqrt(240 / 2) = sqrt(120).
+  EXPECT_DOUBLE_EQ(mp.wave_speed, std::sqrt(120.0));
+  // dt = dtscale h / c = 0.5 / sqrt(120).
+  EXPECT_NEAR(m.dt, 0.5 / std::sqrt(120.0), 1e-15);
+  // cut-off = 1e-5 * mean density * h^3 = 2e-5.
+  EXPECT_NEAR(m.mass_cutoff, 2.0e-5, 1e-20);
+  EXPECT_EQ(m.scheme, SCHEME_MUSL);  // MUSL when none is switched on
+}
+
+TEST(DataIn, Pla2PlasticModulusFromTangentModulus) {
+  // Ep = E Et / (E - Et) = 200 * 50 / 150 = 66.666...
+  mpm3d::Model m = mpm3d::read_deck_text(deck("1 pla2 2.0 200.0 0.25 0.1 50.0"), "p.mpm");
+  EXPECT_EQ(m.mats[0].type, MAT_PLA2);
+  EXPECT_EQ(m.mats[0].yield0, 0.1);
+  EXPECT_NEAR(m.mats[0].hardening, 200.0 / 3.0, 1e-13);
+}
+
+TEST(DataIn, EosInitialEnergyPerInitialVolume) {
+  // seos 1 2 c0 s gamma E0: E0 = 3 per unit initial volume; each particle's volume is
+  // mass / rho0 = 0.25 / 2 = 0.125, so its internal energy is 0.375.
+  mpm3d::Model m = mpm3d::read_deck_text(
+      deck("1 sjc 2.0 200.0 0.25 0.1 0.2 1.0 0.0 1.0", "seos 1 2 3.0 1.5 1.0 3.0\n"), "s.mpm");
+  EXPECT_EQ(m.mats[0].eos_type, EOS_MIE_GRUNEISEN);
+  EXPECT_EQ(m.mats[0].eos[0], 3.0);
+  EXPECT_EQ(m.mats[0].eos[1], 1.5);
+  EXPECT_EQ(m.mats[0].eos[2], 1.0);
+  for (int p = 0; p < m.particles.np; ++p) EXPECT_EQ(m.particles.ie[p], 0.375);
+}
+
+TEST(DataIn, VelocitiesByBodyAndNode) {
+  mpm3d::Model m = mpm3d::read_deck_text(
+      "nbmp 3 nbbo 2 nmat 1 spx 0 4 spy 0 4 spz 0 4 dcel 1 endt 1\n"
+      "mate 1 elas 1 100 0.25\n"
+      "part poin 1 2\n 1 1 0.5 1.0 1.0 1.0\n 2 1 0.5 2.0 1.0 1.0\n"
+      "part bloc 1 1 1.0 0.5 3 3 3 1 1 1\n"
+      "velo body 1 1.0 2.0 3.0 node 2 -4 -5 -6 body 2 7 8 9 endv\n"
+      "endi\n",
+      "v.mpm");
+  const auto& v = m.particles.v;
+  const double expect[9] = {1, 2, 3, -4, -5, -6, 7, 8, 9};
+  for (int i = 0; i < 9; ++i) EXPECT_EQ(v[i], expect[i]) << i;
+  EXPECT_EQ(m.particles.vol[0], 0.5);  // point particle volume = mass / rho0
+  EXPECT_EQ(m.particles.body[2], 1);
+}
+
+TEST(DataIn, BaseNameIsTheFileNameUpToItsFirstDot) {
+  mpm3d::Model m = mpm3d::read_deck_text(deck("1 elas 2.0 200.0 0.25"), "/some/dir/Taylor.v2.mpm");
+  EXPECT_EQ(m.base_name, "Taylor");
+}
+
+TEST(DataIn, InputErrorsNameTheLine) {
+  struct Case {
+    std::string text;
+    int line;
+    const char* word;
+  } cases[] = {
+      {"nbmp 1\nfoob 3\n", 2, "foob"},
+      {"nbmp 1\nnmat 1\nmate\n  2 elas 1 100 0.25\n", 4, "out of range"},
+      {"nbmp 1\ndtsc 3.0\n", 2, "time-step scale"},
+      {"nbmp x1\n", 1, "x1"},
+      {"nbmp 1\nnmat 1\nmate 1 elas 1 100 0.5\n", 3, "Poisson"},
+  };
+  for (const auto& c : cases) {
+    try {
+      mpm3d::read_deck_text(c.text, "err.mpm");
+      ADD_FAILURE() << "accepted: " << c.text;
+    } catch (const mpm3d::DeckError& e) {
+      EXPECT_EQ(e.line(), c.line) << e.what();
+      EXPECT_NE(std::string(e.what()).find(c.word), std::string::npos) << e.what();
+    }
+  }
+}
