@@ -1,0 +1,56 @@
+// DataOut: the Fortran E12.4 numbers of the legacy plot files and the particle variables
+// of the animation and curve output.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "data_in.hpp"
+#include "data_out.hpp"
+
+TEST(DataOut, FortranE12_4) {
+  // E12.4: 12 characters, right-aligned, mantissa 0.dddd, signed two-digit exponent.
+  EXPECT_EQ(mpm3d::fortran_e12_4(1.326e-4), "  0.1326E-03");
+  EXPECT_EQ(mpm3d::fortran_e12_4(187258.43), "  0.1873E+06");
+  EXPECT_EQ(mpm3d::fortran_e12_4(-39.99), " -0.3999E+02");
+  EXPECT_EQ(mpm3d::fortran_e12_4(0.0), "  0.0000E+00");
+  EXPECT_EQ(mpm3d::fortran_e12_4(1.0), "  0.1000E+01");
+  EXPECT_EQ(mpm3d::fortran_e12_4(0.5), "  0.5000E+00");
+  // Rounding carries into the exponent: 9.99996 -> 0.1000E+02.
+  EXPECT_EQ(mpm3d::fortran_e12_4(9.99996), "  0.1000E+02");
+  EXPECT_EQ(mpm3d::fortran_e12_4(-2.5e-17), " -0.2500E-16");
+}
+
+TEST(DataOut, ParticleVariables) {
+  mpm3d::Model m = mpm3d::read_deck_text(
+      "nbmp 2 nbbo 1 nmat 1 spx 0 4 spy 0 4 spz 0 4 dcel 1 endt 1\n"
+      "mate 1 sjcf 2.0 200.0 0.25 0.1 0.2 1.0 0.0 1.0 0.5\n"
+      "part poin 1 2\n 1 1 0.25 1 1 1\n 2 1 0.25 2 1 1\n"
+      "velo node 1 3 -4 0 endv\nendi\n",
+      "vars.mpm");
+  auto& P = m.particles;
+  // Particle 1: sigma = (0.2, 0.1, 0.1, 0, 0, 0): p = -0.4/3, deviator (0.2/3, -0.1/3,
+  // -0.1/3), von Mises sqrt(3/2 s:s) = 0.1; |v| = 5, mass 0.25: engk = 3.125.
+  const double s1[6] = {0.2, 0.1, 0.1, 0.0, 0.0, 0.0};
+  for (int c = 0; c < 6; ++c) P.sig[c] = s1[c];
+  EXPECT_NEAR(mpm3d::particle_variable(m, "seqv", 0), 0.1, 1e-15);
+  EXPECT_NEAR(mpm3d::particle_variable(m, "pres", 0), -0.4 / 3.0, 1e-16);
+  EXPECT_EQ(mpm3d::particle_variable(m, "engk", 0), 3.125);
+  EXPECT_EQ(mpm3d::particle_variable(m, "velx", 0), 3.0);
+  EXPECT_EQ(mpm3d::particle_variable(m, "vely", 0), -4.0);
+  EXPECT_EQ(mpm3d::particle_variable(m, "mat", 0), 1.0);
+  EXPECT_EQ(mpm3d::particle_variable(m, "volu", 0), 0.125);  // mass / rho0
+  // Particle 2: pure shear sigma_xy = 0.3: seqv = sqrt(3) * 0.3, pressure 0.
+  P.sig[6 + 5] = 0.3;
+  EXPECT_NEAR(mpm3d::particle_variable(m, "seqv", 1), std::sqrt(3.0) * 0.3, 1e-15);
+  EXPECT_EQ(mpm3d::particle_variable(m, "pres", 1), 0.0);
+  // Failure strain 0.5: damage = epeff / 0.5 (capped at 1), failed once epeff >= 0.5.
+  P.epeff[1] = 0.2;
+  EXPECT_NEAR(mpm3d::particle_variable(m, "damg", 1), 0.4, 1e-16);
+  EXPECT_EQ(mpm3d::particle_variable(m, "fail", 1), 0.0);
+  P.epeff[1] = 0.7;
+  EXPECT_EQ(mpm3d::particle_variable(m, "damg", 1), 1.0);
+  EXPECT_EQ(mpm3d::particle_variable(m, "fail", 1), 1.0);
+  // Sound speed sqrt((lambda + 2G) / rho) at the current density 0.25 / 0.125 = 2: sqrt(120).
+  EXPECT_NEAR(mpm3d::particle_variable(m, "sspd", 1), std::sqrt(120.0), 1e-13);
+}
