@@ -1,0 +1,272 @@
+! MaterialModel (Constitution): stress update of one particle, Jaumann rotation, EOS.
+! Pure functions of their arguments (no module state). Every sum and product is written
+! in the same explicit order as cxx/constitution.cpp, so both give the same bits.
+module mpm3d_constitution
+  use mpm3d_material
+  implicit none
+  private
+
+  public :: stress_update, jaumann_rotate, eos_coefficients, yield_stress
+
+contains
+
+  ! sigma : de with the shear terms counted twice, in a fixed order.
+  pure real(dp) function double_dot(s, d)
+    real(dp), intent(in) :: s(6), d(6)
+    double_dot = (((s(1) * d(1)) + (s(2) * d(2))) + (s(3) * d(3))) + &
+                 2.0_dp * (((s(4) * d(4)) + (s(5) * d(5))) + (s(6) * d(6)))
+  end function double_dot
+
+  ! Rotates sig by the Jaumann rate: sig += W sig - sig W; dw = (w_yz, w_xz, w_xy).
+  pure subroutine jaumann_rotate(sig, dw)
+    real(dp), intent(inout) :: sig(6)
+    real(dp), intent(in) :: dw(3)
+    real(dp) :: sxx, syy, szz, syz, sxz, sxy, wyz, wxz, wxy
+    sxx = sig(1)
+    syy = sig(2)
+    szz = sig(3)
+    syz = sig(4)
+    sxz = sig(5)
+    sxy = sig(6)
+    wyz = dw(1)
+    wxz = dw(2)
+    wxy = dw(3)
+    sig(1) = sxx + 2.0_dp * ((wxy * sxy) + (wxz * sxz))
+    sig(2) = syy + 2.0_dp * ((wyz * syz) - (wxy * sxy))
+    sig(3) = szz - 2.0_dp * ((wxz * sxz) + (wyz * syz))
+    sig(4) = syz + ((wyz * (szz - syy)) - ((wxy * sxz) + (wxz * sxy)))
+    sig(5) = sxz + ((wxz * (szz - sxx)) + ((wxy * syz) - (wyz * sxy)))
+    sig(6) = sxy + ((wxy * (syy - sxx)) + ((wxz * syz) + (wyz * sxz)))
+  end subroutine jaumann_rotate
+
+  ! Pressure of an EOS in the form p = a + b e (e: internal energy per initial volume),
+  ! given mu = rho / rho0 - 1.
+  pure subroutine eos_coefficients(m, mu, a, b)
+    type(material_params), intent(in) :: m
+    real(dp), intent(in) :: mu
+    real(dp), intent(out) :: a, b
+    real(dp) :: mu2, rc2, den
+    if (m%eos_type == EOS_LINEAR) then
+      if (mu > 0.0_dp) then
+        mu2 = mu * mu
+      else
+        mu2 = 0.0_dp
+      end if
+      a = ((m%eos(1) + (m%eos(2) * mu)) + (m%eos(3) * mu2)) + (m%eos(4) * ((mu * mu) * mu))
+      b = (m%eos(5) + (m%eos(6) * mu)) + (m%eos(7) * mu2)
+    else
+      rc2 = m%rho0 * (m%eos(1) * m%eos(1))
+      if (mu > 0.0_dp) then
+        den = 1.0_dp - ((m%eos(2) - 1.0_dp) * mu)
+        a = ((rc2 * mu) * (1.0_dp + ((1.0_dp - (0.5_dp * m%eos(3))) * mu))) / (den * den)
+      else
+        a = rc2 * mu
+      end if
+      b = m%eos(3)
+    end if
+  end subroutine eos_coefficients
+
+  ! Yield stress and plastic modulus d(sigma_y)/d(epeff) for J2 materials.
+  subroutine yield_stress(m, epeff, strain_rate, temp, sy, ep)
+    type(material_params), intent(in) :: m
+    real(dp), intent(in) :: epeff, strain_rate, temp
+    real(dp), intent(out) :: sy, ep
+    real(dp) :: hard, slope, factor, ratio, tstar
+    select case (m%type)
+    case (MAT_PLA1)
+      sy = m%yield0
+      ep = 0.0_dp
+    case (MAT_PLA2)
+      sy = m%yield0 + (m%hardening * epeff)
+      ep = m%hardening
+    case default   ! Johnson-Cook family
+      hard = m%yield0
+      if (epeff > 0.0_dp) then
+        ! pow(e, 1) == e and pow(e, 0) == 1 exactly: the shortcut (as the C++) keeps the bits.
+        if (m%jc_n == 1.0_dp) then
+          hard = m%yield0 + (m%hardening * epeff)
+          slope = (m%jc_n * m%hardening) * 1.0_dp
+        else
+          hard = m%yield0 + (m%hardening * (epeff ** m%jc_n))
+          slope = (m%jc_n * m%hardening) * (epeff ** (m%jc_n - 1.0_dp))
+        end if
+      else
+        if (m%jc_n == 1.0_dp) then
+          slope = m%hardening
+        else
+          slope = 0.0_dp
+        end if
+      end if
+      factor = 1.0_dp
+      if (m%jc_c /= 0.0_dp) then
+        ratio = strain_rate / m%eps0dot
+        if (ratio > 1.0_dp) factor = 1.0_dp + (m%jc_c * log(ratio))
+      end if
+      if (m%type == MAT_JOHN .or. m%type == MAT_JCF) then
+        tstar = (temp - m%t_room) / (m%t_melt - m%t_room)
+        if (tstar > 0.0_dp) then
+          if (tstar > 1.0_dp) tstar = 1.0_dp
+          factor = factor * (1.0_dp - (tstar ** m%jc_m))
+        end if
+      end if
+      sy = hard * factor
+      ep = slope * factor
+    end select
+  end subroutine yield_stress
+
+  ! Radial return of the deviator s against the yield stress; updates epeff and returns
+  ! the plastic strain increment (0 when elastic).
+  real(dp) function radial_return(m, s, epeff, strain_rate, temp) result(deps)
+    type(material_params), intent(in) :: m
+    real(dp), intent(inout) :: s(6), epeff
+    real(dp), intent(in) :: strain_rate, temp
+    real(dp) :: j2, q, sy, ep, g3, ratio
+    integer :: c
+    deps = 0.0_dp
+    if (m%type == MAT_ELAS) return
+    j2 = (0.5_dp * (((s(1) * s(1)) + (s(2) * s(2))) + (s(3) * s(3)))) + &
+         (((s(4) * s(4)) + (s(5) * s(5))) + (s(6) * s(6)))
+    q = sqrt(3.0_dp * j2)
+    call yield_stress(m, epeff, strain_rate, temp, sy, ep)
+    if (.not. (q > sy)) return
+    g3 = 3.0_dp * m%shear
+    deps = (q - sy) / (g3 + ep)
+    ratio = (q - (g3 * deps)) / q
+    do c = 1, 6
+      s(c) = s(c) * ratio
+    end do
+    epeff = epeff + deps
+  end function radial_return
+
+  ! Equivalent stress of a deviator, as in the heating term.
+  pure real(dp) function q_of(s)
+    real(dp), intent(in) :: s(6)
+    q_of = sqrt(1.5_dp * ((((s(1) * s(1)) + (s(2) * s(2))) + (s(3) * s(3))) + &
+                          2.0_dp * (((s(4) * s(4)) + (s(5) * s(5))) + (s(6) * s(6)))))
+  end function q_of
+
+  ! de: strain increment (Voigt, tensor components); dw: spin increment (w_yz, w_xz, w_xy).
+  ! vol_old/vol_new: particle volume before and after the increment. temp is read and
+  ! written only when has_temp.
+  subroutine stress_update(m, de, dw, dt, mass, vol_old, vol_new, sig, epeff, ie, has_temp, temp)
+    type(material_params), intent(in) :: m
+    real(dp), intent(in) :: de(6), dw(3), dt, mass, vol_old, vol_new
+    real(dp), intent(inout) :: sig(6), epeff, ie, temp
+    logical, intent(in) :: has_temp
+    real(dp) :: sig_r(6), dev(6), s(6), s_r(6)
+    real(dp) :: dkk, third, two_g, vavg, strain_rate, tp, mean_r, lam_dkk, mean, deps, p_new
+    real(dp) :: vol0, dv, p_old, dwork, e_star, mu, a, b, e_new, q_new
+    logical :: failed
+    integer :: c
+
+    call jaumann_rotate(sig, dw)
+    do c = 1, 6
+      sig_r(c) = sig(c)
+    end do
+
+    dkk = (de(1) + de(2)) + de(3)
+    third = dkk / 3.0_dp
+    dev(1) = de(1) - third
+    dev(2) = de(2) - third
+    dev(3) = de(3) - third
+    dev(4) = de(4)
+    dev(5) = de(5)
+    dev(6) = de(6)
+    two_g = 2.0_dp * m%shear
+    vavg = 0.5_dp * (vol_old + vol_new)
+    ! Only the Johnson-Cook rate term reads it; it is formed only when that term is on.
+    if (m%jc_c /= 0.0_dp) then
+      strain_rate = sqrt((2.0_dp / 3.0_dp) * double_dot(dev, dev)) / dt
+    else
+      strain_rate = 0.0_dp
+    end if
+    if (has_temp) then
+      tp = temp
+    else
+      tp = 0.0_dp
+    end if
+
+    mean_r = ((sig_r(1) + sig_r(2)) + sig_r(3)) / 3.0_dp
+    if (m%eos_type == EOS_NONE) then
+      ! Hypoelastic trial stress, then radial return of its deviator.
+      lam_dkk = m%lambda * dkk
+      do c = 1, 3
+        sig(c) = sig_r(c) + (lam_dkk + (two_g * de(c)))
+      end do
+      do c = 4, 6
+        sig(c) = sig_r(c) + (two_g * de(c))
+      end do
+      mean = ((sig(1) + sig(2)) + sig(3)) / 3.0_dp
+      do c = 1, 3
+        s(c) = sig(c) - mean
+      end do
+      do c = 4, 6
+        s(c) = sig(c)
+      end do
+      deps = radial_return(m, s, epeff, strain_rate, tp)
+      p_new = -mean
+      failed = m%fail_strain > 0.0_dp .and. epeff >= m%fail_strain
+      if (failed) then
+        do c = 1, 6
+          s(c) = 0.0_dp
+        end do
+        if (p_new < 0.0_dp) p_new = 0.0_dp
+      end if
+      do c = 1, 3
+        sig(c) = s(c) - p_new
+      end do
+      do c = 4, 6
+        sig(c) = s(c)
+      end do
+      ie = ie + ((0.5_dp * (double_dot(sig_r, de) + double_dot(sig, de))) * vavg)
+      if (has_temp .and. deps > 0.0_dp) then
+        q_new = q_of(s)
+        temp = temp + ((0.9_dp * (q_new * deps)) / ((mass / vol_new) * m%heat_cap))
+      end if
+      return
+    end if
+
+    ! Deviatoric update plus an equation of state for the pressure.
+    do c = 1, 3
+      s_r(c) = sig_r(c) - mean_r
+    end do
+    do c = 4, 6
+      s_r(c) = sig_r(c)
+    end do
+    do c = 1, 6
+      s(c) = s_r(c) + (two_g * dev(c))
+    end do
+    deps = radial_return(m, s, epeff, strain_rate, tp)
+    failed = m%fail_strain > 0.0_dp .and. epeff >= m%fail_strain
+    if (failed) then
+      do c = 1, 6
+        s(c) = 0.0_dp
+      end do
+    end if
+
+    ! Energy equation solved with the new pressure (the EOS is linear in e):
+    ! e1 = e* - p1 dv / 2, p1 = a + b e1.
+    vol0 = mass / m%rho0
+    dv = (vol_new - vol_old) / vol0
+    p_old = -mean_r
+    dwork = (0.5_dp * (double_dot(s_r, de) + double_dot(s, de))) * vavg
+    e_star = ((ie + dwork) / vol0) - ((0.5_dp * p_old) * dv)
+    mu = (vol0 / vol_new) - 1.0_dp
+    call eos_coefficients(m, mu, a, b)
+    p_new = (a + (b * e_star)) / (1.0_dp + ((0.5_dp * b) * dv))
+    if (failed .and. p_new < 0.0_dp) p_new = 0.0_dp
+    e_new = e_star - ((0.5_dp * p_new) * dv)
+    ie = e_new * vol0
+    do c = 1, 3
+      sig(c) = s(c) - p_new
+    end do
+    do c = 4, 6
+      sig(c) = s(c)
+    end do
+    if (has_temp .and. deps > 0.0_dp) then
+      q_new = q_of(s)
+      temp = temp + ((0.9_dp * (q_new * deps)) / ((mass / vol_new) * m%heat_cap))
+    end if
+  end subroutine stress_update
+
+end module mpm3d_constitution

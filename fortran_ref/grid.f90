@@ -1,0 +1,106 @@
+! GridData: the background grid, its patch decomposition and the shape functions.
+! Node and cell numbers are x fastest, then y, then z. The patch decomposition
+! (cubes of patch_cells^3 cells) depends on the grid only, never on threads.
+module mpm3d_grid
+  use mpm3d_material, only: dp
+  implicit none
+  private
+
+  ! Fields of one node in a patch buffer: mass, momentum (3), force (3).
+  integer, parameter, public :: NODE_FIELDS = 7
+
+  type, public :: grid_t
+    real(dp) :: origin(3) = 0.0_dp     ! lower corner of the computational box
+    real(dp) :: h = 0.0_dp             ! cubic cell size
+    integer :: nc(3) = 0               ! cells per axis
+    integer :: nn(3) = 0               ! nodes per axis (nc + 1)
+    integer :: fix(6) = 0              ! faces x0 xn y0 yn z0 zn: 0 free, 1 fixed, 2 symmetry
+    real(dp) :: mass_cutoff = 0.0_dp   ! nodes lighter than this form no velocity
+    real(dp), allocatable :: mass(:), mom(:,:), force(:,:)   ! (nnode) (3,nnode) (3,nnode)
+    integer :: patch_cells = 8
+    integer :: npd(3) = 0              ! patches per axis
+    integer :: npatch = 0
+    integer :: patch_nodes = 0         ! (patch_cells + 1)^3
+    integer, allocatable :: patch_start(:)   ! (npatch + 1), 0-based offsets
+    integer, allocatable :: patch_part(:)    ! (np), 0-based particle indices
+    integer, allocatable :: patch_slot(:)    ! (npatch), 0-based slot or -1
+    integer :: nslot = 0
+    real(dp), allocatable :: patch_buf(:,:,:) ! (NODE_FIELDS, patch_nodes, slots)
+  end type grid_t
+
+  public :: grid_setup, grid_nnode, shape_linear
+
+contains
+
+  integer function grid_nnode(g)
+    type(grid_t), intent(in) :: g
+    grid_nnode = g%nn(1) * g%nn(2) * g%nn(3)
+  end function grid_nnode
+
+  ! Sets counts and allocates the node arrays and the patch bookkeeping (as Grid::setup).
+  subroutine grid_setup(g, lo, hi, cell, patch_cells, err)
+    type(grid_t), intent(inout) :: g
+    real(dp), intent(in) :: lo(3), hi(3), cell
+    integer, intent(in) :: patch_cells
+    character(len=:), allocatable, intent(out) :: err
+    real(dp) :: n, t
+    integer :: a, nnode
+    err = ''
+    g%h = cell
+    g%patch_cells = patch_cells
+    do a = 1, 3
+      g%origin(a) = lo(a)
+      t = (hi(a) - lo(a)) / cell + 0.5_dp
+      n = aint(t)
+      if (n > t) n = n - 1.0_dp      ! floor, exact
+      if (.not. (n >= 1.0_dp) .or. n > 1.0e6_dp) then
+        err = 'grid: bad cell count'
+        return
+      end if
+      g%nc(a) = int(n)
+      g%nn(a) = g%nc(a) + 1
+      g%npd(a) = (g%nc(a) + patch_cells - 1) / patch_cells
+    end do
+    g%npatch = g%npd(1) * g%npd(2) * g%npd(3)
+    g%patch_nodes = (patch_cells + 1) * (patch_cells + 1) * (patch_cells + 1)
+    nnode = grid_nnode(g)
+    if (allocated(g%mass)) deallocate(g%mass, g%mom, g%force)
+    allocate(g%mass(nnode), g%mom(3, nnode), g%force(3, nnode))
+    g%mass = 0.0_dp
+    g%mom = 0.0_dp
+    g%force = 0.0_dp
+    if (allocated(g%patch_start)) deallocate(g%patch_start, g%patch_slot)
+    allocate(g%patch_start(g%npatch + 1), g%patch_slot(g%npatch))
+    g%patch_start = 0
+    g%patch_slot = -1
+    g%nslot = 0
+  end subroutine grid_setup
+
+  ! Trilinear shape functions of the 8 nodes of a cell at local coordinates lx in [0,1)^3.
+  ! Local node k = a + 2 b + 4 c (0-based) has offset (a, b, c) and is stored at k + 1.
+  ! Operation order as cxx/grid.hpp: N = (wx * wy) * wz, dN/dx = (gx * wy) * wz, ...
+  pure subroutine shape_linear(lx, inv_h, sn, sg)
+    real(dp), intent(in) :: lx(3), inv_h
+    real(dp), intent(out) :: sn(8), sg(3, 8)
+    real(dp) :: wx(0:1), wy(0:1), wz(0:1), gr(0:1)
+    integer :: k, a, b, c
+    wx(0) = 1.0_dp - lx(1)
+    wx(1) = lx(1)
+    wy(0) = 1.0_dp - lx(2)
+    wy(1) = lx(2)
+    wz(0) = 1.0_dp - lx(3)
+    wz(1) = lx(3)
+    gr(0) = -inv_h
+    gr(1) = inv_h
+    do k = 0, 7
+      a = iand(k, 1)
+      b = iand(ishft(k, -1), 1)
+      c = iand(ishft(k, -2), 1)
+      sn(k + 1) = (wx(a) * wy(b)) * wz(c)
+      sg(1, k + 1) = (gr(a) * wy(b)) * wz(c)
+      sg(2, k + 1) = (wx(a) * gr(b)) * wz(c)
+      sg(3, k + 1) = (wx(a) * wy(b)) * gr(c)
+    end do
+  end subroutine shape_linear
+
+end module mpm3d_grid

@@ -1,0 +1,267 @@
+! MPM3D (the program): the Fortran reference driver. Reads a deck with its own reader
+! (mpm3d_data_in), runs the time loop of Simulation::step in cxx/mpm3d.cpp with the
+! Fortran stage kernels (mpm3d_update_step) and writes the HDF5 state file.
+!
+! usage: mpm3d_ref [--steps N] [--end-time T] [--state F.h5] [--init-state F.h5]
+!                  [--energies F.txt] [--patch-cells N] [--quiet] DECK.mpm
+! --energies writes the kinetic, internal and initial total energy and the momentum of the
+! last step with 17 significant digits (exact doubles), to compare with mpm3d --summary.
+program mpm3d_ref
+  use, intrinsic :: iso_c_binding
+  use, intrinsic :: iso_fortran_env, only: int64, error_unit, output_unit
+  use mpm3d_material
+  use mpm3d_particle
+  use mpm3d_grid
+  use mpm3d_ffi, only: parse_integer, parse_real, fatal
+  use mpm3d_data_in
+  use mpm3d_update_step
+  use mpm3d_data_out
+  implicit none
+
+  integer, parameter :: REDUCE_BLOCK = 4096
+  type(model_t), target :: model
+  type(grid_t), target :: grid
+  type(step_context), target :: ctx
+  real(dp), allocatable, target :: lx(:,:), partials(:,:), gravity(:,:)
+  integer(c_int), allocatable, target :: cell(:)
+  character(len=:), allocatable :: deck, state_path, init_path, energy_path, err
+  integer(int64) :: max_steps, steps, iv
+  integer :: patch_cells, i, nargs, np, b, rc
+  real(dp) :: end_time, time, eps, kinetic, internal, rv, initial_total, momentum(3)
+  logical :: quiet
+  character(len=4096) :: arg
+
+  ! ---------------------------------------------------------------- command line
+  deck = ''
+  state_path = ''
+  init_path = ''
+  energy_path = ''
+  max_steps = -1
+  end_time = -1.0_dp
+  patch_cells = 8
+  quiet = .false.
+  nargs = command_argument_count()
+  i = 1
+  do while (i <= nargs)
+    call get_command_argument(i, arg)
+    select case (trim(arg))
+    case ('--help', '-h')
+      write (output_unit, '(a)') 'usage: mpm3d_ref [--steps N] [--end-time T] [--state F.h5] ' // &
+        '[--init-state F.h5] [--energies F.txt] [--patch-cells N] [--quiet] DECK.mpm'
+      stop
+    case ('--steps')
+      call value(i, arg)
+      if (.not. parse_integer(trim(arg), iv)) call usage('--steps needs an integer')
+      if (iv < 0) call usage('--steps must not be negative')
+      max_steps = iv
+    case ('--end-time')
+      call value(i, arg)
+      if (.not. parse_real(trim(arg), rv)) call usage('--end-time needs a positive number')
+      if (.not. (rv > 0.0_dp)) call usage('--end-time needs a positive number')
+      end_time = rv
+    case ('--state')
+      call value(i, arg)
+      state_path = trim(arg)
+    case ('--init-state')
+      call value(i, arg)
+      init_path = trim(arg)
+    case ('--energies')
+      call value(i, arg)
+      energy_path = trim(arg)
+    case ('--patch-cells')
+      call value(i, arg)
+      if (.not. parse_integer(trim(arg), iv)) call usage('--patch-cells needs an integer')
+      if (iv < 1 .or. iv > 64) call usage('--patch-cells must lie in 1..64')
+      patch_cells = int(iv)
+    case ('--quiet', '-q')
+      quiet = .true.
+    case default
+      if (arg(1:1) == '-') call usage('unknown option ' // trim(arg))
+      if (len(deck) > 0) call usage('more than one deck given')
+      deck = trim(arg)
+    end select
+    i = i + 1
+  end do
+  if (len(deck) == 0) call usage('no deck given')
+
+  ! ---------------------------------------------------------------- set-up
+  call read_deck(deck, model)
+  if (end_time <= 0.0_dp) end_time = model%endtime
+  np = model%particles%np
+  call grid_setup(grid, model%box_lo, model%box_hi, model%dcell, patch_cells, err)
+  if (len(err) > 0) call fatal(deck // ': ' // err)
+  grid%fix = model%fix
+  grid%mass_cutoff = model%mass_cutoff
+  allocate(lx(3, np), cell(np), grid%patch_part(np))
+  lx = 0.0_dp
+  cell = -1
+  grid%patch_part = 0
+  allocate(gravity(3, max(model%nbodies, 1)))
+  gravity = 0.0_dp
+  do b = 1, model%nbodies
+    gravity(:, b) = model%bodies(b)%gravity
+  end do
+  allocate(partials(REDUCE_FIELDS, np / REDUCE_BLOCK + 1))
+  partials = 0.0_dp
+  call bind_context()
+
+  ! Energies of the initial state (as the C++ Simulation constructor).
+  call mpm3d_f_energy(ctx)
+  initial_total = ctx%result(1) + ctx%result(2)
+  if (.not. quiet) then
+    write (output_unit, '(a)') 'mpm3d_ref: ' // model%title
+    write (output_unit, '(a,i0,a,i0,a,i0,a,i0,a,i0,a,es12.5)') '  ', np, ' particles, grid ', &
+      grid%nc(1), ' x ', grid%nc(2), ' x ', grid%nc(3), ', ', grid%npatch, ' patches, dt ', model%dt
+    do i = 1, model%nwarn
+      write (output_unit, '(a)') '  warning: ' // trim(model%warnings(i))
+    end do
+  end if
+  if (len(init_path) > 0) call write_state_h5(init_path, model, 0.0_dp, 0_int64, model%dt)
+
+  ! ---------------------------------------------------------------- time loop
+  steps = 0
+  time = 0.0_dp
+  kinetic = ctx%result(1)
+  internal = ctx%result(2)
+  momentum = ctx%result(3:5)
+  rc = 0
+  eps = 1.0e-9_dp * model%dt
+  do while (time < end_time - eps .and. (max_steps < 0 .or. steps < max_steps))
+    call step()
+    steps = steps + 1
+    time = time + model%dt
+    kinetic = ctx%result(1)
+    internal = ctx%result(2)
+    momentum = ctx%result(3:5)
+    if (.not. (abs(kinetic) <= huge(kinetic) .and. abs(internal) <= huge(internal))) then
+      write (error_unit, '(a,i0)') 'mpm3d_ref: numerical breakdown at step ', steps
+      rc = 3
+      exit
+    end if
+  end do
+  if (.not. quiet) then
+    write (output_unit, '(a,i0,a,es14.7,a,es14.7,a,es14.7,a,i0)') 'done: ', steps, ' steps, t ', time, &
+      '  KE ', kinetic, '  IE ', internal, '  outside ', ctx%noutside
+  end if
+  if (len(state_path) > 0) call write_state_h5(state_path, model, time, steps, model%dt)
+  if (len(energy_path) > 0) call write_energies(energy_path)
+  if (rc /= 0) stop 3, quiet=.true.
+
+contains
+
+  subroutine write_energies(path)
+    character(len=*), intent(in) :: path
+    integer :: u, ios
+    open (newunit=u, file=path, status='replace', action='write', iostat=ios)
+    if (ios /= 0) call fatal('cannot write ' // path)
+    write (u, '(a,es25.16e3)') 'kinetic_energy ', kinetic
+    write (u, '(a,es25.16e3)') 'internal_energy ', internal
+    write (u, '(a,es25.16e3)') 'initial_total_energy ', initial_total
+    write (u, '(a,3es25.16e3)') 'momentum ', momentum
+    close (u)
+  end subroutine write_energies
+
+  subroutine usage(what)
+    character(len=*), intent(in) :: what
+    write (error_unit, '(a)') 'mpm3d_ref: ' // what // ' (see --help)'
+    stop 2, quiet=.true.
+  end subroutine usage
+
+  subroutine value(i, arg)
+    integer, intent(inout) :: i
+    character(len=*), intent(inout) :: arg
+    character(len=:), allocatable :: opt
+    opt = trim(arg)
+    if (i + 1 > command_argument_count()) call usage(opt // ' needs a value')
+    i = i + 1
+    call get_command_argument(i, arg)
+  end subroutine value
+
+  ! Points the step context at the model's and the grid's arrays (Simulation::bind).
+  subroutine bind_context()
+    integer :: a
+    associate (p => model%particles)
+      ctx%x = c_loc(p%x)
+      ctx%v = c_loc(p%v)
+      ctx%sig = c_loc(p%sig)
+      ctx%mass = c_loc(p%mass)
+      ctx%vol = c_loc(p%vol)
+      ctx%epeff = c_loc(p%epeff)
+      ctx%ie = c_loc(p%ie)
+      ctx%temp = c_null_ptr
+      if (allocated(p%temp)) ctx%temp = c_loc(p%temp)
+      ctx%fext = c_null_ptr
+      if (allocated(p%fext)) ctx%fext = c_loc(p%fext)
+      ctx%mat = c_loc(p%mat)
+      ctx%body = c_loc(p%body)
+    end associate
+    ctx%lx = c_loc(lx)
+    ctx%cell = c_loc(cell)
+    ctx%gravity = c_loc(gravity)
+    ctx%mats = c_loc(model%mats)
+    ctx%gmass = c_loc(grid%mass)
+    ctx%gmom = c_loc(grid%mom)
+    ctx%gforce = c_loc(grid%force)
+    ctx%patch_start = c_loc(grid%patch_start)
+    ctx%patch_part = c_loc(grid%patch_part)
+    ctx%patch_slot = c_loc(grid%patch_slot)
+    ctx%patch_buf = c_null_ptr
+    ctx%reduce_block = REDUCE_BLOCK
+    ctx%partials = c_loc(partials)
+    do a = 1, 3
+      ctx%origin(a) = grid%origin(a)
+      ctx%nc(a) = grid%nc(a)
+      ctx%nn(a) = grid%nn(a)
+      ctx%npd(a) = grid%npd(a)
+    end do
+    ctx%h = grid%h
+    ctx%inv_h = 1.0_dp / grid%h
+    ctx%dt = model%dt
+    ctx%dt_int = model%dt
+    ctx%mass_cutoff = grid%mass_cutoff
+    ctx%np = np
+    ctx%nbody = model%nbodies
+    ctx%nmat = model%nmat
+    ctx%nnode = grid_nnode(grid)
+    ctx%patch_cells = grid%patch_cells
+    ctx%npatch = grid%npatch
+    ctx%fix = grid%fix
+    ctx%scheme = model%scheme
+    ctx%has_body_force = merge(1, 0, model%has_gravity .or. model%has_loads)
+  end subroutine bind_context
+
+  ! Buffers for the non-empty patches found by the bin stage (Simulation::ensure_patch_buffers).
+  subroutine ensure_patch_buffers()
+    integer :: have
+    have = 0
+    if (allocated(grid%patch_buf)) have = size(grid%patch_buf, 3)
+    if (have < ctx%nslot) then
+      if (allocated(grid%patch_buf)) deallocate(grid%patch_buf)
+      allocate(grid%patch_buf(NODE_FIELDS, grid%patch_nodes, ctx%nslot))
+      grid%patch_buf = 0.0_dp
+      ctx%patch_buf = c_loc(grid%patch_buf)
+    end if
+  end subroutine ensure_patch_buffers
+
+  ! One explicit step, stage order of Simulation::step.
+  subroutine step()
+    ctx%dt = model%dt
+    if (steps == 0) then
+      ctx%dt_int = 0.5_dp * model%dt      ! first step: momentum with dt/2
+    else
+      ctx%dt_int = model%dt
+    end if
+    call mpm3d_f_bin(ctx)
+    call ensure_patch_buffers()
+    call mpm3d_f_p2g(ctx)
+    if (ctx%scheme == SCHEME_USF) then
+      call mpm3d_f_stress(ctx)
+      call mpm3d_f_forces(ctx)
+    end if
+    call mpm3d_f_integrate(ctx)
+    call mpm3d_f_g2p(ctx)
+    if (ctx%scheme /= SCHEME_USF) call mpm3d_f_stress(ctx)
+    call mpm3d_f_energy(ctx)
+  end subroutine step
+
+end program mpm3d_ref

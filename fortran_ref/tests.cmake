@@ -1,0 +1,55 @@
+# Bit-for-bit checks of the Fortran reference against the C++ solver (DESIGN.md 5, 5a).
+# Included from tests/CMakeLists.txt. Every comparison is a plain `h5diff` of two HDF5
+# state files (no tolerance): the C++ run against --kernel fortran, against each single
+# stage taken from Fortran, against the Fortran program mpm3d_ref, and the initial states
+# of the two deck readers. The shared decks (../shared/decks) are not part of the
+# repository: their tests are skipped when that folder is absent.
+if(TARGET mpm3d AND TARGET mpm3d_ref)
+  find_program(MPM3D_H5DIFF h5diff HINTS /usr/bin)
+  if(NOT MPM3D_H5DIFF)
+    message(WARNING "fortran_ref/tests.cmake: h5diff not found; cross-language tests disabled")
+    return()
+  endif()
+  set(_fref_script ${CMAKE_SOURCE_DIR}/fortran_ref/xcheck.sh)
+  set(_fref_out ${CMAKE_CURRENT_BINARY_DIR}/fortran_ref)
+  set(_fref_steps 60)
+  set(_fref_stages bin p2g forces integrate g2p stress energy)
+
+  # fref_add(NAME KIND DECK [MPM3D OPTIONS...])
+  function(fref_add name kind deck)
+    add_test(NAME ${name}
+             COMMAND sh ${_fref_script} ${kind} ${_fref_out}/${name} ${deck}
+                     $<TARGET_FILE:mpm3d> $<TARGET_FILE:mpm3d_ref> ${MPM3D_H5DIFF} ${_fref_steps}
+                     ${ARGN})
+    set_tests_properties(${name} PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300 LABELS fortran_ref)
+  endfunction()
+
+  # All checks of one deck.
+  function(fref_deck tag deck)
+    fref_add(fref_${tag}_init init ${deck})
+    fref_add(fref_${tag}_kernel_fortran kernels ${deck} --threads 1 --kernel fortran)
+    foreach(stage ${_fref_stages})
+      fref_add(fref_${tag}_stage_${stage} kernels ${deck} --threads 1 --kernels ${stage}=fortran)
+    endforeach()
+    # A free mix of the two languages on two threads.
+    fref_add(fref_${tag}_mixed kernels ${deck} --threads 2
+             --kernels bin=fortran,p2g=cxx,forces=fortran,integrate=cxx,g2p=fortran,stress=cxx,energy=fortran)
+    fref_add(fref_${tag}_mpm3d_ref ref ${deck})
+  endfunction()
+
+  set(_fref_own ${CMAKE_SOURCE_DIR}/fortran_ref/testdecks)
+  set(_fref_shared ${CMAKE_SOURCE_DIR}/../shared/decks)
+  fref_deck(taylor ${_fref_shared}/Taylor.mpm)
+  fref_deck(usl_blocks ${_fref_own}/usl_blocks.mpm)
+  fref_deck(usf_john ${_fref_own}/usf_john.mpm)
+  fref_deck(musl_sjcf ${_fref_own}/musl_sjcf.mpm)
+  fref_deck(quirks ${_fref_own}/quirks.mpm)
+  fref_add(fref_quirks_crlf crlf ${_fref_own}/quirks.mpm)
+  fref_add(fref_h5diff_detects detect ${_fref_own}/musl_sjcf.mpm)
+  fref_add(fref_refusals refuse ${_fref_own}/usl_blocks.mpm)
+
+  if(TARGET mpm3d_fortran_layout)
+    add_test(NAME fref_layout COMMAND mpm3d_fortran_layout)
+    set_tests_properties(fref_layout PROPERTIES LABELS fortran_ref)
+  endif()
+endif()

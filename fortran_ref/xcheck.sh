@@ -1,0 +1,151 @@
+#!/bin/sh
+# Cross-language checks of the Fortran reference (used by fortran_ref/tests.cmake).
+#
+#   xcheck.sh KIND OUT DECK MPM3D MPM3D_REF H5DIFF STEPS [MPM3D OPTIONS...]
+#
+# KIND
+#   kernels  state of `mpm3d` (C++ stages) against `mpm3d OPTIONS` (e.g. --kernel fortran,
+#            --kernels p2g=fortran) after STEPS steps: identical bits (plain h5diff), and
+#            the same energies, momentum, bounding box, ... in the --summary files.
+#   ref      state of `mpm3d` against the Fortran program `mpm3d_ref` after STEPS steps,
+#            and the same energies and momentum (mpm3d --summary, mpm3d_ref --energies).
+#   init     `mpm3d --steps 0 --state` against `mpm3d_ref --init-state` (the two readers).
+#   crlf     as init, on a copy of DECK with CRLF line ends and tabs for blanks.
+#   detect   h5diff must see the difference between the states after 0 and 1 steps
+#            (guards against a comparison that passes vacuously).
+#   refuse   both programs must refuse (exit status 1) decks made from DECK by adding
+#            unsupported or bad cards before 'endi'.
+# Exit status 77 (skipped) when DECK does not exist.
+set -u
+kind=$1 out=$2 deck=$3 mpm3d=$4 ref=$5 h5diff=$6 steps=$7
+shift 7
+if [ ! -f "$deck" ]; then
+  echo "deck $deck not found: skipped"
+  exit 77
+fi
+mkdir -p "$(dirname "$out")"
+a="$out.a.h5"
+b="$out.b.h5"
+rm -f "$a" "$b"
+# The deterministic lines of a summary JSON (no clock times, no thread counts).
+summary_lines() {
+  grep -E '"(particles|steps|time|dt_min|dt_max|kinetic_energy|internal_energy|initial_total_energy|momentum|bbox_min|bbox_max|max_epeff|particles_outside_grid)":' "$1"
+}
+# "key v [v v]" lines of the energies in a summary JSON (the order of mpm3d_ref --energies).
+summary_energies() {
+  summary_lines "$1" | grep -E '"(kinetic_energy|internal_energy|initial_total_energy|momentum)"' |
+    sed 's/[]",:[]/ /g'
+}
+run() {
+  echo "+ $*"
+  "$@" || { echo "command failed with status $?"; exit 1; }
+}
+case $kind in
+  kernels)
+    run "$mpm3d" --threads 1 --steps "$steps" --no-output --quiet --state "$a" --summary "$a.json" "$deck"
+    run "$mpm3d" --steps "$steps" --no-output --quiet "$@" --state "$b" --summary "$b.json" "$deck"
+    summary_lines "$a.json" > "$a.sum"
+    summary_lines "$b.json" > "$b.sum"
+    if ! diff "$a.sum" "$b.sum"; then
+      echo "the summaries differ"
+      exit 1
+    fi
+    ;;
+  ref)
+    run "$mpm3d" --threads 1 --steps "$steps" --no-output --quiet --state "$a" --summary "$a.json" "$deck"
+    run "$ref" --quiet --steps "$steps" --state "$b" --energies "$b.txt" "$deck"
+    summary_energies "$a.json" > "$a.txt"
+    cat "$a.txt" "$b.txt"
+    # Numerical comparison of the exact decimal forms (%.17g and ES25.16): equal doubles.
+    if ! paste "$a.txt" "$b.txt" | awk '
+        NF % 2 != 0 || $1 != $(NF / 2 + 1) { bad = 1; next }
+        { n = NF / 2; for (i = 2; i <= n; i++) if ($i + 0 != $(i + n) + 0) bad = 1 }
+        END { if (NR != 4) bad = 1; exit bad }'; then
+      echo "the energies differ"
+      exit 1
+    fi
+    ;;
+  init)
+    run "$mpm3d" --threads 1 --steps 0 --no-output --quiet --state "$a" "$deck"
+    run "$ref" --quiet --steps 0 --init-state "$b" "$deck"
+    ;;
+  crlf)
+    d="$out.crlf.mpm"
+    sed 's/ /\t/g; s/$/\r/' "$deck" > "$d"
+    run "$mpm3d" --threads 1 --steps 0 --no-output --quiet --state "$a" "$d"
+    run "$ref" --quiet --steps 0 --init-state "$b" "$d"
+    ;;
+  detect)
+    run "$ref" --quiet --steps 0 --init-state "$a" "$deck"
+    run "$mpm3d" --threads 1 --steps 1 --no-output --quiet --state "$b" "$deck"
+    "$h5diff" -q "$a" "$b"
+    st=$?
+    echo "h5diff status $st (1 expected: the states differ)"
+    [ $st -eq 1 ] || exit 1
+    exit 0
+    ;;
+  refuse)
+    bad=0
+    n=0
+    while IFS= read -r card; do
+      n=$((n + 1))
+      d="$out.refuse$n.mpm"
+      if [ "$card" = "NO-ENDI" ]; then
+        sed '/^endi/d' "$deck" > "$d"
+      elif [ "$card" = "LONG-LINE" ]; then
+        { cat "$deck"; printf '!%0300d\n' 0; } > "$d"
+      elif [ "$card" = "BINARY" ]; then
+        sed "s/^endi/dcell \x01 0.5\nendi/" "$deck" > "$d"
+      else
+        sed "s/^endi/$card\\nendi/" "$deck" > "$d"
+      fi
+      "$mpm3d" --steps 1 --no-output --quiet "$d" > "$d.cxx.log" 2>&1
+      sc=$?
+      "$ref" --quiet --steps 1 "$d" > "$d.ref.log" 2>&1
+      sf=$?
+      echo "[$card] mpm3d $sc: $(head -c 200 "$d.cxx.log" | tr '\n' ' ')"
+      echo "[$card] mpm3d_ref $sf: $(head -c 200 "$d.ref.log" | tr '\n' ' ')"
+      if [ $sc -ne 1 ] || [ $sf -ne 1 ]; then
+        echo "  both programs must refuse this deck with status 1"
+        bad=1
+      fi
+    done <<'CARDS'
+bulk 1.5 0.06
+gimp
+cont lagr 0.1 0
+deto 0.0 0.0 0.0
+mate 2 hiex 1.6d-3 6930.0
+mate 2 null 1.0d-3 1500.0
+seos 1 3 1.0 2.0 3.0 4.0 5.0 6.0
+seos 1 7 1.0
+dcell abc
+dtscale 3.0
+nbmp 12
+fixe 0 0 3 0 0 0
+velo node 1 1.0 2.0 3.0 endx
+frobnicate
+dcell 1.0-3
+dcell 1e400
+dcell 1e
+dcell 1e+
+dcell 1.5.
+dcell 0x10
+dcell -
+dcell NaN
+nbmp 1.0
+NO-ENDI
+LONG-LINE
+BINARY
+CARDS
+    exit $bad
+    ;;
+  *)
+    echo "unknown check '$kind'"
+    exit 2
+    ;;
+esac
+echo "+ $h5diff $a $b"
+"$h5diff" "$a" "$b"
+st=$?
+[ $st -eq 0 ] && echo "identical"
+exit $st
