@@ -1,5 +1,7 @@
 #include "ffi.hpp"
 
+#include <sys/stat.h>
+
 #include <cctype>
 #include <cmath>
 #include <cerrno>
@@ -17,10 +19,14 @@ DeckError::DeckError(const std::string& file, int line, const std::string& what)
 static constexpr size_t kMaxLine = 256;
 
 TokenStream TokenStream::from_file(const std::string& path) {
+  struct stat st;
+  if (stat(path.c_str(), &st) != 0) throw DeckError(path, 0, "cannot open the deck (no such file)");
+  if (S_ISDIR(st.st_mode)) throw DeckError(path, 0, "cannot read the deck (is a directory)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw DeckError(path, 0, "cannot open the deck");
   std::ostringstream ss;
   ss << in.rdbuf();
+  if (in.bad()) throw DeckError(path, 0, "cannot read the deck");
   return from_string(ss.str(), path);
 }
 
@@ -42,15 +48,22 @@ TokenStream TokenStream::from_string(const std::string& text, const std::string&
     ts.lines_.push_back(line);
     size_t k = 0;
     const size_t n = line.size();
+    bool first = true;
     while (k < n) {
       const unsigned char c = static_cast<unsigned char>(line[k]);
       if (c == '!') break;
       if (c == ' ' || c == '\t' || c == ',') { ++k; continue; }
-      if (c < 32 || c > 126)
-        throw DeckError(name, lineno, "unexpected binary character (code " + std::to_string(c) + ")");
       size_t e = k;
-      while (e < n && line[e] != ' ' && line[e] != '\t' && line[e] != ',' && line[e] != '!') ++e;
+      while (e < n && line[e] != ' ' && line[e] != '\t' && line[e] != ',' && line[e] != '!') {
+        const unsigned char b = static_cast<unsigned char>(line[e]);
+        if (b < 32 || b > 126)
+          throw DeckError(name, lineno, "unexpected binary character (code " + std::to_string(b) + ")");
+        ++e;
+      }
       ts.tokens_.push_back({line.substr(k, e - k), lineno});
+      // The title card (mpm3...) takes the rest of its line as free text, any bytes.
+      if (first && key4(ts.tokens_.back().text) == "mpm3") break;
+      first = false;
       k = e;
     }
     if (j == text.size()) break;

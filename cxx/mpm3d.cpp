@@ -126,7 +126,22 @@ void Simulation::step() {
   for (int a = 0; a < 3; ++a) momentum[a] = c->result[2 + a];
   ++steps;
   time += model.dt;
+  if (ctx.has_body_force) external_work += dt_work_of_body_forces();
   health_check();
+}
+
+double Simulation::dt_work_of_body_forces() const {
+  const Particles& P = model.particles;
+  double w = 0.0;
+  for (int p = 0; p < P.np; ++p) {
+    const double* g = &gravity_[3 * size_t(P.body[p])];
+    const double* v = &P.v[3 * size_t(p)];
+    for (int a = 0; a < 3; ++a) {
+      const double f = P.mass[p] * g[a] + (P.fext.empty() ? 0.0 : P.fext[3 * size_t(p) + a]);
+      w += f * v[a];
+    }
+  }
+  return w * model.dt;
 }
 
 void Simulation::measure() {
@@ -137,7 +152,31 @@ void Simulation::measure() {
 }
 
 void Simulation::health_check() {
-  if (std::isfinite(kinetic) && std::isfinite(internal)) return;
+  if (std::isfinite(kinetic) && std::isfinite(internal)) {
+    // Runaway energy: the total may not exceed twice the initial energy plus the work of
+    // the external forces (integrated with the end-of-step velocities; the factor two
+    // leaves room for that approximation).
+    const double total = kinetic + internal;
+    if (std::fabs(total) <= 2.0 * (std::fabs(initial_total_energy) + std::fabs(external_work)) + 1e-300)
+      return;
+    const Particles& P = model.particles;
+    int worst = 0;
+    double vmax = -1.0;
+    for (int p = 0; p < P.np; ++p) {
+      const double* v = &P.v[3 * size_t(p)];
+      const double s = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+      if (s > vmax) {
+        vmax = s;
+        worst = p;
+      }
+    }
+    std::ostringstream os;
+    os << "numerical instability at step " << steps << " (t = " << time << "): total energy " << total
+       << " exceeds twice the initial energy " << initial_total_energy << " plus the external work "
+       << external_work << "; fastest particle " << worst + 1 << " (body " << P.body[worst] + 1 << ") at speed "
+       << std::sqrt(vmax) << " (reduce dtscale, or use MUSL)";
+    throw HealthError(os.str());
+  }
   const Particles& P = model.particles;
   for (int p = 0; p < P.np; ++p) {
     const char* what = nullptr;
@@ -427,7 +466,7 @@ int run_main(int argc, char** argv) {
     out.log(tail);
     if (!opt.quiet) std::cout << tail << std::endl;
     for (const auto& w : warnings)
-      if (!opt.quiet || w == failure) std::cerr << "mpm3d: warning: " << w << "\n";
+      if (!opt.quiet && w != failure) std::cerr << "mpm3d: warning: " << w << "\n";
     out.close();
     if (!failure.empty()) {
       std::cerr << "mpm3d: " << failure << "\n";

@@ -33,6 +33,7 @@ class Simulation {
   double time = 0.0;
   double kinetic = 0.0, internal = 0.0, momentum[3] = {0, 0, 0};
   double initial_total_energy = 0.0;
+  double external_work = 0.0;  // work of gravity and loads so far (health check)
   int outside = 0;  // particles outside the grid after the last step
   double stage_seconds[ST_COUNT] = {};  // wall time spent in each stage
 
@@ -47,6 +48,7 @@ class Simulation {
   void bind();  // points ctx at the arrays
   void ensure_patch_buffers();
   void health_check();
+  double dt_work_of_body_forces() const;
 };
 
 // Command-line driver (used by main): returns the process exit code.
