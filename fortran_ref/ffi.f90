@@ -110,7 +110,12 @@ contains
     character(len=*), intent(in) :: path
     integer :: u, ios, n, i, j, e, k, lineno, ic, lend
     character :: ch
+    logical :: exists, first
     ts%name = path
+    inquire (file=path, exist=exists)
+    if (.not. exists) call fatal(path // ': cannot open the deck (no such file)')
+    inquire (file=path // '/.', exist=exists)
+    if (exists) call fatal(path // ': cannot read the deck (is a directory)')
     open (newunit=u, file=path, access='stream', form='unformatted', status='old', &
           action='read', iostat=ios)
     if (ios /= 0) call fatal(path // ': cannot open the deck')
@@ -141,6 +146,7 @@ contains
       if (lend - i + 1 > MAX_LINE) call ts%fail(lineno, 'line longer than 256 characters')
       call push_line(ts, i, lend)
       k = i
+      first = .true.
       do while (k <= lend)
         ch = ts%text(k:k)
         ic = iachar(ch)
@@ -149,18 +155,23 @@ contains
           k = k + 1
           cycle
         end if
-        if (ic < 32 .or. ic > 126) call ts%fail(lineno, 'unexpected binary character (code ' // &
-                                                itoa(int(ic, int64)) // ')')
+        ! A token; control and non-ASCII bytes are refused anywhere in it.
         e = k
         do while (e <= lend)
           ch = ts%text(e:e)
-          if (ch == ' ' .or. iachar(ch) == 9 .or. ch == ',' .or. ch == '!') exit
+          ic = iachar(ch)
+          if (ch == ' ' .or. ic == 9 .or. ch == ',' .or. ch == '!') exit
+          if (ic < 32 .or. ic > 126) call ts%fail(lineno, 'unexpected binary character (code ' // &
+                                                  itoa(int(ic, int64)) // ')')
           e = e + 1
         end do
         call push_token(ts, k, e - 1, lineno)
+        ! The title card (mpm3...) takes the rest of its line as free text, any bytes.
+        if (first .and. key4(ts%text(k:e - 1)) == 'mpm3') exit
+        first = .false.
         k = e
       end do
-      if (j >= n + 1) exit
+      if (j >= n) exit            ! no empty line after a final line end (as cxx/ffi.cpp)
       i = j + 1
     end do
   end subroutine ts_open

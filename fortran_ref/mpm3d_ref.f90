@@ -28,6 +28,7 @@ program mpm3d_ref
   integer(int64) :: max_steps, steps, iv
   integer :: patch_cells, i, nargs, np, b, rc
   real(dp) :: end_time, time, eps, kinetic, internal, rv, initial_total, momentum(3)
+  real(dp) :: external_work    ! work of gravity and loads so far (health check)
   logical :: quiet
   character(len=4096) :: arg
 
@@ -125,6 +126,7 @@ program mpm3d_ref
   internal = ctx%result(2)
   momentum = ctx%result(3:5)
   rc = 0
+  external_work = 0.0_dp
   eps = 1.0e-9_dp * model%dt
   do while (time < end_time - eps .and. (max_steps < 0 .or. steps < max_steps))
     call step()
@@ -133,8 +135,8 @@ program mpm3d_ref
     kinetic = ctx%result(1)
     internal = ctx%result(2)
     momentum = ctx%result(3:5)
-    if (.not. (abs(kinetic) <= huge(kinetic) .and. abs(internal) <= huge(internal))) then
-      write (error_unit, '(a,i0)') 'mpm3d_ref: numerical breakdown at step ', steps
+    if (ctx%has_body_force /= 0) external_work = external_work + dt_work_of_body_forces()
+    if (.not. healthy()) then
       rc = 3
       exit
     end if
@@ -148,6 +150,45 @@ program mpm3d_ref
   if (rc /= 0) stop 3, quiet=.true.
 
 contains
+
+  ! Work of gravity and loads over one step with the end-of-step velocities
+  ! (Simulation::dt_work_of_body_forces).
+  real(dp) function dt_work_of_body_forces() result(wdt)
+    real(dp) :: w, f, fe
+    integer :: p, a
+    w = 0.0_dp
+    associate (pp => model%particles)
+      do p = 1, np
+        do a = 1, 3
+          if (allocated(pp%fext)) then
+            fe = pp%fext(a, p)
+          else
+            fe = 0.0_dp
+          end if
+          f = (pp%mass(p) * gravity(a, pp%body(p) + 1)) + fe
+          w = w + (f * pp%v(a, p))
+        end do
+      end do
+    end associate
+    wdt = w * model%dt
+  end function dt_work_of_body_forces
+
+  ! Health check after a step (Simulation::health_check): non-finite energies, or a total
+  ! energy above twice the initial energy plus the external work, end the run.
+  logical function healthy()
+    real(dp) :: total
+    healthy = .true.
+    if (abs(kinetic) <= huge(kinetic) .and. abs(internal) <= huge(internal)) then
+      total = kinetic + internal
+      if (abs(total) <= 2.0_dp * (abs(initial_total) + abs(external_work)) + 1.0e-300_dp) return
+      write (error_unit, '(a,i0,a,es12.5,a,es12.5,a,es12.5,a)') 'mpm3d_ref: numerical instability at step ', &
+        steps, ': total energy ', total, ' exceeds twice the initial energy ', initial_total, &
+        ' plus the external work ', external_work, ' (reduce dtscale, or use MUSL)'
+    else
+      write (error_unit, '(a,i0,a)') 'mpm3d_ref: numerical breakdown at step ', steps, ': non-finite energy'
+    end if
+    healthy = .false.
+  end function healthy
 
   subroutine write_energies(path)
     character(len=*), intent(in) :: path

@@ -45,6 +45,7 @@ if(TARGET mpm3d AND TARGET mpm3d_ref)
   fref_deck(musl_sjcf ${_fref_own}/musl_sjcf.mpm)
   fref_deck(quirks ${_fref_own}/quirks.mpm)
   fref_add(fref_quirks_crlf crlf ${_fref_own}/quirks.mpm)
+  fref_add(fref_usl_blocks_unstable unstable ${_fref_own}/usl_blocks.mpm)
   fref_add(fref_h5diff_detects detect ${_fref_own}/musl_sjcf.mpm)
   fref_add(fref_refusals refuse ${_fref_own}/usl_blocks.mpm)
 

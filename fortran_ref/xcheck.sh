@@ -11,10 +11,12 @@
 #            and the same energies and momentum (mpm3d --summary, mpm3d_ref --energies).
 #   init     `mpm3d --steps 0 --state` against `mpm3d_ref --init-state` (the two readers).
 #   crlf     as init, on a copy of DECK with CRLF line ends and tabs for blanks.
+#   unstable DECK with 'dtscale 0.9' (USL decks diverge): both programs must stop at the
+#            same step with status 3 (health check) and write the same state.
 #   detect   h5diff must see the difference between the states after 0 and 1 steps
 #            (guards against a comparison that passes vacuously).
-#   refuse   both programs must refuse (exit status 1) decks made from DECK by adding
-#            unsupported or bad cards before 'endi'.
+#   refuse   both programs must refuse (exit status 1, naming the same line) decks made
+#            from DECK by adding unsupported or bad cards before 'endi'.
 # Exit status 77 (skipped) when DECK does not exist.
 set -u
 kind=$1 out=$2 deck=$3 mpm3d=$4 ref=$5 h5diff=$6 steps=$7
@@ -75,6 +77,18 @@ case $kind in
     run "$mpm3d" --threads 1 --steps 0 --no-output --quiet --state "$a" "$d"
     run "$ref" --quiet --steps 0 --init-state "$b" "$d"
     ;;
+  unstable)
+    d="$out.unstable.mpm"
+    sed 's/^dtscale .*/dtscale 0.9/' "$deck" > "$d"
+    echo "+ $mpm3d --threads 1 --steps $steps ... $d"
+    "$mpm3d" --threads 1 --steps "$steps" --no-output --quiet --state "$a" "$d"
+    sc=$?
+    echo "+ $ref --steps $steps ... $d"
+    "$ref" --quiet --steps "$steps" --state "$b" "$d"
+    sf=$?
+    echo "exit status: mpm3d $sc, mpm3d_ref $sf (3 expected)"
+    [ $sc -eq 3 ] && [ $sf -eq 3 ] || exit 1
+    ;;
   detect)
     run "$ref" --quiet --steps 0 --init-state "$a" "$deck"
     run "$mpm3d" --threads 1 --steps 1 --no-output --quiet --state "$b" "$deck"
@@ -90,12 +104,17 @@ case $kind in
     while IFS= read -r card; do
       n=$((n + 1))
       d="$out.refuse$n.mpm"
+      rm -rf "$d"
       if [ "$card" = "NO-ENDI" ]; then
         sed '/^endi/d' "$deck" > "$d"
       elif [ "$card" = "LONG-LINE" ]; then
         { cat "$deck"; printf '!%0300d\n' 0; } > "$d"
       elif [ "$card" = "BINARY" ]; then
-        sed "s/^endi/dcell \x01 0.5\nendi/" "$deck" > "$d"
+        sed "s/^endi/dcell 0\x01.5\nendi/" "$deck" > "$d"
+      elif [ "$card" = "DIRECTORY" ]; then
+        mkdir -p "$d"
+      elif [ "$card" = "MISSING" ]; then
+        :
       else
         sed "s/^endi/$card\\nendi/" "$deck" > "$d"
       fi
@@ -107,6 +126,13 @@ case $kind in
       echo "[$card] mpm3d_ref $sf: $(head -c 200 "$d.ref.log" | tr '\n' ' ')"
       if [ $sc -ne 1 ] || [ $sf -ne 1 ]; then
         echo "  both programs must refuse this deck with status 1"
+        bad=1
+      fi
+      # ... and name the same line.
+      lc=$(grep -o -m1 'mpm:[0-9]*:' "$d.cxx.log" | head -n1)
+      lf=$(grep -o -m1 'mpm:[0-9]*:' "$d.ref.log" | head -n1)
+      if [ "$lc" != "$lf" ]; then
+        echo "  the programs name different lines ('$lc' and '$lf')"
         bad=1
       fi
     done <<'CARDS'
@@ -136,6 +162,8 @@ nbmp 1.0
 NO-ENDI
 LONG-LINE
 BINARY
+DIRECTORY
+MISSING
 CARDS
     exit $bad
     ;;
