@@ -37,5 +37,25 @@ for deck in "${decks[@]}"; do
       'BEGIN{sp=b/ns; printf "%s,%d,%d,%d,%.1f,%.3f,%.3f,%.0f,%s\n", d, np, t, s, ns, sp, sp/t, rss/np, sh}' >> "$csv"
   done
 done
+# Serial speed of the Fortran reference program next to the C++ one: (t(N steps) - t(0
+# steps)) / (particles * N), so the deck reading is left out, as in mpm3d's own figure.
+if [ -x "$build/fortran_ref/mpm3d_ref" ]; then
+  ref_csv=docs/bench/reference.csv
+  echo "deck,particles,steps,mpm3d_ref_ns_per_particle_step,mpm3d_1thread_ns_per_particle_step,ratio" > "$ref_csv"
+  for deck in "${decks[@]}"; do
+    best=""
+    for ((r = 0; r < repeats; ++r)); do
+      t0=$(date +%s.%N); "$build/fortran_ref/mpm3d_ref" --steps 0 "$deck" > /dev/null; t1=$(date +%s.%N)
+      "$build/fortran_ref/mpm3d_ref" --steps "$steps" "$deck" > /dev/null; t2=$(date +%s.%N)
+      d=$(awk -v a="$t0" -v b="$t1" -v c="$t2" 'BEGIN{print (c - b) - (b - a)}')
+      if [ -z "$best" ] || awk "BEGIN{exit !($d < $best)}"; then best=$d; fi
+    done
+    np=$(awk -F, -v d="$(basename "$deck")" '$1 == d && $3 == 1 {print $2}' "$csv")
+    cx=$(awk -F, -v d="$(basename "$deck")" '$1 == d && $3 == 1 {print $5}' "$csv")
+    awk -v d="$(basename "$deck")" -v np="$np" -v s="$steps" -v t="$best" -v cx="$cx" \
+      'BEGIN{ns=t*1e9/(np*s); printf "%s,%d,%d,%.1f,%.1f,%.2f\n", d, np, s, ns, cx, ns/cx}' >> "$ref_csv"
+  done
+  column -s, -t < "$ref_csv"
+fi
 rm -rf "$tmp"
 column -s, -t < "$csv"
