@@ -139,7 +139,7 @@ void stress_update(const MaterialParams& m, const double de[6], const double dw[
     for (int c = 0; c < 3; ++c) sig[c] = s[c] - p_new;
     for (int c = 3; c < 6; ++c) sig[c] = s[c];
     *st.ie = *st.ie + (0.5 * (double_dot(sig_r, de) + double_dot(sig, de))) * vavg;
-    if (st.temp && deps > 0.0) {
+    if (st.temp && deps > 0.0 && m.heat_cap > 0.0) {  // only thermal Johnson-Cook heats
       const double q_new = std::sqrt(1.5 * (((s[0] * s[0] + s[1] * s[1]) + s[2] * s[2]) +
                                             2.0 * ((s[3] * s[3] + s[4] * s[4]) + s[5] * s[5])));
       *st.temp = *st.temp + (0.9 * (q_new * deps)) / ((mass / vol_new) * m.heat_cap);
@@ -173,7 +173,7 @@ void stress_update(const MaterialParams& m, const double de[6], const double dw[
   *st.ie = e_new * vol0;
   for (int c = 0; c < 3; ++c) sig[c] = s[c] - p_new;
   for (int c = 3; c < 6; ++c) sig[c] = s[c];
-  if (st.temp && deps > 0.0) {
+  if (st.temp && deps > 0.0 && m.heat_cap > 0.0) {  // only thermal Johnson-Cook heats
     const double q_new = std::sqrt(1.5 * (((s[0] * s[0] + s[1] * s[1]) + s[2] * s[2]) +
                                           2.0 * ((s[3] * s[3] + s[4] * s[4]) + s[5] * s[5])));
     *st.temp = *st.temp + (0.9 * (q_new * deps)) / ((mass / vol_new) * m.heat_cap);

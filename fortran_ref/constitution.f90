@@ -219,7 +219,7 @@ contains
         sig(c) = s(c)
       end do
       ie = ie + ((0.5_dp * (double_dot(sig_r, de) + double_dot(sig, de))) * vavg)
-      if (has_temp .and. deps > 0.0_dp) then
+      if (has_temp .and. deps > 0.0_dp .and. m%heat_cap > 0.0_dp) then
         q_new = q_of(s)
         temp = temp + ((0.9_dp * (q_new * deps)) / ((mass / vol_new) * m%heat_cap))
       end if
@@ -263,7 +263,7 @@ contains
     do c = 4, 6
       sig(c) = s(c)
     end do
-    if (has_temp .and. deps > 0.0_dp) then
+    if (has_temp .and. deps > 0.0_dp .and. m%heat_cap > 0.0_dp) then
       q_new = q_of(s)
       temp = temp + ((0.9_dp * (q_new * deps)) / ((mass / vol_new) * m%heat_cap))
     end if
