@@ -2,23 +2,12 @@
 
 #include <hdf5.h>
 
+#include "h5_quiet.hpp"
+
 #include <cmath>
 #include <stdexcept>
 
 namespace mpm3d {
-
-namespace {
-// Silences HDF5's error printing for one call and restores the caller's handler.
-struct H5ErrorSilencer {
-  H5E_auto2_t func = nullptr;
-  void* data = nullptr;
-  H5ErrorSilencer() {
-    H5Eget_auto2(H5E_DEFAULT, &func, &data);
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  }
-  ~H5ErrorSilencer() { H5Eset_auto2(H5E_DEFAULT, func, data); }
-};
-}  // namespace
 
 TaylorMeasures taylor_measures(const std::vector<double>& x, double dp, double l0) {
   const size_t n = x.size() / 3;

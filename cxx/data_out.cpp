@@ -2,6 +2,8 @@
 
 #include <hdf5.h>
 
+#include "h5_quiet.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -9,19 +11,6 @@
 #include "constitution.hpp"
 
 namespace mpm3d {
-
-namespace {
-// Silences HDF5's error printing for one call and restores the caller's handler.
-struct H5ErrorSilencer {
-  H5E_auto2_t func = nullptr;
-  void* data = nullptr;
-  H5ErrorSilencer() {
-    H5Eget_auto2(H5E_DEFAULT, &func, &data);
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  }
-  ~H5ErrorSilencer() { H5Eset_auto2(H5E_DEFAULT, func, data); }
-};
-}  // namespace
 
 std::string fortran_e12_4(double v) {
   char buf[64];
