@@ -101,6 +101,16 @@ static double radial_return(const MaterialParams& m, double s[6], double* epeff,
   return deps;
 }
 
+// Adiabatic heating of thermal Johnson-Cook materials (Taylor-Quinney 0.9) from the new
+// deviator s and the plastic strain increment; other materials carry no heat capacity.
+static void adiabatic_heating(const MaterialParams& m, const double s[6], double deps, double mass,
+                              double vol_new, double* temp) {
+  if (!temp || !(deps > 0.0) || !(m.heat_cap > 0.0)) return;
+  const double q_new = std::sqrt(1.5 * (((s[0] * s[0] + s[1] * s[1]) + s[2] * s[2]) +
+                                        2.0 * ((s[3] * s[3] + s[4] * s[4]) + s[5] * s[5])));
+  *temp = *temp + (0.9 * (q_new * deps)) / ((mass / vol_new) * m.heat_cap);
+}
+
 void stress_update(const MaterialParams& m, const double de[6], const double dw[3], double dt,
                    double mass, double vol_old, double vol_new, StressState st) {
   double* sig = st.sig;
@@ -139,11 +149,7 @@ void stress_update(const MaterialParams& m, const double de[6], const double dw[
     for (int c = 0; c < 3; ++c) sig[c] = s[c] - p_new;
     for (int c = 3; c < 6; ++c) sig[c] = s[c];
     *st.ie = *st.ie + (0.5 * (double_dot(sig_r, de) + double_dot(sig, de))) * vavg;
-    if (st.temp && deps > 0.0 && m.heat_cap > 0.0) {  // only thermal Johnson-Cook heats
-      const double q_new = std::sqrt(1.5 * (((s[0] * s[0] + s[1] * s[1]) + s[2] * s[2]) +
-                                            2.0 * ((s[3] * s[3] + s[4] * s[4]) + s[5] * s[5])));
-      *st.temp = *st.temp + (0.9 * (q_new * deps)) / ((mass / vol_new) * m.heat_cap);
-    }
+    adiabatic_heating(m, s, deps, mass, vol_new, st.temp);
     return;
   }
 
@@ -173,11 +179,7 @@ void stress_update(const MaterialParams& m, const double de[6], const double dw[
   *st.ie = e_new * vol0;
   for (int c = 0; c < 3; ++c) sig[c] = s[c] - p_new;
   for (int c = 3; c < 6; ++c) sig[c] = s[c];
-  if (st.temp && deps > 0.0 && m.heat_cap > 0.0) {  // only thermal Johnson-Cook heats
-    const double q_new = std::sqrt(1.5 * (((s[0] * s[0] + s[1] * s[1]) + s[2] * s[2]) +
-                                          2.0 * ((s[3] * s[3] + s[4] * s[4]) + s[5] * s[5])));
-    *st.temp = *st.temp + (0.9 * (q_new * deps)) / ((mass / vol_new) * m.heat_cap);
-  }
+  adiabatic_heating(m, s, deps, mass, vol_new, st.temp);
 }
 
 }  // namespace mpm3d
