@@ -72,10 +72,13 @@ namespace {
 
 // Exact division of a non-negative 32-bit integer by a fixed divisor with one 128-bit
 // multiply (Lemire, Kaser & Kurz 2019): the integer index decoding of the hot loops.
+// The multiplier ceil(2^64 / d) does not fit 64 bits for d = 1 (it wrapped to 0, so a grid
+// with one cell along y decoded every cell to k = 0): d = 1 is the identity.
 struct FastDiv {
   uint64_t m;
-  explicit FastDiv(uint32_t d) : m(UINT64_C(0xFFFFFFFFFFFFFFFF) / d + 1) {}
-  uint32_t operator()(uint32_t n) const { return uint32_t((__uint128_t(m) * n) >> 64); }
+  bool one;
+  explicit FastDiv(uint32_t d) : m(d == 1 ? 0 : UINT64_C(0xFFFFFFFFFFFFFFFF) / d + 1), one(d == 1) {}
+  uint32_t operator()(uint32_t n) const { return one ? n : uint32_t((__uint128_t(m) * n) >> 64); }
 };
 
 // Cell index -> (i, j, k).
