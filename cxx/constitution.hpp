@@ -11,19 +11,38 @@ struct StressState {
   double* epeff;  // equivalent plastic strain
   double* ie;     // internal energy of the particle
   double* temp;   // temperature (thermal Johnson-Cook only; else nullptr)
+  double* q;      // artificial bulk viscosity pressure of the last update (only with
+                  // 'bulk'; else nullptr). The stored stress includes it: sig = s - (p + q).
 };
 
 // de: strain increment (tensor components, Voigt order); dw: spin increment
 // (w_yz, w_xz, w_xy) with w_ij = (L_ij - L_ji) dt / 2. vol_old/vol_new: particle volume
 // before and after the increment.
+// burn: programmed-burn fraction F in [0, 1] (hiex only, see burn_fraction); it multiplies
+// the EOS pressure. q1, q2, qlen: bulk viscosity coefficients and length (used when s.q).
 void stress_update(const MaterialParams& m, const double de[6], const double dw[3], double dt,
-                   double mass, double vol_old, double vol_new, StressState s);
+                   double mass, double vol_old, double vol_new, StressState s, double burn = 1.0,
+                   double q1 = 0.0, double q2 = 0.0, double qlen = 0.0);
+
+// Programmed burn of hiex: F = min(1, max(0, (time - t_light) D / (1.5 h))), with
+// m.burn_width = 1.5 h. 1 for every other material.
+double burn_fraction(const MaterialParams& m, double t_light, double time);
+
+// Artificial bulk viscosity q = rho l (q1 l d^2 - q2 c d) for a volumetric strain rate
+// d = tr(D) < 0 (compression), 0 otherwise.
+double bulk_viscosity(double rho, double len, double c, double rate, double q1, double q2);
+
+// Drucker-Prager return (dpm) of a trial stress given as deviator s (6) and mean stress
+// sm (tension positive), with bulk modulus K and shear modulus G. Returns the equivalent
+// plastic strain increment (0 when elastic). Formulas: constitution.cpp, docs/DECK_FORMAT.md.
+double dp_return(const MaterialParams& m, double s[6], double* sm, double K, double G);
 
 // Rotates sig by the Jaumann rate: sig += W sig - sig W.
 void jaumann_rotate(double sig[6], const double dw[3]);
 
 // Pressure of an EOS in the form p = a + b e (e: internal energy per initial volume),
-// given mu = rho / rho0 - 1. Returns a and b.
+// given mu = rho / rho0 - 1. Returns a and b. JWL: V = 1 / (1 + mu),
+// a = A (1 - w/(R1 V)) e^(-R1 V) + B (1 - w/(R2 V)) e^(-R2 V), b = w / V.
 void eos_coefficients(const MaterialParams& m, double mu, double* a, double* b);
 
 // Yield stress and plastic modulus d(sigma_y)/d(epeff) for J2 materials.

@@ -167,12 +167,16 @@ Model Reader::read() {
       if (!ts_.at_end() && (key4(ts_.peek().text) == "on" || key4(ts_.peek().text) == "off")) on = on_off(key);
       (k == "tecp" ? m_.tecplot : m_.paraview) = on;
     } else if (k == "deto") {
-      for (int a = 0; a < 3; ++a) ts_.real("the detonation point");
-      fail(key.line, "'deto' (detonation points for hiex) is not yet supported");
+      double xyz[3];
+      for (double& v : xyz) v = ts_.real("the detonation point");
+      if (m_.deto.size() >= 30) fail(key.line, "at most 10 detonation points ('deto')");
+      for (double v : xyz) m_.deto.push_back(v);
     } else if (k == "bulk") {
-      ts_.real("q1");
-      ts_.real("q2");
-      fail(key.line, "'bulk' (artificial bulk viscosity) is not yet supported");
+      m_.bulk_q1 = ts_.real("q1");
+      m_.bulk_q2 = ts_.real("q2");
+      if (!(m_.bulk_q1 >= 0.0) || !(m_.bulk_q2 >= 0.0))
+        fail(key.line, "bulk viscosity coefficients must not be negative");
+      m_.has_bulk = true;
     } else if (k == "gimp") {
       fail(key.line, "'gimp' (GIMP shape functions) is not yet supported");
     } else if (k == "cont") {
@@ -264,8 +268,20 @@ void Reader::read_materials(const Token& key) {
       mp.jc_c = R("C");
       mp.eps0dot = R("reference strain rate");
       if (mp.type == MAT_SJCF) mp.fail_strain = R("failure strain");
-    } else if (t == "hiex" || t == "null" || t == "dpm") {
-      fail(line, "material '" + typ.text + "' is not yet supported");
+    } else if (t == "hiex" || t == "null") {
+      mp.type = t == "hiex" ? MAT_HIEX : MAT_NULL;
+      mp.rho0 = R("density");
+      mp.wave_speed = R(t == "hiex" ? "the detonation velocity" : "the wave speed");
+      if (mp.type == MAT_HIEX) mp.det_vel = mp.wave_speed;
+    } else if (t == "dpm") {
+      mp.type = MAT_DPM;
+      mp.rho0 = R("density");
+      mp.young = R("Young's modulus");
+      mp.poisson = R("Poisson's ratio");
+      mp.dp_qphi = R("q_phi");
+      mp.dp_kphi = R("k_phi");
+      mp.dp_qpsi = R("q_psi");
+      mp.dp_tension = R("the tension cut-off");
     } else {
       fail(line, "unknown material type '" + typ.text + "'");
     }
@@ -296,11 +312,14 @@ void Reader::read_eos(const Token& key) {
     mp.eos_e0 = ts_.real("E0");
     if (!(mp.eos[0] > 0.0)) fail(key.line, "Mie-Gruneisen c0 must be positive");
   } else if (et == 3) {
-    for (int i = 0; i < 6; ++i) ts_.real("a JWL coefficient");
-    fail(key.line, "EOS type 3 (JWL) is not yet supported");
+    for (int i = 0; i < 5; ++i) mp.eos[i] = ts_.real("a JWL coefficient");
+    mp.eos_e0 = ts_.real("E0");
+    if (mp.type != MAT_HIEX && mp.type != MAT_NULL) fail(key.line, "EOS type 3 (JWL) is for hiex and null materials");
+    if (!(mp.eos[2] > 0.0) || !(mp.eos[3] > 0.0)) fail(key.line, "JWL R1 and R2 must be positive");
   } else {
     fail(key.line, "unknown EOS type " + std::to_string(et) + " (1 linear polynomial, 2 Mie-Gruneisen, 3 JWL)");
   }
+  if (mp.type == MAT_DPM) fail(key.line, "a dpm material takes no equation of state");
   mp.eos_type = int(et);
 }
 
@@ -498,8 +517,40 @@ void Reader::finish(int line) {
       m_.warnings.push_back(std::string("box length along ") + char('x' + a) +
                             " is not a whole number of cells; rounded to " + std::to_string(long(std::floor(n + 0.5))));
   }
+  // Explosives: every hiex and null material needs an EOS, hiex a detonation point.
+  bool hiex = false;
+  for (int i = 0; i < m_.nmat; ++i) {
+    MaterialParams& mp = m_.mats[size_t(i)];
+    if ((mp.type == MAT_HIEX || mp.type == MAT_NULL) && mp.eos_type == EOS_NONE)
+      fail(line, "material " + std::to_string(i + 1) + " (" + material_keyword(mp.type) +
+                     ") needs an equation of state ('seos')");
+    if (mp.type == MAT_HIEX) {
+      if (m_.deto.empty()) fail(line, "material " + std::to_string(i + 1) + " (hiex) needs a detonation point ('deto')");
+      mp.burn_width = 1.5 * m_.dcell;
+      hiex = true;
+    }
+  }
+  if (!m_.deto.empty() && !hiex) m_.warnings.push_back("'deto' points given but no hiex material: ignored");
   // Initial internal energy from E0 (per unit initial volume).
   Particles& P = m_.particles;
+  if (hiex) {
+    // Lighting time: distance from the initial position to the nearest detonation point / D.
+    P.tlight.assign(size_t(P.np), 0.0);
+    const size_t nd = m_.deto.size() / 3;
+    for (int p = 0; p < P.np; ++p) {
+      const MaterialParams& mp = m_.mats[size_t(P.mat[p])];
+      if (mp.type != MAT_HIEX) continue;
+      const double* x = &P.x[3 * size_t(p)];
+      double dmin = 0.0;
+      for (size_t k = 0; k < nd; ++k) {
+        const double dx = x[0] - m_.deto[3 * k], dy = x[1] - m_.deto[3 * k + 1], dz = x[2] - m_.deto[3 * k + 2];
+        const double d = std::sqrt((dx * dx + dy * dy) + dz * dz);
+        if (k == 0 || d < dmin) dmin = d;
+      }
+      P.tlight[size_t(p)] = dmin / mp.det_vel;
+    }
+  }
+  if (m_.has_bulk) P.qv.assign(size_t(P.np), 0.0);
   bool thermal = false;
   for (const auto& mp : m_.mats) thermal = thermal || mp.type == MAT_JOHN || mp.type == MAT_JCF;
   if (thermal) P.temp.assign(size_t(P.np), 0.0);
@@ -513,8 +564,13 @@ void Reader::finish(int line) {
     if (mp.eos_type != EOS_NONE) P.ie[p] = mp.eos_e0 * (P.mass[p] / mp.rho0);
     if (thermal) P.temp[p] = mp.t_room;
   }
-  // dt = dtscale * h / c_max (the dilatational wave speed), fixed for the run as in the original.
-  m_.dt = m_.dtscale * m_.dcell / c_max;
+  // dt = dtscale * h / c_max (the dilatational wave speed, D for hiex, c for null), fixed
+  // for the run as in the original. With bulk viscosity the stable step of a material at
+  // rest is h / (Q + sqrt(Q^2 + c^2)) with Q = q2 c: dt = dtscale h / (c_max (q2 + sqrt(1 + q2^2))).
+  if (m_.has_bulk)
+    m_.dt = (m_.dtscale * m_.dcell) / (c_max * (m_.bulk_q2 + std::sqrt(1.0 + m_.bulk_q2 * m_.bulk_q2)));
+  else
+    m_.dt = m_.dtscale * m_.dcell / c_max;
   m_.mass_cutoff = 1.0e-5 * (rho_sum / double(m_.nmat)) * ((m_.dcell * m_.dcell) * m_.dcell);
   // Base name: the deck's file name up to its first '.'.
   std::string base = m_.deck_path;

@@ -34,6 +34,9 @@ struct Model {
   bool has_gravity = false, has_loads = false;
   std::vector<std::string> anim_vars;  // outr
   std::vector<CurveRequest> curves;    // curv, curx
+  std::vector<double> deto;            // detonation points (3 per point), at most 10
+  bool has_bulk = false;               // 'bulk q1 q2': artificial bulk viscosity
+  double bulk_q1 = 0.0, bulk_q2 = 0.0;
   double dt = 0.0;                     // initial time step
   double mass_cutoff = 0.0;
   std::vector<std::string> warnings;

@@ -21,7 +21,9 @@ enum MaterialType {
 enum EosType { EOS_NONE = 0, EOS_LINEAR = 1, EOS_MIE_GRUNEISEN = 2, EOS_JWL = 3 };
 
 // One material set. Derived constants (shear, lambda, hardening, wave speed) are
-// computed once by the deck reader with the formulas of material.cpp.
+// computed once by the deck reader with the formulas of material.cpp. hiex and null have
+// no shear stiffness (shear = lambda = 0); their wave_speed is D (hiex) or c (null), so
+// the time step and the bulk viscosity see them.
 struct MaterialParams {
   double rho0;        // initial density
   double young;       // Young's modulus E
@@ -43,6 +45,13 @@ struct MaterialParams {
   double eos_e0;      // initial internal energy per unit initial volume
   int type;           // MaterialType
   int eos_type;       // EosType
+  // Appended for hiex, null and dpm (the Fortran mirror has the same fields, same order).
+  double det_vel;     // hiex: detonation velocity D
+  double burn_width;  // hiex: width of the programmed-burn ramp, 1.5 h (set by the reader)
+  double dp_qphi;     // dpm: friction coefficient q_phi
+  double dp_kphi;     // dpm: cohesion term k_phi
+  double dp_qpsi;     // dpm: dilatancy coefficient q_psi
+  double dp_tension;  // dpm: tension cut-off sigma_t (capped at the apex k_phi / q_phi)
 };
 
 }  // extern "C"

@@ -48,6 +48,10 @@ void Simulation::bind() {
   c.ie = P.ie.data();
   c.temp = P.temp.empty() ? nullptr : P.temp.data();
   c.fext = P.fext.empty() ? nullptr : P.fext.data();
+  c.tlight = P.tlight.empty() ? nullptr : P.tlight.data();
+  c.qv = P.qv.empty() ? nullptr : P.qv.data();
+  c.bulk_q1 = model.bulk_q1;
+  c.bulk_q2 = model.bulk_q2;
   c.lx = lx_.data();
   c.mat = P.mat.data();
   c.body = P.body.data();
@@ -104,6 +108,7 @@ void Simulation::step() {
   StepContext* c = &ctx;
   c->dt = model.dt;
   c->dt_int = steps == 0 ? 0.5 * model.dt : model.dt;  // first step: momentum with dt/2
+  c->time = time + model.dt;  // the end of this step (programmed burn)
   auto run = [&](int s) {
     const auto t0 = std::chrono::steady_clock::now();
     stages_.fn[s](c);

@@ -22,6 +22,8 @@ struct Particles {
   std::vector<int32_t> mat, body;          // 0-based material and body index
   std::vector<double> temp;                // (np) only with thermal Johnson-Cook
   std::vector<double> fext;                // (3,np) only with point/body loads
+  std::vector<double> tlight;              // (np) only with hiex: lighting time
+  std::vector<double> qv;                  // (np) only with 'bulk': bulk viscosity pressure
 
   void resize(int n);
   double density(int p) const { return mass[p] / vol[p]; }

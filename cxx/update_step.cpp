@@ -536,8 +536,11 @@ extern "C" void mpm3d_cxx_stress(StepContext* c) {
                           (0.5 * (L[1] - L[3])) * dt};
     const double vol_old = c->vol[p];
     const double vol_new = vol_old * (1.0 + ((de[0] + de[1]) + de[2]));
-    StressState st{c->sig + 6 * p, c->epeff + p, c->ie + p, c->temp ? c->temp + p : nullptr};
-    stress_update(c->mats[c->mat[p]], de, dw, dt, c->mass[p], vol_old, vol_new, st);
+    StressState st{c->sig + 6 * p, c->epeff + p, c->ie + p, c->temp ? c->temp + p : nullptr,
+                   c->qv ? c->qv + p : nullptr};
+    const MaterialParams& mp = c->mats[c->mat[p]];
+    const double burn = c->tlight ? burn_fraction(mp, c->tlight[p], c->time) : 1.0;
+    stress_update(mp, de, dw, dt, c->mass[p], vol_old, vol_new, st, burn, c->bulk_q1, c->bulk_q2, c->h);
     c->vol[p] = vol_new;
   }
 }

@@ -37,6 +37,11 @@ struct StepContext {
   int has_body_force;  // gravity or loads present: forces carry N * (m g + f_ext)
   int noutside;        // bin stage: particles outside the grid
   int reduce_block;    // particles per block of the deterministic reductions
+  // Explosives and bulk viscosity (stress stage only).
+  double *tlight;      // (np) lighting time of each particle, or null: only with hiex
+  double *qv;          // (np) bulk viscosity pressure of each particle, or null: only with bulk
+  double time;         // time at the end of this step (the burn fraction's clock)
+  double bulk_q1, bulk_q2;  // bulk viscosity coefficients (quadratic, linear); length h
   // Fields after this point are stage-internal scratch of the C++ kernels (a Fortran
   // mirror of the struct may stop before them).
   int *pscratch;       // (np) patch of each particle during binning

@@ -6,7 +6,8 @@ module mpm3d_constitution
   implicit none
   private
 
-  public :: stress_update, jaumann_rotate, eos_coefficients, yield_stress
+  public :: stress_update, jaumann_rotate, eos_coefficients, yield_stress, burn_fraction, &
+            bulk_viscosity, dp_return
 
 contains
 
@@ -45,8 +46,16 @@ contains
     type(material_params), intent(in) :: m
     real(dp), intent(in) :: mu
     real(dp), intent(out) :: a, b
-    real(dp) :: mu2, rc2, den
-    if (m%eos_type == EOS_LINEAR) then
+    real(dp) :: mu2, rc2, den, vv, r1v, r2v
+    if (m%eos_type == EOS_JWL) then
+      ! JWL: A B R1 R2 omega; V = rho0 / rho.
+      vv = 1.0_dp / (1.0_dp + mu)
+      r1v = m%eos(3) * vv
+      r2v = m%eos(4) * vv
+      a = ((m%eos(1) * (1.0_dp - (m%eos(5) / r1v))) * exp(-r1v)) + &
+          ((m%eos(2) * (1.0_dp - (m%eos(5) / r2v))) * exp(-r2v))
+      b = m%eos(5) / vv
+    else if (m%eos_type == EOS_LINEAR) then
       if (mu > 0.0_dp) then
         mu2 = mu * mu
       else
@@ -65,6 +74,84 @@ contains
       b = m%eos(3)
     end if
   end subroutine eos_coefficients
+
+  ! Programmed burn of hiex: F = min(1, max(0, (time - t_light) D / (1.5 h))); 1 otherwise.
+  pure real(dp) function burn_fraction(m, t_light, time) result(f)
+    type(material_params), intent(in) :: m
+    real(dp), intent(in) :: t_light, time
+    if (m%type /= MAT_HIEX) then
+      f = 1.0_dp
+      return
+    end if
+    f = ((time - t_light) * m%det_vel) / m%burn_width
+    if (.not. (f > 0.0_dp)) then
+      f = 0.0_dp
+    else if (.not. (f < 1.0_dp)) then
+      f = 1.0_dp
+    end if
+  end function burn_fraction
+
+  ! Artificial bulk viscosity q = rho l (q1 l d^2 - q2 c d) for d = tr(D) < 0, else 0.
+  pure real(dp) function bulk_viscosity(rho, len, c, rate, q1, q2) result(q)
+    real(dp), intent(in) :: rho, len, c, rate, q1, q2
+    if (.not. (rate < 0.0_dp)) then
+      q = 0.0_dp
+      return
+    end if
+    q = (rho * len) * (((q1 * len) * (rate * rate)) - ((q2 * c) * rate))
+  end function bulk_viscosity
+
+  ! Drucker-Prager return of a trial stress (deviator s, mean stress sm, tension > 0):
+  ! the formulas of cxx/constitution.cpp (dp_return). Returns the equivalent plastic
+  ! strain increment.
+  real(dp) function dp_return(m, s, sm, bk, g) result(deps)
+    type(material_params), intent(in) :: m
+    real(dp), intent(inout) :: s(6), sm
+    real(dp), intent(in) :: bk, g
+    real(dp) :: j2, tau, qphi, kphi, qpsi, sigt, fs, ft, tau_p, alpha_p, h, tau_new, lam, ratio, sm_new
+    logical :: tension
+    integer :: c
+    j2 = (0.5_dp * (((s(1) * s(1)) + (s(2) * s(2))) + (s(3) * s(3)))) + &
+         (((s(4) * s(4)) + (s(5) * s(5))) + (s(6) * s(6)))
+    tau = sqrt(j2)
+    qphi = m%dp_qphi
+    kphi = m%dp_kphi
+    qpsi = m%dp_qpsi
+    sigt = m%dp_tension
+    fs = (tau + (qphi * sm)) - kphi
+    ft = sm - sigt
+    deps = 0.0_dp
+    if (.not. (fs > 0.0_dp) .and. .not. (ft > 0.0_dp)) return
+    tau_p = kphi - (qphi * sigt)
+    alpha_p = sqrt(1.0_dp + (qphi * qphi)) - qphi
+    h = (tau - tau_p) - (alpha_p * (sm - sigt))
+    tau_new = 0.0_dp
+    sm_new = sigt
+    tension = .true.
+    if (fs > 0.0_dp .and. h > 0.0_dp) then
+      lam = fs / (g + ((bk * qphi) * qpsi))
+      tau_new = tau - (g * lam)
+      sm_new = sm - ((bk * qpsi) * lam)
+      ! A non-associated return may land beyond the apex or the cut-off: tension return.
+      tension = tau_new < 0.0_dp .or. sm_new > sigt
+    end if
+    if (tension) then
+      if (tau > tau_p) then
+        tau_new = tau_p
+      else
+        tau_new = tau
+      end if
+      sm_new = sigt
+    end if
+    sm = sm_new
+    if (tau > 0.0_dp) then
+      ratio = tau_new / tau
+      do c = 1, 6
+        s(c) = s(c) * ratio
+      end do
+    end if
+    deps = (tau - tau_new) / (sqrt(3.0_dp) * g)
+  end function dp_return
 
   ! Yield stress and plastic modulus d(sigma_y)/d(epeff) for J2 materials.
   subroutine yield_stress(m, epeff, strain_rate, temp, sy, ep)
@@ -147,16 +234,18 @@ contains
 
   ! de: strain increment (Voigt, tensor components); dw: spin increment (w_yz, w_xz, w_xy).
   ! vol_old/vol_new: particle volume before and after the increment. temp is read and
-  ! written only when has_temp.
-  subroutine stress_update(m, de, dw, dt, mass, vol_old, vol_new, sig, epeff, ie, has_temp, temp)
+  ! written only when has_temp; q (bulk viscosity pressure) only when has_q. burn: the
+  ! programmed-burn fraction (hiex); q1, q2, qlen: bulk viscosity coefficients and length.
+  subroutine stress_update(m, de, dw, dt, mass, vol_old, vol_new, sig, epeff, ie, has_temp, temp, &
+                           has_q, q, burn, q1, q2, qlen)
     type(material_params), intent(in) :: m
-    real(dp), intent(in) :: de(6), dw(3), dt, mass, vol_old, vol_new
-    real(dp), intent(inout) :: sig(6), epeff, ie, temp
-    logical, intent(in) :: has_temp
+    real(dp), intent(in) :: de(6), dw(3), dt, mass, vol_old, vol_new, burn, q1, q2, qlen
+    real(dp), intent(inout) :: sig(6), epeff, ie, temp, q
+    logical, intent(in) :: has_temp, has_q
     real(dp) :: sig_r(6), dev(6), s(6), s_r(6)
     real(dp) :: dkk, third, two_g, vavg, strain_rate, tp, mean_r, lam_dkk, mean, deps, p_new
-    real(dp) :: vol0, dv, p_old, dwork, e_star, mu, a, b, e_new, q_new
-    logical :: failed
+    real(dp) :: vol0, dv, p_old, dwork, e_star, mu, a, b, e_new, q_new, q_old, base, p_tot
+    logical :: failed, fluid
     integer :: c
 
     call jaumann_rotate(sig, dw)
@@ -185,13 +274,27 @@ contains
     else
       tp = 0.0_dp
     end if
+    ! Bulk viscosity: the stored stress carries the last q in its pressure.
+    q_old = 0.0_dp
+    q_new = 0.0_dp
+    if (has_q) then
+      q_old = q
+      q_new = bulk_viscosity(mass / vol_new, qlen, m%wave_speed, dkk / dt, q1, q2)
+      q = q_new
+    end if
 
     mean_r = ((sig_r(1) + sig_r(2)) + sig_r(3)) / 3.0_dp
     if (m%eos_type == EOS_NONE) then
-      ! Hypoelastic trial stress, then radial return of its deviator.
+      ! Hypoelastic trial stress, then the return of its deviator (J2) or of the whole
+      ! stress (Drucker-Prager).
       lam_dkk = m%lambda * dkk
       do c = 1, 3
-        sig(c) = sig_r(c) + (lam_dkk + (two_g * de(c)))
+        if (has_q) then
+          base = sig_r(c) + q_old
+        else
+          base = sig_r(c)
+        end if
+        sig(c) = base + (lam_dkk + (two_g * de(c)))
       end do
       do c = 4, 6
         sig(c) = sig_r(c) + (two_g * de(c))
@@ -203,7 +306,12 @@ contains
       do c = 4, 6
         s(c) = sig(c)
       end do
-      deps = radial_return(m, s, epeff, strain_rate, tp)
+      if (m%type == MAT_DPM) then
+        deps = dp_return(m, s, mean, m%lambda + (two_g / 3.0_dp), m%shear)
+        epeff = epeff + deps
+      else
+        deps = radial_return(m, s, epeff, strain_rate, tp)
+      end if
       p_new = -mean
       failed = m%fail_strain > 0.0_dp .and. epeff >= m%fail_strain
       if (failed) then
@@ -212,31 +320,42 @@ contains
         end do
         if (p_new < 0.0_dp) p_new = 0.0_dp
       end if
+      if (has_q) then
+        p_tot = p_new + q_new
+      else
+        p_tot = p_new
+      end if
       do c = 1, 3
-        sig(c) = s(c) - p_new
+        sig(c) = s(c) - p_tot
       end do
       do c = 4, 6
         sig(c) = s(c)
       end do
       ie = ie + ((0.5_dp * (double_dot(sig_r, de) + double_dot(sig, de))) * vavg)
-      if (has_temp .and. deps > 0.0_dp .and. m%heat_cap > 0.0_dp) then
-        q_new = q_of(s)
-        temp = temp + ((0.9_dp * (q_new * deps)) / ((mass / vol_new) * m%heat_cap))
-      end if
+      call adiabatic_heating(m, s, deps, mass, vol_new, has_temp, temp)
       return
     end if
 
-    ! Deviatoric update plus an equation of state for the pressure.
+    ! Deviatoric update plus an equation of state for the pressure. hiex and null carry no
+    ! deviatoric stress.
     do c = 1, 3
       s_r(c) = sig_r(c) - mean_r
     end do
     do c = 4, 6
       s_r(c) = sig_r(c)
     end do
-    do c = 1, 6
-      s(c) = s_r(c) + (two_g * dev(c))
-    end do
-    deps = radial_return(m, s, epeff, strain_rate, tp)
+    deps = 0.0_dp
+    fluid = m%type == MAT_HIEX .or. m%type == MAT_NULL
+    if (fluid) then
+      do c = 1, 6
+        s(c) = 0.0_dp
+      end do
+    else
+      do c = 1, 6
+        s(c) = s_r(c) + (two_g * dev(c))
+      end do
+      deps = radial_return(m, s, epeff, strain_rate, tp)
+    end if
     failed = m%fail_strain > 0.0_dp .and. epeff >= m%fail_strain
     if (failed) then
       do c = 1, 6
@@ -245,28 +364,46 @@ contains
     end if
 
     ! Energy equation solved with the new pressure (the EOS is linear in e):
-    ! e1 = e* - p1 dv / 2, p1 = a + b e1.
+    ! e1 = e* - (p1 + q1) dv / 2, p1 = F (a + b e1).
     vol0 = mass / m%rho0
     dv = (vol_new - vol_old) / vol0
     p_old = -mean_r
     dwork = (0.5_dp * (double_dot(s_r, de) + double_dot(s, de))) * vavg
     e_star = ((ie + dwork) / vol0) - ((0.5_dp * p_old) * dv)
+    if (has_q) e_star = e_star - ((0.5_dp * q_new) * dv)
     mu = (vol0 / vol_new) - 1.0_dp
     call eos_coefficients(m, mu, a, b)
+    if (m%type == MAT_HIEX) then
+      a = burn * a
+      b = burn * b
+    end if
     p_new = (a + (b * e_star)) / (1.0_dp + ((0.5_dp * b) * dv))
     if (failed .and. p_new < 0.0_dp) p_new = 0.0_dp
     e_new = e_star - ((0.5_dp * p_new) * dv)
     ie = e_new * vol0
+    if (has_q) then
+      p_tot = p_new + q_new
+    else
+      p_tot = p_new
+    end if
     do c = 1, 3
-      sig(c) = s(c) - p_new
+      sig(c) = s(c) - p_tot
     end do
     do c = 4, 6
       sig(c) = s(c)
     end do
-    if (has_temp .and. deps > 0.0_dp .and. m%heat_cap > 0.0_dp) then
-      q_new = q_of(s)
-      temp = temp + ((0.9_dp * (q_new * deps)) / ((mass / vol_new) * m%heat_cap))
-    end if
+    call adiabatic_heating(m, s, deps, mass, vol_new, has_temp, temp)
   end subroutine stress_update
+
+  ! Adiabatic heating of thermal Johnson-Cook materials (Taylor-Quinney 0.9).
+  subroutine adiabatic_heating(m, s, deps, mass, vol_new, has_temp, temp)
+    type(material_params), intent(in) :: m
+    real(dp), intent(in) :: s(6), deps, mass, vol_new
+    logical, intent(in) :: has_temp
+    real(dp), intent(inout) :: temp
+    if (has_temp .and. deps > 0.0_dp .and. m%heat_cap > 0.0_dp) then
+      temp = temp + ((0.9_dp * (q_of(s) * deps)) / ((mass / vol_new) * m%heat_cap))
+    end if
+  end subroutine adiabatic_heating
 
 end module mpm3d_constitution

@@ -38,6 +38,10 @@ module mpm3d_data_in
     real(dp) :: mass_cutoff = 0.0_dp
     integer :: nwarn = 0
     character(len=200) :: warnings(16) = ''
+    integer :: ndeto = 0                ! detonation points (deto), at most 10
+    real(dp) :: deto(3, 10) = 0.0_dp
+    logical :: has_bulk = .false.       ! 'bulk q1 q2': artificial bulk viscosity
+    real(dp) :: bulk_q1 = 0.0_dp, bulk_q2 = 0.0_dp
   end type model_t
 
   public :: read_deck, is_output_variable
@@ -232,13 +236,17 @@ contains
         end if
       case ('deto')
         do a = 1, 3
-          tol = ts%real('the detonation point')
+          xyz(a) = ts%real('the detonation point')
         end do
-        call ts%fail(key%line, "'deto' (detonation points for hiex) is not yet supported")
+        if (m%ndeto >= 10) call ts%fail(key%line, "at most 10 detonation points ('deto')")
+        m%ndeto = m%ndeto + 1
+        m%deto(:, m%ndeto) = xyz
       case ('bulk')
-        tol = ts%real('q1')
-        tol = ts%real('q2')
-        call ts%fail(key%line, "'bulk' (artificial bulk viscosity) is not yet supported")
+        m%bulk_q1 = ts%real('q1')
+        m%bulk_q2 = ts%real('q2')
+        if (.not. (m%bulk_q1 >= 0.0_dp) .or. .not. (m%bulk_q2 >= 0.0_dp)) &
+          call ts%fail(key%line, 'bulk viscosity coefficients must not be negative')
+        m%has_bulk = .true.
       case ('gimp')
         call ts%fail(key%line, "'gimp' (GIMP shape functions) is not yet supported")
       case ('cont')
@@ -421,8 +429,28 @@ contains
         mp%jc_c = ts%real('C')
         mp%eps0dot = ts%real('reference strain rate')
         if (mp%type == MAT_SJCF) mp%fail_strain = ts%real('failure strain')
-      case ('hiex', 'null', 'dpm')
-        call ts%fail(line, "material '" // ts%text_of(typ) // "' is not yet supported")
+      case ('hiex', 'null')
+        if (t == 'hiex') then
+          mp%type = MAT_HIEX
+        else
+          mp%type = MAT_NULL
+        end if
+        mp%rho0 = ts%real('density')
+        if (mp%type == MAT_HIEX) then
+          mp%wave_speed = ts%real('the detonation velocity')
+          mp%det_vel = mp%wave_speed
+        else
+          mp%wave_speed = ts%real('the wave speed')
+        end if
+      case ('dpm')
+        mp%type = MAT_DPM
+        mp%rho0 = ts%real('density')
+        mp%young = ts%real("Young's modulus")
+        mp%poisson = ts%real("Poisson's ratio")
+        mp%dp_qphi = ts%real('q_phi')
+        mp%dp_kphi = ts%real('k_phi')
+        mp%dp_qpsi = ts%real('q_psi')
+        mp%dp_tension = ts%real('the tension cut-off')
       case default
         call ts%fail(line, "unknown material type '" // ts%text_of(typ) // "'")
       end select
@@ -447,7 +475,6 @@ contains
     type(token_t) :: at
     integer(int64) :: mid, et
     integer :: i
-    real(dp) :: r
     call need_counts(ts, m, key, .false., .true., .false.)
     at = ts%peek()
     mid = ts%integer('a material number')
@@ -468,14 +495,19 @@ contains
       m%mats(mid)%eos_e0 = ts%real('E0')
       if (.not. (m%mats(mid)%eos(1) > 0.0_dp)) call ts%fail(key%line, 'Mie-Gruneisen c0 must be positive')
     else if (et == 3) then
-      do i = 1, 6
-        r = ts%real('a JWL coefficient')
+      do i = 1, 5
+        m%mats(mid)%eos(i) = ts%real('a JWL coefficient')
       end do
-      call ts%fail(key%line, 'EOS type 3 (JWL) is not yet supported')
+      m%mats(mid)%eos_e0 = ts%real('E0')
+      if (m%mats(mid)%type /= MAT_HIEX .and. m%mats(mid)%type /= MAT_NULL) &
+        call ts%fail(key%line, 'EOS type 3 (JWL) is for hiex and null materials')
+      if (.not. (m%mats(mid)%eos(3) > 0.0_dp) .or. .not. (m%mats(mid)%eos(4) > 0.0_dp)) &
+        call ts%fail(key%line, 'JWL R1 and R2 must be positive')
     else
       call ts%fail(key%line, 'unknown EOS type ' // itoa(et) // &
                    ' (1 linear polynomial, 2 Mie-Gruneisen, 3 JWL)')
     end if
+    if (m%mats(mid)%type == MAT_DPM) call ts%fail(key%line, 'a dpm material takes no equation of state')
     m%mats(mid)%eos_type = int(et)
   end subroutine read_eos
 
@@ -748,9 +780,9 @@ contains
     type(token_stream), intent(in) :: ts
     type(model_t), intent(inout) :: m
     integer, intent(in) :: line
-    integer :: i, a, p, slash, dot
-    real(dp) :: n, fl, c_max, rho_sum
-    logical :: thermal
+    integer :: i, a, p, slash, dot, k
+    real(dp) :: n, fl, c_max, rho_sum, dmin, dx, dy, dz, d
+    logical :: thermal, hiex
     character(len=:), allocatable :: base
     character(len=32) :: buf
     if (m%nbmp < 0) call ts%fail(line, "no 'nbmp' (number of particles) before 'endi'")
@@ -779,6 +811,44 @@ contains
                   ' is not a whole number of cells; rounded to ' // trim(buf))
       end if
     end do
+    ! Explosives: every hiex and null material needs an EOS, hiex a detonation point.
+    hiex = .false.
+    do i = 1, m%nmat
+      if ((m%mats(i)%type == MAT_HIEX .or. m%mats(i)%type == MAT_NULL) .and. &
+          m%mats(i)%eos_type == EOS_NONE) &
+        call ts%fail(line, 'material ' // i2s(i) // ' (' // trim(material_keyword(m%mats(i)%type)) // &
+                     ") needs an equation of state ('seos')")
+      if (m%mats(i)%type == MAT_HIEX) then
+        if (m%ndeto == 0) &
+          call ts%fail(line, 'material ' // i2s(i) // " (hiex) needs a detonation point ('deto')")
+        m%mats(i)%burn_width = 1.5_dp * m%dcell
+        hiex = .true.
+      end if
+    end do
+    if (m%ndeto > 0 .and. .not. hiex) call warn(m, "'deto' points given but no hiex material: ignored")
+    if (hiex) then
+      ! Lighting time: distance from the initial position to the nearest detonation point / D.
+      allocate(m%particles%tlight(m%particles%np))
+      m%particles%tlight = 0.0_dp
+      do p = 1, m%particles%np
+        associate (mp => m%mats(m%particles%mat(p) + 1))
+          if (mp%type /= MAT_HIEX) cycle
+          dmin = 0.0_dp
+          do k = 1, m%ndeto
+            dx = m%particles%x(1, p) - m%deto(1, k)
+            dy = m%particles%x(2, p) - m%deto(2, k)
+            dz = m%particles%x(3, p) - m%deto(3, k)
+            d = sqrt(((dx * dx) + (dy * dy)) + (dz * dz))
+            if (k == 1 .or. d < dmin) dmin = d
+          end do
+          m%particles%tlight(p) = dmin / mp%det_vel
+        end associate
+      end do
+    end if
+    if (m%has_bulk) then
+      allocate(m%particles%qv(m%particles%np))
+      m%particles%qv = 0.0_dp
+    end if
     ! Initial internal energy from E0 (per unit initial volume), initial temperature.
     thermal = .false.
     do i = 1, m%nmat
@@ -800,8 +870,13 @@ contains
         if (thermal) m%particles%temp(p) = mp%t_room
       end associate
     end do
-    ! dt = dtscale * h / c_max (the dilatational wave speed), fixed for the run.
-    m%dt = (m%dtscale * m%dcell) / c_max
+    ! dt = dtscale * h / c_max (the dilatational wave speed, D for hiex, c for null), fixed
+    ! for the run; with bulk viscosity dtscale h / (c_max (q2 + sqrt(1 + q2^2))).
+    if (m%has_bulk) then
+      m%dt = (m%dtscale * m%dcell) / (c_max * (m%bulk_q2 + sqrt(1.0_dp + (m%bulk_q2 * m%bulk_q2))))
+    else
+      m%dt = (m%dtscale * m%dcell) / c_max
+    end if
     m%mass_cutoff = (1.0e-5_dp * (rho_sum / real(m%nmat, dp))) * ((m%dcell * m%dcell) * m%dcell)
     ! Base name: the deck's file name up to its first '.'.
     base = m%deck_path

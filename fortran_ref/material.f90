@@ -36,6 +36,13 @@ module mpm3d_material
     real(c_double) :: eos_e0 = 0.0_dp      ! initial internal energy per unit initial volume
     integer(c_int) :: type = 0             ! MaterialType
     integer(c_int) :: eos_type = 0         ! EosType
+    ! Appended for hiex, null and dpm (as in cxx/material.hpp).
+    real(c_double) :: det_vel = 0.0_dp     ! hiex: detonation velocity D
+    real(c_double) :: burn_width = 0.0_dp  ! hiex: programmed-burn ramp width 1.5 h
+    real(c_double) :: dp_qphi = 0.0_dp     ! dpm: q_phi
+    real(c_double) :: dp_kphi = 0.0_dp     ! dpm: k_phi
+    real(c_double) :: dp_qpsi = 0.0_dp     ! dpm: q_psi
+    real(c_double) :: dp_tension = 0.0_dp  ! dpm: tension cut-off (capped at the apex)
   end type material_params
 
   public :: material_derive, material_keyword
@@ -70,6 +77,22 @@ contains
       err = 'density must be positive'
       return
     end if
+    if (m%type == MAT_HIEX .or. m%type == MAT_NULL) then
+      ! No deviatoric stiffness: pressure from the EOS only. wave_speed is D or c.
+      if (.not. (m%wave_speed > 0.0_dp)) then
+        if (m%type == MAT_HIEX) then
+          err = 'detonation velocity must be positive'
+        else
+          err = 'wave speed must be positive'
+        end if
+        return
+      end if
+      m%young = 0.0_dp
+      m%poisson = 0.0_dp
+      m%shear = 0.0_dp
+      m%lambda = 0.0_dp
+      return
+    end if
     if (.not. (m%young > 0.0_dp)) then
       err = "Young's modulus must be positive"
       return
@@ -81,6 +104,19 @@ contains
     m%shear = m%young / (2.0_dp * (1.0_dp + m%poisson))
     m%lambda = (m%young * m%poisson) / ((1.0_dp + m%poisson) * (1.0_dp - 2.0_dp * m%poisson))
     m%wave_speed = sqrt((m%lambda + 2.0_dp * m%shear) / m%rho0)
+    if (m%type == MAT_DPM) then
+      if (.not. (m%dp_qphi >= 0.0_dp) .or. .not. (m%dp_kphi >= 0.0_dp) .or. .not. (m%dp_qpsi >= 0.0_dp)) then
+        err = 'Drucker-Prager q_phi, k_phi and q_psi must not be negative'
+        return
+      end if
+      if (.not. (m%dp_tension >= 0.0_dp)) then
+        err = 'Drucker-Prager tension cut-off must not be negative'
+        return
+      end if
+      if (m%dp_qphi > 0.0_dp) then
+        if (m%dp_tension > m%dp_kphi / m%dp_qphi) m%dp_tension = m%dp_kphi / m%dp_qphi
+      end if
+    end if
   end subroutine material_derive
 
 end module mpm3d_material

@@ -233,6 +233,10 @@ contains
       if (allocated(p%temp)) ctx%temp = c_loc(p%temp)
       ctx%fext = c_null_ptr
       if (allocated(p%fext)) ctx%fext = c_loc(p%fext)
+      ctx%tlight = c_null_ptr
+      if (allocated(p%tlight)) ctx%tlight = c_loc(p%tlight)
+      ctx%qv = c_null_ptr
+      if (allocated(p%qv)) ctx%qv = c_loc(p%qv)
       ctx%mat = c_loc(p%mat)
       ctx%body = c_loc(p%body)
     end associate
@@ -269,6 +273,8 @@ contains
     ctx%fix = grid%fix
     ctx%scheme = model%scheme
     ctx%has_body_force = merge(1, 0, model%has_gravity .or. model%has_loads)
+    ctx%bulk_q1 = model%bulk_q1
+    ctx%bulk_q2 = model%bulk_q2
   end subroutine bind_context
 
   ! Buffers for the non-empty patches found by the bin stage (Simulation::ensure_patch_buffers).
@@ -292,6 +298,7 @@ contains
     else
       ctx%dt_int = model%dt
     end if
+    ctx%time = time + model%dt      ! the end of this step (programmed burn)
     call mpm3d_f_bin(ctx)
     call ensure_patch_buffers()
     call mpm3d_f_p2g(ctx)

@@ -21,6 +21,8 @@ module mpm3d_particle
     integer(c_int), allocatable :: mat(:), body(:)   ! 0-based
     real(dp), allocatable :: temp(:)    ! only with thermal Johnson-Cook
     real(dp), allocatable :: fext(:,:)  ! only with point/body loads
+    real(dp), allocatable :: tlight(:)  ! only with hiex: lighting time
+    real(dp), allocatable :: qv(:)      ! only with 'bulk': bulk viscosity pressure
   end type particles_t
 
   public :: particles_resize
@@ -34,6 +36,8 @@ contains
     if (allocated(p%x)) deallocate(p%x, p%v, p%sig, p%mass, p%vol, p%epeff, p%ie, p%mat, p%body)
     if (allocated(p%temp)) deallocate(p%temp)
     if (allocated(p%fext)) deallocate(p%fext)
+    if (allocated(p%tlight)) deallocate(p%tlight)
+    if (allocated(p%qv)) deallocate(p%qv)
     allocate(p%x(3, n), p%v(3, n), p%sig(6, n), p%mass(n), p%vol(n), p%epeff(n), p%ie(n), &
              p%mat(n), p%body(n))
     p%x = 0.0_dp

@@ -9,7 +9,7 @@ module mpm3d_update_step
   use, intrinsic :: iso_c_binding
   use mpm3d_material
   use mpm3d_grid, only: NODE_FIELDS, shape_linear
-  use mpm3d_constitution, only: stress_update
+  use mpm3d_constitution, only: stress_update, burn_fraction
   implicit none
   private
 
@@ -44,6 +44,11 @@ module mpm3d_update_step
     integer(c_int) :: has_body_force = 0
     integer(c_int) :: noutside = 0
     integer(c_int) :: reduce_block = 0
+    ! Explosives and bulk viscosity (stress stage only).
+    type(c_ptr) :: tlight = c_null_ptr    ! (np) lighting times, or null (only with hiex)
+    type(c_ptr) :: qv = c_null_ptr        ! (np) bulk viscosity pressures, or null (only with bulk)
+    real(c_double) :: time = 0.0_dp       ! time at the end of this step
+    real(c_double) :: bulk_q1 = 0.0_dp, bulk_q2 = 0.0_dp
   end type step_context
 
   public :: mpm3d_f_bin, mpm3d_f_p2g, mpm3d_f_forces, mpm3d_f_integrate, mpm3d_f_g2p, &
@@ -504,12 +509,14 @@ contains
   subroutine mpm3d_f_stress(c) bind(C, name='mpm3d_f_stress')
     type(step_context), intent(inout) :: c
     real(dp), pointer :: lx(:,:), sig(:,:), mass(:), vol(:), epeff(:), ie(:), temp(:)
+    real(dp), pointer :: tlight(:), qv(:)
     real(dp), pointer :: gmass(:), gmom(:,:)
     integer(c_int), pointer :: cell(:), mat(:)
     type(material_params), pointer :: mats(:)
     real(dp) :: sn(8), sg(3, 8), lg(0:8), de(6), dw(3), dt, m, va, vol_old, vol_new, tdummy
+    real(dp) :: burn, qdummy
     integer :: p, cl, base, k, n, a, b
-    logical :: has_temp
+    logical :: has_temp, has_tl, has_q
     dt = c%dt
     call c_f_pointer(c%lx, lx, [3, c%np])
     call c_f_pointer(c%sig, sig, [6, c%np])
@@ -528,7 +535,12 @@ contains
     else
       nullify(temp)
     end if
+    has_tl = c_associated(c%tlight)
+    if (has_tl) call c_f_pointer(c%tlight, tlight, [c%np])
+    has_q = c_associated(c%qv)
+    if (has_q) call c_f_pointer(c%qv, qv, [c%np])
     tdummy = 0.0_dp
+    qdummy = 0.0_dp
     do p = 1, c%np
       cl = cell(p)
       if (cl < 0) cycle
@@ -557,12 +569,20 @@ contains
       dw(3) = (0.5_dp * (lg(1) - lg(3))) * dt
       vol_old = vol(p)
       vol_new = vol_old * (1.0_dp + ((de(1) + de(2)) + de(3)))
-      if (has_temp) then
+      burn = 1.0_dp
+      if (has_tl) burn = burn_fraction(mats(mat(p) + 1), tlight(p), c%time)
+      if (has_temp .and. has_q) then
         call stress_update(mats(mat(p) + 1), de, dw, dt, mass(p), vol_old, vol_new, sig(:, p), &
-                           epeff(p), ie(p), .true., temp(p))
+                           epeff(p), ie(p), .true., temp(p), .true., qv(p), burn, c%bulk_q1, c%bulk_q2, c%h)
+      else if (has_temp) then
+        call stress_update(mats(mat(p) + 1), de, dw, dt, mass(p), vol_old, vol_new, sig(:, p), &
+                           epeff(p), ie(p), .true., temp(p), .false., qdummy, burn, c%bulk_q1, c%bulk_q2, c%h)
+      else if (has_q) then
+        call stress_update(mats(mat(p) + 1), de, dw, dt, mass(p), vol_old, vol_new, sig(:, p), &
+                           epeff(p), ie(p), .false., tdummy, .true., qv(p), burn, c%bulk_q1, c%bulk_q2, c%h)
       else
         call stress_update(mats(mat(p) + 1), de, dw, dt, mass(p), vol_old, vol_new, sig(:, p), &
-                           epeff(p), ie(p), .false., tdummy)
+                           epeff(p), ie(p), .false., tdummy, .false., qdummy, burn, c%bulk_q1, c%bulk_q2, c%h)
       end if
       vol(p) = vol_new
     end do
@@ -608,7 +628,7 @@ contains
   ! Layout of step_context and material_params as this compiler sees them (for the
   ! layout test against the C structs): sizes and a few offsets, in bytes.
   subroutine mpm3d_f_context_layout(out) bind(C, name='mpm3d_f_context_layout')
-    integer(c_size_t), intent(out) :: out(8)
+    integer(c_size_t), intent(out) :: out(10)
     type(step_context), target :: c
     type(material_params), target :: m(2)
     out(1) = c_sizeof(c)
@@ -619,6 +639,8 @@ contains
     out(6) = c_sizeof(m(1))
     out(7) = transfer(c_loc(m(1)%eos_e0), 0_c_intptr_t) - transfer(c_loc(m(1)), 0_c_intptr_t)
     out(8) = transfer(c_loc(m(1)%eos_type), 0_c_intptr_t) - transfer(c_loc(m(1)), 0_c_intptr_t)
+    out(9) = transfer(c_loc(c%bulk_q2), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
+    out(10) = transfer(c_loc(m(1)%dp_tension), 0_c_intptr_t) - transfer(c_loc(m(1)), 0_c_intptr_t)
   end subroutine mpm3d_f_context_layout
 
 end module mpm3d_update_step

@@ -136,12 +136,14 @@ case $kind in
         bad=1
       fi
     done <<'CARDS'
-bulk 1.5 0.06
+bulk -1.5 0.06
 gimp
 cont lagr 0.1 0
-deto 0.0 0.0 0.0
+deto 0.0 0.0 abc
 mate 2 hiex 1.6d-3 6930.0
+mate 2 hiex 1.6d-3 -6930.0
 mate 2 null 1.0d-3 1500.0
+mate 2 dpm 2.0d-3 10.0 0.3 -0.5 0.0 0.0 0.0
 seos 1 3 1.0 2.0 3.0 4.0 5.0 6.0
 seos 1 7 1.0
 dcell abc
