@@ -36,6 +36,7 @@ struct Model {
   std::vector<CurveRequest> curves;    // curv, curx
   double dt = 0.0;                     // initial time step
   double mass_cutoff = 0.0;
+  int regrid_every = 0;  // adaptive grid: redefine the grid every N steps (adgr; 0 off)
   std::vector<std::string> warnings;
 };
 
