@@ -24,12 +24,15 @@ def main():
         rows = list(csv.DictReader(f))
     series = {}
     for r in rows:
-        key = (r["deck"].replace(".mpm", ""), r["scatter"], int(r["regrid_every"]))
+        # (CSV files of the earlier bench.sh have no scheme or regrid columns: patches, off.)
+        key = (r["deck"].replace(".mpm", ""), r.get("scatter") or "patches", int(r.get("regrid_every") or 0))
         series.setdefault(key, []).append((int(r["threads"]), float(r["speedup"]), float(r["efficiency"]),
                                            float(r.get("load1_max") or 0)))
     maxt = max((int(r["threads"]) for r in rows), default=1)
     loads = [float(r.get("load1_max") or 0) for r in rows]
-    note = f"this machine: {maxt} cores; 1-min load during the runs {min(loads):.2f}-{max(loads):.2f}" if loads else ""
+    note = f"this machine: {os.cpu_count()} cores"
+    if any(loads):
+        note += f"; 1-min load during the runs {min(loads):.2f}-{max(loads):.2f}"
     for what, ylabel in (("speedup", "speedup"), ("efficiency", "parallel efficiency")):
         fig, ax = plt.subplots(figsize=(6.4, 4.8))
         top = max(maxt, 8)
