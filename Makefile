@@ -2,7 +2,7 @@
 BUILD ?= build
 JOBS  ?= $(shell nproc)
 DEB_PACKAGES = g++ gfortran cmake make libeigen3-dev libhdf5-dev hdf5-tools googletest \
-               libgtest-dev libbenchmark-dev python3
+               libgtest-dev libbenchmark-dev python3 python3-matplotlib
 DECK ?= inputs/taylor/taylor_coarse.mpm
 
 .PHONY: all deps build run test bench report clean

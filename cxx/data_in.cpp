@@ -112,6 +112,10 @@ Model Reader::read() {
     } else if (k == "rptt") {
       m_.rpttime = ts_.real("the report interval");
       if (!(m_.rpttime > 0.0)) fail(key.line, "report interval must be positive");
+    } else if (k == "adgr") {  // extension: adaptive background grid every N steps
+      const long n = ts_.integer("the regrid interval");
+      if (n < 0 || n > 1000000000) fail(key.line, "'adgr' needs a step interval, 0 (off) or more");
+      m_.regrid_every = int(n);
     } else if (k == "fixe") {
       for (int f = 0; f < 6; ++f) {
         const long v = ts_.integer("a face condition");

@@ -39,6 +39,7 @@ struct Model {
   double bulk_q1 = 0.0, bulk_q2 = 0.0;
   double dt = 0.0;                     // initial time step
   double mass_cutoff = 0.0;
+  int regrid_every = 0;  // adaptive grid: redefine the grid every N steps (adgr; 0 off)
   std::vector<std::string> warnings;
 };
 

@@ -24,16 +24,32 @@ Simulation::Simulation(Model m, int patch_cells) : model(std::move(m)), stages_(
   if (patch_cells < 1) throw std::invalid_argument("patch size must be at least one cell");
   double hi[3];
   for (int a = 0; a < 3; ++a) hi[a] = model.box_hi[a];
-  grid.setup(model.box_lo, hi, model.dcell, patch_cells);
+  grid.define(model.box_lo, hi, model.dcell, patch_cells);
   for (int f = 0; f < 6; ++f) grid.fix[f] = model.fix[f];
   grid.mass_cutoff = model.mass_cutoff;
   const size_t np = size_t(model.particles.np);
+  regrid_every = model.regrid_every;
+  // The first window (the whole box without the adaptive grid); the node arrays are
+  // allocated at the window's size only.
+  int off[3] = {0, 0, 0}, nc[3] = {grid.deck_nc[0], grid.deck_nc[1], grid.deck_nc[2]};
+  if (regrid_every > 0)
+    adaptive_window(grid, model.particles.x.data(), model.particles.v.data(), model.particles.np, regrid_every,
+                    model.dt, off, nc);
+  grid.set_window(off, nc);
   lx_.assign(3 * np, 0.0);
   cell_.assign(np, -1);
   grid.patch_part.assign(np, 0);
   bind();
   measure();
   initial_total_energy = kinetic + internal;
+  // Binning of the initial state, for the patch statistics before the first step (every
+  // step bins again).
+  stages_.fn[ST_BIN](&ctx);
+  stats = patch_stats(grid, ctx.patch_start);
+  if (regrid_every > 0) {
+    regrids = 1;
+    note_regrid(0);
+  }
 }
 
 void Simulation::bind() {
@@ -64,22 +80,11 @@ void Simulation::bind() {
     for (int a = 0; a < 3; ++a) grav[3 * b + a] = model.bodies[b].gravity[a];
   c.gravity = grav.data();
   c.mats = model.mats.data();
-  c.gmass = grid.mass.data();
-  c.gmom = grid.mom.data();
-  c.gforce = grid.force.data();
-  c.patch_start = grid.patch_start.data();
   c.patch_part = grid.patch_part.data();
-  c.patch_slot = grid.patch_slot.data();
   c.patch_buf = grid.patch_buf.data();
   c.reduce_block = 4096;
   partials_.assign(size_t(kReduceFields) * (P.np / c.reduce_block + 1), 0.0);
   c.partials = partials_.data();
-  for (int a = 0; a < 3; ++a) {
-    c.origin[a] = grid.origin[a];
-    c.nc[a] = grid.nc[a];
-    c.nn[a] = grid.nn[a];
-    c.npd[a] = grid.npd[a];
-  }
   c.h = grid.h;
   c.inv_h = 1.0 / grid.h;
   c.dt = model.dt;
@@ -88,12 +93,69 @@ void Simulation::bind() {
   c.np = P.np;
   c.nbody = int(model.bodies.size());
   c.nmat = int(model.mats.size());
-  c.nnode = grid.nnode();
   c.patch_cells = grid.patch_cells;
-  c.npatch = grid.npatch;
   for (int f = 0; f < 6; ++f) c.fix[f] = grid.fix[f];
   c.scheme = model.scheme;
   c.has_body_force = (model.has_gravity || model.has_loads) ? 1 : 0;
+  bind_grid();
+}
+
+void Simulation::bind_grid() {
+  StepContext& c = ctx;
+  c.gmass = grid.mass.data();
+  c.gmom = grid.mom.data();
+  c.gforce = grid.force.data();
+  c.patch_start = grid.patch_start.data();
+  c.patch_slot = grid.patch_slot.data();
+  for (int a = 0; a < 3; ++a) {
+    c.origin[a] = grid.origin[a];
+    c.nc[a] = grid.nc[a];
+    c.nn[a] = grid.nn[a];
+    c.npd[a] = grid.npd[a];
+    c.cell_off[a] = grid.off[a];
+  }
+  c.nnode = grid.nnode();
+  c.npatch = grid.npatch;
+}
+
+void Simulation::regrid(int escaped) {
+  int off[3], nc[3];
+  const Particles& P = model.particles;
+  adaptive_window(grid, P.x.data(), P.v.data(), P.np, regrid_every > 0 ? regrid_every : 1, model.dt, off, nc);
+  grid.set_window(off, nc);
+  bind_grid();
+  ++regrids;
+  if (escaped > 0) ++regrids_forced;
+}
+
+void Simulation::note_regrid(int escaped) {
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "regrid step %ld window %d %d %d %d %d %d cells %d x %d x %d, patches %d, empty %d, "
+                "particles per patch max %d mean %.1f, imbalance %.3f",
+                steps, grid.off[0], grid.off[0] + grid.nc[0], grid.off[1], grid.off[1] + grid.nc[1], grid.off[2],
+                grid.off[2] + grid.nc[2], grid.nc[0], grid.nc[1], grid.nc[2], stats.patches, stats.empty, stats.max,
+                stats.mean, stats.imbalance);
+  regrid_note = line;
+  if (escaped > 0) regrid_note += " (forced: " + std::to_string(escaped) + " particles had left the window)";
+}
+
+void Simulation::use_expansion_scatter() {
+  stages_.fn[ST_P2G] = mpm3d_cxx_p2g_expansion;
+  stages_.fn[ST_FORCES] = mpm3d_cxx_forces_expansion;
+  stages_.fn[ST_G2P] = mpm3d_cxx_g2p_expansion;
+  expansion_ = true;
+}
+
+void Simulation::ensure_expansion_buffers() {
+  int threads = 1;
+#ifdef _OPENMP
+  threads = omp_get_max_threads();
+#endif
+  const size_t need = size_t(threads) * size_t(grid.nnode()) * kNodeFields;
+  if (tgrid_.size() != need) std::vector<double>(need).swap(tgrid_);  // each thread zeroes its own copy
+  ctx.tgrid = tgrid_.data();
+  ctx.ntgrid = threads;
 }
 
 void Simulation::ensure_patch_buffers() {
@@ -114,8 +176,29 @@ void Simulation::step() {
     stages_.fn[s](c);
     stage_seconds[s] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   };
+  const bool scheduled = regrid_every > 0 && steps > 0 && steps % regrid_every == 0;
+  if (scheduled) {
+    const auto t0 = std::chrono::steady_clock::now();
+    regrid(0);
+    stage_seconds[ST_BIN] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
   run(ST_BIN);
+  int escaped = 0;
+  if (c->noutside > 0 && !grid.window_is_box()) {
+    // A particle inside the deck's box has left the window: widen it now and bin again,
+    // so that the window never freezes a particle the box would not have frozen.
+    escaped = count_escaped(grid, c->x, c->cell, c->np);
+    if (escaped > 0) {
+      const auto t0 = std::chrono::steady_clock::now();
+      regrid(escaped);
+      stage_seconds[ST_BIN] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      run(ST_BIN);
+    }
+  }
+  stats = patch_stats(grid, c->patch_start);
+  if (scheduled || escaped > 0) note_regrid(escaped);
   ensure_patch_buffers();
+  if (expansion_) ensure_expansion_buffers();
   run(ST_P2G);
   if (c->scheme == SCHEME_USF) {
     run(ST_STRESS);
@@ -219,6 +302,10 @@ const char* kUsage =
     "  --summary F.json   write a summary of the run\n"
     "  --state F.h5       write the final particle state (HDF5)\n"
     "  --patch-cells N    cells per patch edge of the grid decomposition (default 8)\n"
+    "  --regrid-every N   adaptive background grid: redefine the grid from the particles'\n"
+    "                     extent every N steps (0: off; default: the deck's 'adgr', else off)\n"
+    "  --scatter patches|expansion  grid scatter scheme (default patches: bit-identical for\n"
+    "                     any thread count; expansion: per-thread grid copies, a benchmark)\n"
     "  --kernel cxx|fortran       take every step stage from one language\n"
     "  --kernels STAGE=LANG,...   take single stages from a language (see --list-stages)\n"
     "  --list-stages      print the stage names, one per line\n"
@@ -230,6 +317,8 @@ struct Options {
   long max_steps = -1;
   double end_time = -1.0;
   int threads = 0, patch_cells = 8;
+  long regrid_every = -1;  // -1: the deck's
+  std::string scatter = "patches";
   bool no_output = false, quiet = false;
 };
 
@@ -280,6 +369,12 @@ Options parse_args(int argc, char** argv, bool& exit_now) {
     } else if (a == "--patch-cells") {
       o.patch_cells = int(to_long(a, value()));
       if (o.patch_cells < 1 || o.patch_cells > 64) throw UsageError("--patch-cells must lie in 1..64");
+    } else if (a == "--regrid-every") {
+      o.regrid_every = to_long(a, value());
+      if (o.regrid_every < 0 || o.regrid_every > 1000000000) throw UsageError("--regrid-every must lie in 0..1000000000");
+    } else if (a == "--scatter") {
+      o.scatter = value();
+      if (o.scatter != "patches" && o.scatter != "expansion") throw UsageError("--scatter takes patches or expansion");
     } else if (a == "--kernel") {
       o.kernel = value();
     } else if (a == "--kernels") {
@@ -299,6 +394,8 @@ Options parse_args(int argc, char** argv, bool& exit_now) {
     }
   }
   if (o.deck.empty()) throw UsageError("no deck given");
+  if (o.scatter == "expansion" && (!o.kernel.empty() || !o.kernels.empty()))
+    throw UsageError("--scatter expansion has C++ kernels only (no --kernel/--kernels with it)");
   return o;
 }
 
@@ -355,6 +452,7 @@ int run_main(int argc, char** argv) {
   }
   try {
     Model model = read_deck(opt.deck);
+    if (opt.regrid_every >= 0) model.regrid_every = int(opt.regrid_every);
     if (!dir_writable(opt.out_dir)) throw std::runtime_error("output directory '" + opt.out_dir + "' is not writable");
     for (const std::string* f : {&opt.summary, &opt.state}) {
       if (f->empty()) continue;
@@ -375,6 +473,7 @@ int run_main(int argc, char** argv) {
       if (!opt.kernel.empty()) select_stages(t, opt.kernel, false);
       if (!opt.kernels.empty()) select_stages(t, opt.kernels, true);
       sim.set_stages(t);
+      if (opt.scatter == "expansion") sim.use_expansion_scatter();
     }
     const Model& m = sim.model;
     const double end_time = opt.end_time > 0.0 ? opt.end_time : m.endtime;
@@ -382,14 +481,24 @@ int run_main(int argc, char** argv) {
     if (!opt.no_output) out.open(m, opt.out_dir);
     std::ostringstream head;
     head << "MPM3D-CXX: " << m.title << "\n  deck " << opt.deck << ", " << m.particles.np << " particles, "
-         << m.bodies.size() << " bodies, " << m.nmat << " materials\n  grid " << sim.grid.nc[0] << " x "
-         << sim.grid.nc[1] << " x " << sim.grid.nc[2] << " cells of " << m.dcell << ", " << sim.grid.npatch
-         << " patches of " << sim.grid.patch_cells << "^3 cells\n  scheme "
+         << m.bodies.size() << " bodies, " << m.nmat << " materials\n  grid " << sim.grid.deck_nc[0] << " x "
+         << sim.grid.deck_nc[1] << " x " << sim.grid.deck_nc[2] << " cells of " << m.dcell << ", patches of "
+         << sim.grid.patch_cells << "^3 cells";
+    if (sim.regrid_every > 0) head << ", adaptive: redefined every " << sim.regrid_every << " steps";
+    if (sim.expansion_scatter()) head << "\n  scatter: per-thread grid copies (expansion)";
+    head << "\n  scheme "
          << (m.scheme == SCHEME_MUSL ? "MUSL" : m.scheme == SCHEME_USL ? "USL" : "USF") << ", dt " << m.dt
          << ", end time " << end_time << ", threads " << threads;
     for (const auto& w : m.warnings) head << "\n  warning: " << w;
     out.log(head.str());
     if (!opt.quiet) std::cout << head.str() << std::endl;
+    auto log_regrid = [&]() {
+      if (sim.regrid_note.empty()) return;
+      out.log(sim.regrid_note);
+      if (!opt.quiet) std::cout << sim.regrid_note << std::endl;
+      sim.regrid_note.clear();
+    };
+    log_regrid();
 
     double step_seconds = 0.0, dt_min = m.dt, dt_max = m.dt, max_epeff = 0.0;
     double next_out = m.outtime, next_rpt = m.rpttime;
@@ -404,6 +513,7 @@ int run_main(int argc, char** argv) {
         failure = e.what();
       }
       step_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      log_regrid();
       if (!failure.empty()) break;
       if (!opt.no_output) {
         out.step(m, sim.time, sim.kinetic, sim.internal, sim.momentum);
@@ -450,7 +560,17 @@ int run_main(int argc, char** argv) {
          << num(sim.momentum[0]) << ", " << num(sim.momentum[1]) << ", " << num(sim.momentum[2])
          << "],\n  \"bbox_min\": [" << num(lo[0]) << ", " << num(lo[1]) << ", " << num(lo[2]) << "],\n  \"bbox_max\": ["
          << num(hi[0]) << ", " << num(hi[1]) << ", " << num(hi[2]) << "],\n  \"max_epeff\": " << num(max_epeff)
-         << ",\n  \"particles_outside_grid\": " << sim.outside << ",\n  \"warnings\": [";
+         << ",\n  \"particles_outside_grid\": " << sim.outside << ",\n  \"scatter\": \"" << opt.scatter
+         << "\",\n  \"regrid_every\": " << sim.regrid_every << ",\n  \"regrids\": " << sim.regrids
+         << ",\n  \"regrids_forced\": " << sim.regrids_forced << ",\n  \"grid_window_offset\": [" << sim.grid.off[0]
+         << ", " << sim.grid.off[1] << ", " << sim.grid.off[2] << "],\n  \"grid_window_cells\": [" << sim.grid.nc[0]
+         << ", " << sim.grid.nc[1] << ", " << sim.grid.nc[2] << "],\n  \"patches\": " << sim.stats.patches
+         << ",\n  \"patches_empty\": " << sim.stats.empty << ",\n  \"patch_max_particles\": " << sim.stats.max
+         << ",\n  \"patch_mean_particles\": " << num(sim.stats.mean)
+         << ",\n  \"patch_imbalance\": " << num(sim.stats.imbalance) << ",\n  \"stage_seconds\": {";
+      for (int st = 0; st < ST_COUNT; ++st)
+        js << (st ? ", " : "") << "\"" << kStageNames[st] << "\": " << num(sim.stage_seconds[st]);
+      js << "},\n  \"warnings\": [";
       for (size_t i = 0; i < warnings.size(); ++i) js << (i ? ", " : "") << "\"" << json_escape(warnings[i]) << "\"";
       js << "]\n}\n";
       write_text_atomic(opt.summary, js.str());

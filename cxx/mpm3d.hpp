@@ -25,6 +25,10 @@ class Simulation {
 
   void step();  // one explicit step; throws HealthError on NaN/Inf
   void set_stages(const StageTable& t) { stages_ = t; }
+  // --scatter expansion: P2G, forces and G2P from the per-thread grid copies
+  // (cxx/update_step_expansion.cpp) instead of the patches. Call after set_stages.
+  void use_expansion_scatter();
+  bool expansion_scatter() const { return expansion_; }
 
   Model model;
   Grid grid;
@@ -35,7 +39,16 @@ class Simulation {
   double initial_total_energy = 0.0;
   double external_work = 0.0;  // work of gravity and loads so far (health check)
   int outside = 0;  // particles outside the grid after the last step
-  double stage_seconds[ST_COUNT] = {};  // wall time spent in each stage
+  double stage_seconds[ST_COUNT] = {};  // wall time spent in each stage (regrids count as bin)
+
+  // Adaptive background grid (model.regrid_every > 0): the grid window is redefined from
+  // the particles before steps 0, N, 2N, ... and whenever a particle inside the deck's box
+  // has left the window (a forced regrid, then binning again).
+  int regrid_every = 0;
+  long regrids = 0, regrids_forced = 0;
+  PatchStats stats;         // particles per patch after the last binning
+  std::string regrid_note;  // the log line of a regrid in the set-up or the last step; the
+                            // driver prints and clears it
 
   // Energies and momentum of the current state (the energy stage on its own).
   void measure();
@@ -45,7 +58,13 @@ class Simulation {
   std::vector<double> lx_, partials_;
   std::vector<int> cell_, pscratch_;
   std::vector<double> gravity_;
-  void bind();  // points ctx at the arrays
+  void bind();       // points ctx at the arrays
+  void bind_grid();  // ... and at the grid's (again after a regrid)
+  void regrid(int escaped);
+  void note_regrid(int escaped);
+  bool expansion_ = false;
+  std::vector<double> tgrid_;
+  void ensure_expansion_buffers();
   void ensure_patch_buffers();
   void health_check();
   double dt_work_of_body_forces() const;

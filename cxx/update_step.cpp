@@ -333,13 +333,15 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
     int idx[3];
     bool in = true;
     for (int a = 0; a < 3; ++a) {
+      // Cell on the deck's lattice, then in the window (the same bits for any window).
       const double t = (c->x[3 * p + a] - c->origin[a]) / c->h;
       const double fl = std::floor(t);
-      if (!(fl >= 0.0 && fl < double(c->nc[a]))) {  // also catches NaN
+      const double f0 = double(c->cell_off[a]);
+      if (!(fl >= f0 && fl < f0 + double(c->nc[a]))) {  // also catches NaN
         in = false;
         break;
       }
-      idx[a] = int(fl);
+      idx[a] = int(fl) - c->cell_off[a];
       c->lx[3 * p + a] = t - fl;
     }
     if (!in) {

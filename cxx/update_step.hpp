@@ -27,7 +27,7 @@ struct StepContext {
   double *patch_buf;
   double *partials;  // (kReduceFields, nblock) scratch of the energy stage
   double result[8];  // energy stage: kinetic, internal, momentum (3)
-  double origin[3];
+  double origin[3];  // lower corner of the deck's box (the lattice origin)
   double h, inv_h, dt, dt_int, mass_cutoff;
   int np, nbody, nmat, nnode;
   int nc[3], nn[3];
@@ -42,9 +42,13 @@ struct StepContext {
   double *qv;          // (np) bulk viscosity pressure of each particle, or null: only with bulk
   double time;         // time at the end of this step (the burn fraction's clock)
   double bulk_q1, bulk_q2;  // bulk viscosity coefficients (quadratic, linear); length h
+  int cell_off[3];     // first cell of the grid window on the deck's lattice (adaptive grid):
+                       // cell i of the window is cell cell_off + i of the deck's box
   // Fields after this point are stage-internal scratch of the C++ kernels (a Fortran
   // mirror of the struct may stop before them).
   int *pscratch;       // (np) patch of each particle during binning
+  double *tgrid;       // --scatter expansion: per-thread grid copies (kNodeFields, nnode, ntgrid)
+  int ntgrid;          // copies in tgrid
 };
 
 typedef void (*StageFn)(StepContext*);
@@ -57,6 +61,13 @@ void mpm3d_cxx_integrate(StepContext* c);  // p += f dt_int; boundary conditions
 void mpm3d_cxx_g2p(StepContext* c);        // v, x from the grid; MUSL: momentum remap and BC
 void mpm3d_cxx_stress(StepContext* c);     // strain and spin increments, volume, stress
 void mpm3d_cxx_energy(StepContext* c);     // kinetic, internal energy, momentum
+
+// Benchmark alternative to the patch scheme (cxx/update_step_expansion.cpp): per-thread
+// copies of the grid ("array expansion"), reduced node by node in thread order. Correct,
+// but the node sums depend on the thread count. C++ only.
+void mpm3d_cxx_p2g_expansion(StepContext* c);
+void mpm3d_cxx_forces_expansion(StepContext* c);
+void mpm3d_cxx_g2p_expansion(StepContext* c);
 
 // The Fortran reference stages (fortran_ref/update_step.f90, bind(C)), same contracts.
 void mpm3d_f_bin(StepContext* c);

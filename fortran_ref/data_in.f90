@@ -36,6 +36,7 @@ module mpm3d_data_in
     type(curve_t), allocatable :: curves(:)
     real(dp) :: dt = 0.0_dp           ! initial time step
     real(dp) :: mass_cutoff = 0.0_dp
+    integer :: regrid_every = 0       ! adaptive grid: redefine the grid every N steps (adgr)
     integer :: nwarn = 0
     character(len=200) :: warnings(16) = ''
     integer :: ndeto = 0                ! detonation points (deto), at most 10
@@ -150,6 +151,11 @@ contains
       case ('rptt')
         m%rpttime = ts%real('the report interval')
         if (.not. (m%rpttime > 0.0_dp)) call ts%fail(key%line, 'report interval must be positive')
+      case ('adgr')      ! extension: adaptive background grid every N steps
+        n = ts%integer('the regrid interval')
+        if (n < 0 .or. n > 1000000000_int64) &
+          call ts%fail(key%line, "'adgr' needs a step interval, 0 (off) or more")
+        m%regrid_every = int(n)
       case ('fixe')
         do f = 1, 6
           v = ts%integer('a face condition')

@@ -2,6 +2,7 @@
 ! Node and cell numbers are x fastest, then y, then z. The patch decomposition
 ! (cubes of patch_cells^3 cells) depends on the grid only, never on threads.
 module mpm3d_grid
+  use, intrinsic :: iso_c_binding, only: c_int
   use mpm3d_material, only: dp
   implicit none
   private
@@ -9,10 +10,14 @@ module mpm3d_grid
   ! Fields of one node in a patch buffer: mass, momentum (3), force (3).
   integer, parameter, public :: NODE_FIELDS = 7
 
+  ! The grid is a window of the deck's box: cells off + 0 .. off + nc - 1 of the deck's lattice
+  ! (as cxx/grid.hpp); without the adaptive grid the window is the whole box.
   type, public :: grid_t
-    real(dp) :: origin(3) = 0.0_dp     ! lower corner of the computational box
+    real(dp) :: origin(3) = 0.0_dp     ! lower corner of the deck's box: the lattice origin
     real(dp) :: h = 0.0_dp             ! cubic cell size
-    integer :: nc(3) = 0               ! cells per axis
+    integer :: deck_nc(3) = 0          ! cells per axis of the deck's box
+    integer :: off(3) = 0              ! first cell (0-based) of the window on the deck's lattice
+    integer :: nc(3) = 0               ! cells per axis of the window
     integer :: nn(3) = 0               ! nodes per axis (nc + 1)
     integer :: fix(6) = 0              ! faces x0 xn y0 yn z0 zn: 0 free, 1 fixed, 2 symmetry
     real(dp) :: mass_cutoff = 0.0_dp   ! nodes lighter than this form no velocity
@@ -28,7 +33,8 @@ module mpm3d_grid
     real(dp), allocatable :: patch_buf(:,:,:) ! (NODE_FIELDS, patch_nodes, slots)
   end type grid_t
 
-  public :: grid_setup, grid_nnode, shape_linear
+  public :: grid_setup, grid_define, grid_set_window, grid_window_is_box, grid_nnode, shape_linear
+  public :: grid_adaptive_window, grid_count_escaped
 
 contains
 
@@ -37,14 +43,27 @@ contains
     grid_nnode = g%nn(1) * g%nn(2) * g%nn(3)
   end function grid_nnode
 
-  ! Sets counts and allocates the node arrays and the patch bookkeeping (as Grid::setup).
+  ! grid_define and grid_set_window over the whole box (Grid::setup).
   subroutine grid_setup(g, lo, hi, cell, patch_cells, err)
     type(grid_t), intent(inout) :: g
     real(dp), intent(in) :: lo(3), hi(3), cell
     integer, intent(in) :: patch_cells
     character(len=:), allocatable, intent(out) :: err
+    integer :: zero(3)
+    call grid_define(g, lo, hi, cell, patch_cells, err)
+    if (len(err) > 0) return
+    zero = 0
+    call grid_set_window(g, zero, g%deck_nc)
+  end subroutine grid_setup
+
+  ! The deck's box and lattice, no allocation (Grid::define).
+  subroutine grid_define(g, lo, hi, cell, patch_cells, err)
+    type(grid_t), intent(inout) :: g
+    real(dp), intent(in) :: lo(3), hi(3), cell
+    integer, intent(in) :: patch_cells
+    character(len=:), allocatable, intent(out) :: err
     real(dp) :: n, t
-    integer :: a, nnode
+    integer :: a
     err = ''
     g%h = cell
     g%patch_cells = patch_cells
@@ -57,12 +76,24 @@ contains
         err = 'grid: bad cell count'
         return
       end if
-      g%nc(a) = int(n)
+      g%deck_nc(a) = int(n)
+    end do
+    g%patch_nodes = (patch_cells + 1) * (patch_cells + 1) * (patch_cells + 1)
+  end subroutine grid_define
+
+  ! Makes cells off .. off + nc - 1 the window: counts, patches, node arrays allocated
+  ! afresh at the window's size, zero (Grid::set_window).
+  subroutine grid_set_window(g, off, nc)
+    type(grid_t), intent(inout) :: g
+    integer, intent(in) :: off(3), nc(3)
+    integer :: a, nnode
+    do a = 1, 3
+      g%off(a) = off(a)
+      g%nc(a) = nc(a)
       g%nn(a) = g%nc(a) + 1
-      g%npd(a) = (g%nc(a) + patch_cells - 1) / patch_cells
+      g%npd(a) = (g%nc(a) + g%patch_cells - 1) / g%patch_cells
     end do
     g%npatch = g%npd(1) * g%npd(2) * g%npd(3)
-    g%patch_nodes = (patch_cells + 1) * (patch_cells + 1) * (patch_cells + 1)
     nnode = grid_nnode(g)
     if (allocated(g%mass)) deallocate(g%mass, g%mom, g%force)
     allocate(g%mass(nnode), g%mom(3, nnode), g%force(3, nnode))
@@ -74,7 +105,98 @@ contains
     g%patch_start = 0
     g%patch_slot = -1
     g%nslot = 0
-  end subroutine grid_setup
+  end subroutine grid_set_window
+
+  logical function grid_window_is_box(g)
+    type(grid_t), intent(in) :: g
+    grid_window_is_box = all(g%off == 0) .and. all(g%nc == g%deck_nc)
+  end function grid_window_is_box
+
+  ! The adaptive background grid's window for particles x(3,np), velocities v(3,np): the
+  ! operations of adaptive_window in cxx/grid.cpp (extent of the particles inside the box,
+  ! margin m = 1 + ceil(2 every |v|max dt / h) cells, lower end rounded down to a whole
+  ! patch, clipped to the box, faces with a boundary condition kept at the box).
+  subroutine grid_adaptive_window(g, x, v, np, every, dt, off, nc)
+    type(grid_t), intent(in) :: g
+    integer, intent(in) :: np, every
+    real(dp), intent(in) :: x(3, np), v(3, np), dt
+    integer, intent(out) :: off(3), nc(3)
+    integer :: cmin(3), cmax(3), idx(3), p, a, m, lo, hi
+    real(dp) :: vmax2, s, t, fl, r
+    logical :: any_in, inside
+    cmin = g%deck_nc
+    cmax = -1
+    vmax2 = 0.0_dp
+    any_in = .false.
+    do p = 1, np
+      inside = .true.
+      do a = 1, 3
+        t = (x(a, p) - g%origin(a)) / g%h
+        fl = aint(t)
+        if (fl > t) fl = fl - 1.0_dp
+        if (.not. (fl >= 0.0_dp .and. fl < real(g%deck_nc(a), dp))) then
+          inside = .false.
+          exit
+        end if
+        idx(a) = int(fl)
+      end do
+      if (.not. inside) cycle
+      any_in = .true.
+      do a = 1, 3
+        if (idx(a) < cmin(a)) cmin(a) = idx(a)
+        if (idx(a) > cmax(a)) cmax(a) = idx(a)
+      end do
+      s = ((v(1, p) * v(1, p)) + (v(2, p) * v(2, p))) + (v(3, p) * v(3, p))
+      if (s > vmax2) vmax2 = s
+    end do
+    r = (2.0_dp * ((real(every, dp) * sqrt(vmax2)) * dt)) / g%h
+    if (r < 1.0e6_dp) then
+      m = 1 + ceiling(r)
+    else
+      m = 1 + 1000000
+    end if
+    do a = 1, 3
+      lo = 0
+      hi = g%deck_nc(a)
+      if (any_in) then
+        lo = cmin(a) - m
+        if (lo < 0) lo = 0
+        lo = (lo / g%patch_cells) * g%patch_cells
+        if (g%fix(2 * a - 1) /= 0) lo = 0
+        hi = cmax(a) + 1 + m
+        if (hi > g%deck_nc(a)) hi = g%deck_nc(a)
+        if (g%fix(2 * a) /= 0) hi = g%deck_nc(a)
+      end if
+      off(a) = lo
+      nc(a) = hi - lo
+    end do
+  end subroutine grid_adaptive_window
+
+  ! Particles outside the window (cell < 0) but inside the deck's box (count_escaped).
+  integer function grid_count_escaped(g, x, cell, np) result(n)
+    type(grid_t), intent(in) :: g
+    integer, intent(in) :: np
+    real(dp), intent(in) :: x(3, np)
+    integer(c_int), intent(in) :: cell(np)
+    integer :: p, a
+    real(dp) :: t, fl
+    logical :: inside
+    n = 0
+    do p = 1, np
+      if (cell(p) >= 0) cycle
+      inside = .true.
+      do a = 1, 3
+        t = (x(a, p) - g%origin(a)) / g%h
+        fl = aint(t)
+        if (fl > t) fl = fl - 1.0_dp
+        if (.not. (fl >= 0.0_dp .and. fl < real(g%deck_nc(a), dp))) then
+          inside = .false.
+          exit
+        end if
+      end do
+      if (inside) n = n + 1
+    end do
+  end function grid_count_escaped
 
   ! Trilinear shape functions of the 8 nodes of a cell at local coordinates lx in [0,1)^3.
   ! Local node k = a + 2 b + 4 c (0-based) has offset (a, b, c) and is stored at k + 1.

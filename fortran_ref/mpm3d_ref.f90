@@ -3,7 +3,9 @@
 ! Fortran stage kernels (mpm3d_update_step) and writes the HDF5 state file.
 !
 ! usage: mpm3d_ref [--steps N] [--end-time T] [--state F.h5] [--init-state F.h5]
-!                  [--energies F.txt] [--patch-cells N] [--quiet] DECK.mpm
+!                  [--energies F.txt] [--patch-cells N] [--regrid-every N] [--quiet] DECK.mpm
+! --regrid-every N: the adaptive background grid (as mpm3d; default: the deck's adgr, else
+! off); each regrid prints 'regrid step K window i0 i1 j0 j1 k0 k1' as mpm3d does.
 ! --energies writes the kinetic, internal and initial total energy and the momentum of the
 ! last step with 17 significant digits (exact doubles), to compare with mpm3d --summary.
 program mpm3d_ref
@@ -26,7 +28,8 @@ program mpm3d_ref
   integer(c_int), allocatable, target :: cell(:)
   character(len=:), allocatable :: deck, state_path, init_path, energy_path, err
   integer(int64) :: max_steps, steps, iv
-  integer :: patch_cells, i, nargs, np, b, rc
+  integer :: patch_cells, i, nargs, np, b, rc, regrid_every
+  integer :: woff(3), wnc(3)
   real(dp) :: end_time, time, eps, kinetic, internal, rv, initial_total, momentum(3)
   real(dp) :: external_work    ! work of gravity and loads so far (health check)
   logical :: quiet
@@ -40,6 +43,7 @@ program mpm3d_ref
   max_steps = -1
   end_time = -1.0_dp
   patch_cells = 8
+  regrid_every = -1
   quiet = .false.
   nargs = command_argument_count()
   i = 1
@@ -48,7 +52,7 @@ program mpm3d_ref
     select case (trim(arg))
     case ('--help', '-h')
       write (output_unit, '(a)') 'usage: mpm3d_ref [--steps N] [--end-time T] [--state F.h5] ' // &
-        '[--init-state F.h5] [--energies F.txt] [--patch-cells N] [--quiet] DECK.mpm'
+        '[--init-state F.h5] [--energies F.txt] [--patch-cells N] [--regrid-every N] [--quiet] DECK.mpm'
       stop
     case ('--steps')
       call value(i, arg)
@@ -74,6 +78,11 @@ program mpm3d_ref
       if (.not. parse_integer(trim(arg), iv)) call usage('--patch-cells needs an integer')
       if (iv < 1 .or. iv > 64) call usage('--patch-cells must lie in 1..64')
       patch_cells = int(iv)
+    case ('--regrid-every')
+      call value(i, arg)
+      if (.not. parse_integer(trim(arg), iv)) call usage('--regrid-every needs an integer')
+      if (iv < 0 .or. iv > 1000000000_int64) call usage('--regrid-every must lie in 0..1000000000')
+      regrid_every = int(iv)
     case ('--quiet', '-q')
       quiet = .true.
     case default
@@ -89,10 +98,17 @@ program mpm3d_ref
   call read_deck(deck, model)
   if (end_time <= 0.0_dp) end_time = model%endtime
   np = model%particles%np
-  call grid_setup(grid, model%box_lo, model%box_hi, model%dcell, patch_cells, err)
+  if (regrid_every < 0) regrid_every = model%regrid_every
+  call grid_define(grid, model%box_lo, model%box_hi, model%dcell, patch_cells, err)
   if (len(err) > 0) call fatal(deck // ': ' // err)
   grid%fix = model%fix
   grid%mass_cutoff = model%mass_cutoff
+  ! The first window (the whole box without the adaptive grid), as the Simulation constructor.
+  woff = 0
+  wnc = grid%deck_nc
+  if (regrid_every > 0) call grid_adaptive_window(grid, model%particles%x, model%particles%v, np, &
+                                                  regrid_every, model%dt, woff, wnc)
+  call grid_set_window(grid, woff, wnc)
   allocate(lx(3, np), cell(np), grid%patch_part(np))
   lx = 0.0_dp
   cell = -1
@@ -117,6 +133,8 @@ program mpm3d_ref
       write (output_unit, '(a)') '  warning: ' // trim(model%warnings(i))
     end do
   end if
+  steps = 0
+  if (regrid_every > 0) call note_regrid(0)
   if (len(init_path) > 0) call write_state_h5(init_path, model, 0.0_dp, 0_int64, model%dt)
 
   ! ---------------------------------------------------------------- time loop
@@ -220,7 +238,6 @@ contains
 
   ! Points the step context at the model's and the grid's arrays (Simulation::bind).
   subroutine bind_context()
-    integer :: a
     associate (p => model%particles)
       ctx%x = c_loc(p%x)
       ctx%v = c_loc(p%v)
@@ -244,21 +261,10 @@ contains
     ctx%cell = c_loc(cell)
     ctx%gravity = c_loc(gravity)
     ctx%mats = c_loc(model%mats)
-    ctx%gmass = c_loc(grid%mass)
-    ctx%gmom = c_loc(grid%mom)
-    ctx%gforce = c_loc(grid%force)
-    ctx%patch_start = c_loc(grid%patch_start)
     ctx%patch_part = c_loc(grid%patch_part)
-    ctx%patch_slot = c_loc(grid%patch_slot)
     ctx%patch_buf = c_null_ptr
     ctx%reduce_block = REDUCE_BLOCK
     ctx%partials = c_loc(partials)
-    do a = 1, 3
-      ctx%origin(a) = grid%origin(a)
-      ctx%nc(a) = grid%nc(a)
-      ctx%nn(a) = grid%nn(a)
-      ctx%npd(a) = grid%npd(a)
-    end do
     ctx%h = grid%h
     ctx%inv_h = 1.0_dp / grid%h
     ctx%dt = model%dt
@@ -267,15 +273,33 @@ contains
     ctx%np = np
     ctx%nbody = model%nbodies
     ctx%nmat = model%nmat
-    ctx%nnode = grid_nnode(grid)
     ctx%patch_cells = grid%patch_cells
-    ctx%npatch = grid%npatch
     ctx%fix = grid%fix
     ctx%scheme = model%scheme
     ctx%has_body_force = merge(1, 0, model%has_gravity .or. model%has_loads)
     ctx%bulk_q1 = model%bulk_q1
     ctx%bulk_q2 = model%bulk_q2
+    call bind_grid()
   end subroutine bind_context
+
+  ! ... and at the grid's arrays, again after a regrid (Simulation::bind_grid).
+  subroutine bind_grid()
+    integer :: a
+    ctx%gmass = c_loc(grid%mass)
+    ctx%gmom = c_loc(grid%mom)
+    ctx%gforce = c_loc(grid%force)
+    ctx%patch_start = c_loc(grid%patch_start)
+    ctx%patch_slot = c_loc(grid%patch_slot)
+    do a = 1, 3
+      ctx%origin(a) = grid%origin(a)
+      ctx%nc(a) = grid%nc(a)
+      ctx%nn(a) = grid%nn(a)
+      ctx%npd(a) = grid%npd(a)
+      ctx%cell_off(a) = grid%off(a)
+    end do
+    ctx%nnode = grid_nnode(grid)
+    ctx%npatch = grid%npatch
+  end subroutine bind_grid
 
   ! Buffers for the non-empty patches found by the bin stage (Simulation::ensure_patch_buffers).
   subroutine ensure_patch_buffers()
@@ -290,8 +314,32 @@ contains
     end if
   end subroutine ensure_patch_buffers
 
+  ! The adaptive grid: a new window from the particles (Simulation::regrid).
+  subroutine regrid()
+    call grid_adaptive_window(grid, model%particles%x, model%particles%v, np, max(regrid_every, 1), &
+                              model%dt, woff, wnc)
+    call grid_set_window(grid, woff, wnc)
+    call bind_grid()
+  end subroutine regrid
+
+  ! The first words of mpm3d's regrid line (Simulation::note_regrid).
+  subroutine note_regrid(escaped)
+    integer, intent(in) :: escaped
+    if (quiet) return
+    write (output_unit, '(a,i0,a,6(1x,i0))', advance='no') 'regrid step ', steps, ' window', &
+      grid%off(1), grid%off(1) + grid%nc(1), grid%off(2), grid%off(2) + grid%nc(2), &
+      grid%off(3), grid%off(3) + grid%nc(3)
+    if (escaped > 0) then
+      write (output_unit, '(a,i0,a)') ' (forced: ', escaped, ' particles had left the window)'
+    else
+      write (output_unit, '(a)') ''
+    end if
+  end subroutine note_regrid
+
   ! One explicit step, stage order of Simulation::step.
   subroutine step()
+    integer :: escaped
+    logical :: scheduled
     ctx%dt = model%dt
     if (steps == 0) then
       ctx%dt_int = 0.5_dp * model%dt      ! first step: momentum with dt/2
@@ -299,7 +347,19 @@ contains
       ctx%dt_int = model%dt
     end if
     ctx%time = time + model%dt      ! the end of this step (programmed burn)
+    scheduled = regrid_every > 0 .and. steps > 0 .and. mod(steps, int(max(regrid_every, 1), int64)) == 0
+    if (scheduled) call regrid()
     call mpm3d_f_bin(ctx)
+    escaped = 0
+    if (ctx%noutside > 0 .and. .not. grid_window_is_box(grid)) then
+      ! A particle inside the deck's box has left the window: widen it and bin again.
+      escaped = grid_count_escaped(grid, model%particles%x, cell, np)
+      if (escaped > 0) then
+        call regrid()
+        call mpm3d_f_bin(ctx)
+      end if
+    end if
+    if (scheduled .or. escaped > 0) call note_regrid(escaped)
     call ensure_patch_buffers()
     call mpm3d_f_p2g(ctx)
     if (ctx%scheme == SCHEME_USF) then

@@ -53,6 +53,22 @@ if(TARGET mpm3d AND TARGET mpm3d_ref)
   fref_deck(slope ${CMAKE_SOURCE_DIR}/inputs/granular/slope.mpm)
   fref_deck(deto1k ${_fref_shared}/Deto1k.mpm)
   fref_deck(tnt3d ${_fref_shared}/TNT3D.mpm)
+  # The adaptive background grid (regrid every 5 steps): C++ stages, Fortran stages, each
+  # single stage from Fortran and mpm3d_ref, all against the plain C++ run on the whole box
+  # (the window is on the deck's patch lattice, so the bits do not change), and mpm3d_ref's
+  # windows against mpm3d's (kind regrid).
+  function(fref_adaptive tag deck)
+    fref_add(fref_${tag}_adaptive_same kernels ${deck} --threads 3 --regrid-every 5)
+    fref_add(fref_${tag}_adaptive_kernel_fortran kernels ${deck} --threads 1 --kernel fortran --regrid-every 5)
+    foreach(stage ${_fref_stages})
+      fref_add(fref_${tag}_adaptive_stage_${stage} kernels ${deck} --threads 2 --kernels ${stage}=fortran
+               --regrid-every 5)
+    endforeach()
+    fref_add(fref_${tag}_adaptive_mpm3d_ref regrid ${deck} --regrid-every 5)
+  endfunction()
+  fref_adaptive(taylor_coarse ${CMAKE_SOURCE_DIR}/inputs/taylor/taylor_coarse.mpm)
+  fref_adaptive(two_blocks ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks.mpm)
+  fref_add(fref_rising_block_adaptive_mpm3d_ref regrid ${CMAKE_SOURCE_DIR}/tests/decks/rising_block.mpm)
   fref_add(fref_quirks_crlf crlf ${_fref_own}/quirks.mpm)
   fref_add(fref_usl_blocks_unstable unstable ${_fref_own}/usl_blocks.mpm)
   fref_add(fref_h5diff_detects detect ${_fref_own}/musl_sjcf.mpm)

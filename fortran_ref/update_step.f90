@@ -49,6 +49,7 @@ module mpm3d_update_step
     type(c_ptr) :: qv = c_null_ptr        ! (np) bulk viscosity pressures, or null (only with bulk)
     real(c_double) :: time = 0.0_dp       ! time at the end of this step
     real(c_double) :: bulk_q1 = 0.0_dp, bulk_q2 = 0.0_dp
+    integer(c_int) :: cell_off(3) = 0     ! first cell of the grid window on the deck's lattice
   end type step_context
 
   public :: mpm3d_f_bin, mpm3d_f_p2g, mpm3d_f_forces, mpm3d_f_integrate, mpm3d_f_g2p, &
@@ -318,7 +319,7 @@ contains
     integer(c_int), pointer :: start(:), ppart(:), slots(:), cell(:)
     integer :: pc, q, p, a, outside, nslot, i, j, k, cl
     integer :: idx(3)
-    real(dp) :: t, fl
+    real(dp) :: t, fl, f0
     logical :: inside
     pc = c%patch_cells
     call c_f_pointer(c%x, x, [3, c%np])
@@ -335,14 +336,16 @@ contains
     do p = 1, c%np
       inside = .true.
       do a = 1, 3
+        ! Cell on the deck's lattice, then in the window (the same bits for any window).
         t = (x(a, p) - c%origin(a)) / c%h
         fl = aint(t)                      ! floor(t) as a double, exactly (NaN stays NaN)
         if (fl > t) fl = fl - 1.0_dp
-        if (.not. (fl >= 0.0_dp .and. fl < real(c%nc(a), dp))) then   ! also catches NaN
+        f0 = real(c%cell_off(a), dp)
+        if (.not. (fl >= f0 .and. fl < f0 + real(c%nc(a), dp))) then   ! also catches NaN
           inside = .false.
           exit
         end if
-        idx(a) = int(fl)
+        idx(a) = int(fl) - c%cell_off(a)
         lx(a, p) = t - fl
       end do
       if (.not. inside) then
@@ -628,7 +631,7 @@ contains
   ! Layout of step_context and material_params as this compiler sees them (for the
   ! layout test against the C structs): sizes and a few offsets, in bytes.
   subroutine mpm3d_f_context_layout(out) bind(C, name='mpm3d_f_context_layout')
-    integer(c_size_t), intent(out) :: out(10)
+    integer(c_size_t), intent(out) :: out(11)
     type(step_context), target :: c
     type(material_params), target :: m(2)
     out(1) = c_sizeof(c)
@@ -641,6 +644,7 @@ contains
     out(8) = transfer(c_loc(m(1)%eos_type), 0_c_intptr_t) - transfer(c_loc(m(1)), 0_c_intptr_t)
     out(9) = transfer(c_loc(c%bulk_q2), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
     out(10) = transfer(c_loc(m(1)%dp_tension), 0_c_intptr_t) - transfer(c_loc(m(1)), 0_c_intptr_t)
+    out(11) = transfer(c_loc(c%cell_off), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
   end subroutine mpm3d_f_context_layout
 
 end module mpm3d_update_step

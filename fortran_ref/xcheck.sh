@@ -9,6 +9,9 @@
 #            the same energies, momentum, bounding box, ... in the --summary files.
 #   ref      state of `mpm3d` against the Fortran program `mpm3d_ref` after STEPS steps,
 #            and the same energies and momentum (mpm3d --summary, mpm3d_ref --energies).
+#   regrid   `mpm3d OPTIONS` against `mpm3d_ref OPTIONS` (e.g. --regrid-every 5): the same
+#            states and the same adaptive-grid windows at the same steps (the 'regrid step K
+#            window ...' lines both print).
 #   init     `mpm3d --steps 0 --state` against `mpm3d_ref --init-state` (the two readers).
 #   crlf     as init, on a copy of DECK with CRLF line ends and tabs for blanks.
 #   unstable DECK with 'dtscale 0.9' (USL decks diverge): both programs must stop at the
@@ -64,6 +67,17 @@ case $kind in
         { n = NF / 2; for (i = 2; i <= n; i++) if ($i + 0 != $(i + n) + 0) bad = 1 }
         END { if (NR != 4) bad = 1; exit bad }'; then
       echo "the energies differ"
+      exit 1
+    fi
+    ;;
+  regrid)
+    run "$mpm3d" --threads 2 --steps "$steps" --no-output "$@" --state "$a" "$deck" > "$a.log"
+    run "$ref" --steps "$steps" "$@" --state "$b" "$deck" > "$b.log"
+    grep '^regrid step' "$a.log" | cut -d' ' -f1-9 > "$a.win"
+    grep '^regrid step' "$b.log" | cut -d' ' -f1-9 > "$b.win"
+    cat "$b.win"
+    if [ ! -s "$a.win" ] || ! diff "$a.win" "$b.win"; then
+      echo "the regrid windows differ (or there were none)"
       exit 1
     fi
     ;;
@@ -151,6 +165,7 @@ dtscale 3.0
 nbmp 12
 fixe 0 0 3 0 0 0
 velo node 1 1.0 2.0 3.0 endx
+adgr -1
 frobnicate
 dcell 1.0-3
 dcell 1e400

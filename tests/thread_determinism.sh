@@ -2,22 +2,25 @@
 # Bit-for-bit results for any thread count (DESIGN.md section 4): runs DECK at 1, 2, 3 and
 # 4 threads and compares the final states with h5diff (no tolerance); with a reference
 # program given, its state must match too. Exit 77 (skipped) when the deck is absent.
-# usage: thread_determinism.sh MPM3D DECK STEPS WORKDIR [MPM3D_REF]
+# OPTIONS (e.g. --regrid-every 5) go to both programs; MPM3D_REF may be '' (none).
+# usage: thread_determinism.sh MPM3D DECK STEPS WORKDIR [MPM3D_REF [OPTIONS...]]
 set -euo pipefail
 mpm3d=$1; deck=$2; steps=$3; work=$4; ref=${5:-}
+shift $(( $# < 5 ? $# : 5 ))
+opts=("$@")
 [ -f "$deck" ] || { echo "deck $deck absent: skipped"; exit 77; }
 rm -rf "$work"; mkdir -p "$work"
 for t in 1 2 3 4; do
-  "$mpm3d" --threads "$t" --steps "$steps" --no-output --quiet --state "$work/t$t.h5" "$deck"
+  "$mpm3d" --threads "$t" --steps "$steps" --no-output --quiet ${opts[@]+"${opts[@]}"} --state "$work/t$t.h5" "$deck"
 done
 for t in 2 3 4; do
   h5diff "$work/t1.h5" "$work/t$t.h5" || { echo "threads $t differ from 1 thread"; exit 1; }
 done
 if [ -n "$ref" ] && [ -x "$ref" ]; then
-  "$ref" --steps "$steps" --state "$work/ref.h5" "$deck" > /dev/null
+  "$ref" --steps "$steps" ${opts[@]+"${opts[@]}"} --state "$work/ref.h5" "$deck" > /dev/null
   h5diff "$work/t1.h5" "$work/ref.h5" || { echo "mpm3d_ref differs"; exit 1; }
 fi
 # Sanity: the run moved the particles (so equal files are not trivially equal).
 "$mpm3d" --steps 0 --no-output --quiet --state "$work/t0.h5" "$deck"
 if h5diff -q "$work/t0.h5" "$work/t1.h5" > /dev/null; then echo "state did not change"; exit 1; fi
-echo "identical bits at 1, 2, 3, 4 threads${ref:+ and mpm3d_ref} after $steps steps"
+echo "identical bits at 1, 2, 3, 4 threads${ref:+ and mpm3d_ref} after $steps steps ${opts[*]+(${opts[*]})}"

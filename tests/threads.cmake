@@ -3,10 +3,11 @@ set(_mpm3d_ref_exe "")
 if(TARGET mpm3d_ref)
   set(_mpm3d_ref_exe $<TARGET_FILE:mpm3d_ref>)
 endif()
+# mpm3d_thread_test(NAME DECK STEPS [OPTIONS...]): OPTIONS go to mpm3d and mpm3d_ref.
 function(mpm3d_thread_test name deck steps)
   add_test(NAME threads.${name}
            COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/thread_determinism.sh $<TARGET_FILE:mpm3d> ${deck} ${steps}
-                   ${CMAKE_CURRENT_BINARY_DIR}/threads_${name} ${_mpm3d_ref_exe})
+                   ${CMAKE_CURRENT_BINARY_DIR}/threads_${name} "${_mpm3d_ref_exe}" ${ARGN})
   set_tests_properties(threads.${name} PROPERTIES SKIP_RETURN_CODE 77)
 endfunction()
 mpm3d_thread_test(two_blocks ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks.mpm 207)
@@ -16,3 +17,7 @@ mpm3d_thread_test(slab_small ${CMAKE_SOURCE_DIR}/inputs/explosives/slab_small.mp
 mpm3d_thread_test(slope ${CMAKE_SOURCE_DIR}/inputs/granular/slope.mpm 200)
 mpm3d_thread_test(legacy_deto1k ${CMAKE_SOURCE_DIR}/../shared/decks/Deto1k.mpm 100)
 mpm3d_thread_test(legacy_tnt3d ${CMAKE_SOURCE_DIR}/../shared/decks/TNT3D.mpm 30)
+# The adaptive background grid (regrids every 5 steps; the rising block also forces one).
+mpm3d_thread_test(two_blocks_adaptive ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks.mpm 207 --regrid-every 5)
+mpm3d_thread_test(taylor_coarse_adaptive ${CMAKE_SOURCE_DIR}/inputs/taylor/taylor_coarse.mpm 40 --regrid-every 5)
+mpm3d_thread_test(rising_block_adaptive ${CMAKE_CURRENT_SOURCE_DIR}/decks/rising_block.mpm 100)

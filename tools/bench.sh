@@ -1,46 +1,36 @@
 #!/usr/bin/env bash
 # make bench: ns per particle-step, speedup and parallel efficiency at 1..N threads on the
-# Taylor decks, measured side by side in one run; peak memory per particle from
-# /usr/bin/time -v. Writes docs/bench/bench.csv and prints a table.
+# Taylor decks (and the elastic-only twin of the coarse one), for both scatter schemes and
+# with the adaptive grid off and on, measured side by side in one run (tools/bench.py);
+# peak memory per particle from /usr/bin/time -v; the Fortran reference program's serial
+# speed; the plots of tools/bench_plot.py. Writes docs/bench/{bench,reference}.csv and
+# docs/bench/{speedup,efficiency}.png and prints the tables.
 # usage: tools/bench.sh BUILD_DIR [max_threads] [decks...]
+# environment: see tools/bench.py (BENCH_STEPS, BENCH_REPEATS, BENCH_REGRID, BENCH_SCHEMES,
+# BENCH_FINE); BENCH_OUT (default docs/bench) for a trial run that keeps the committed files.
 set -euo pipefail
 build=$1; shift
 maxt=${1:-$(nproc)}; [ $# -gt 0 ] && shift
 decks=("$@")
+steps=${BENCH_STEPS:-100}
+repeats=${BENCH_REPEATS:-3}
+outdir=${BENCH_OUT:-docs/bench}
+mkdir -p "$outdir"
+# Debian's python3 (python3-matplotlib is a Debian package; another python3 earlier on PATH
+# may not see it).
+py=python3
+[ -x /usr/bin/python3 ] && py=/usr/bin/python3
+csv=$outdir/bench.csv
+echo "load before the bench: $(cat /proc/loadavg) (timings need a 1-minute load well below 1)"
+"$py" tools/bench.py "$build" "$csv" "$maxt" ${decks[@]+"${decks[@]}"}
 if [ ${#decks[@]} -eq 0 ]; then
   decks=(inputs/taylor/taylor_coarse.mpm inputs/taylor/taylor_medium.mpm)
   [ -f ../shared/decks/Taylor.mpm ] && decks=(../shared/decks/Taylor.mpm "${decks[@]}")
 fi
-steps=${BENCH_STEPS:-100}
-repeats=${BENCH_REPEATS:-3}
-mkdir -p docs/bench
-csv=docs/bench/bench.csv
-tmp=$(mktemp -d)
-echo "deck,particles,threads,steps,ns_per_particle_step,speedup,efficiency,peak_rss_bytes_per_particle,stage_shares" > "$csv"
-for deck in "${decks[@]}"; do
-  base=""
-  for ((t = 1; t <= maxt; t = (t < 2 ? t + 1 : t * 2))); do
-    best=""
-    for ((r = 0; r < repeats; ++r)); do
-      /usr/bin/time -v "$build/cxx/mpm3d" --threads "$t" --steps "$steps" --no-output --quiet \
-        --summary "$tmp/s.json" "$deck" > "$tmp/out" 2> "$tmp/time"
-      ns=$(sed -n 's/.*"ns_per_particle_step": \([0-9.e+-]*\).*/\1/p' "$tmp/s.json")
-      if [ -z "$best" ] || awk "BEGIN{exit !($ns < $best)}"; then
-        best=$ns
-        rss=$(awk '/Maximum resident set size/ {print $6 * 1024}' "$tmp/time")
-      fi
-    done
-    np=$(sed -n 's/.*"particles": \([0-9]*\).*/\1/p' "$tmp/s.json")
-    [ -n "$base" ] || base=$best
-    shares=$("$build/cxx/mpm3d" --threads "$t" --steps "$steps" --no-output "$deck" | sed -n 's/^stage shares: //p')
-    awk -v d="$(basename "$deck")" -v np="$np" -v t="$t" -v s="$steps" -v ns="$best" -v b="$base" -v rss="$rss" -v sh="$shares" \
-      'BEGIN{sp=b/ns; printf "%s,%d,%d,%d,%.1f,%.3f,%.3f,%.0f,%s\n", d, np, t, s, ns, sp, sp/t, rss/np, sh}' >> "$csv"
-  done
-done
 # Serial speed of the Fortran reference program next to the C++ one: (t(N steps) - t(0
 # steps)) / (particles * N), so the deck reading is left out, as in mpm3d's own figure.
 if [ -x "$build/fortran_ref/mpm3d_ref" ]; then
-  ref_csv=docs/bench/reference.csv
+  ref_csv=$outdir/reference.csv
   echo "deck,particles,steps,mpm3d_ref_ns_per_particle_step,mpm3d_1thread_ns_per_particle_step,ratio" > "$ref_csv"
   for deck in "${decks[@]}"; do
     best=""
@@ -50,12 +40,13 @@ if [ -x "$build/fortran_ref/mpm3d_ref" ]; then
       d=$(awk -v a="$t0" -v b="$t1" -v c="$t2" 'BEGIN{print (c - b) - (b - a)}')
       if [ -z "$best" ] || awk "BEGIN{exit !($d < $best)}"; then best=$d; fi
     done
-    np=$(awk -F, -v d="$(basename "$deck")" '$1 == d && $3 == 1 {print $2}' "$csv")
-    cx=$(awk -F, -v d="$(basename "$deck")" '$1 == d && $3 == 1 {print $5}' "$csv")
+    # The 1-thread patch-scheme row without the adaptive grid.
+    np=$(awk -F, -v d="$(basename "$deck")" '$1 == d && $3 == "patches" && $4 == 0 && $5 == 1 {print $2}' "$csv")
+    cx=$(awk -F, -v d="$(basename "$deck")" '$1 == d && $3 == "patches" && $4 == 0 && $5 == 1 {print $7}' "$csv")
     awk -v d="$(basename "$deck")" -v np="$np" -v s="$steps" -v t="$best" -v cx="$cx" \
       'BEGIN{ns=t*1e9/(np*s); printf "%s,%d,%d,%.1f,%.1f,%.2f\n", d, np, s, ns, cx, ns/cx}' >> "$ref_csv"
   done
   column -s, -t < "$ref_csv"
 fi
-rm -rf "$tmp"
+"$py" tools/bench_plot.py "$csv" "$outdir"
 column -s, -t < "$csv"

@@ -1,0 +1,116 @@
+#!/usr/bin/env python3
+"""make bench (through tools/bench.sh): the C++ solver's speed, thread scaling and memory.
+
+For every deck, scatter scheme (patches, expansion), adaptive grid (off, on) and thread
+count (1, 2, 4, ... up to the machine's cores, and the core count itself), the best of
+BENCH_REPEATS runs of `mpm3d --steps BENCH_STEPS --no-output`: ns per particle-step (the
+step loop alone, from the summary), speedup and efficiency against 1 thread of the same
+configuration, bytes per particle (peak resident memory from /usr/bin/time -v divided by
+the particles), the share of each stage (stage_seconds in the summary), the patch
+statistics, and the 1-minute load average before the run (timings on a loaded machine are
+not worth much: compare rows measured side by side, and rerun on a quiet machine).
+
+usage: bench.py BUILD_DIR CSV [max_threads] [deck ...]
+environment: BENCH_STEPS (default 100), BENCH_REPEATS (3), BENCH_REGRID (20),
+             BENCH_SCHEMES ("patches expansion"), BENCH_FINE=1 adds taylor_fine.mpm
+"""
+import csv
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+STAGES = ["bin", "p2g", "forces", "integrate", "g2p", "stress", "energy"]
+
+
+def load1():
+    with open("/proc/loadavg") as f:
+        return float(f.read().split()[0])
+
+
+def run_once(exe, deck, threads, steps, scheme, regrid, tmp):
+    summary = os.path.join(tmp, "s.json")
+    cmd = ["/usr/bin/time", "-v", exe, "--threads", str(threads), "--steps", str(steps), "--no-output",
+           "--quiet", "--summary", summary, "--scatter", scheme, "--regrid-every", str(regrid), deck]
+    load = load1()
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode != 0:
+        raise SystemExit(f"bench: {' '.join(cmd)} failed:\n{p.stderr}")
+    rss_kb = 0
+    for line in p.stderr.splitlines():
+        if "Maximum resident set size" in line:
+            rss_kb = int(line.split()[-1])
+    with open(summary) as f:
+        s = json.load(f)
+    return s, rss_kb * 1024, load
+
+
+def thread_counts(maxt):
+    ts, t = [], 1
+    while t <= maxt:
+        ts.append(t)
+        t *= 2
+    if ts[-1] != maxt:
+        ts.append(maxt)
+    return ts
+
+
+def main():
+    build, out_csv = sys.argv[1], sys.argv[2]
+    maxt = int(sys.argv[3]) if len(sys.argv) > 3 else os.cpu_count()
+    decks = sys.argv[4:]
+    if not decks:
+        decks = ["inputs/taylor/taylor_coarse.mpm", "inputs/taylor/taylor_coarse_elastic.mpm",
+                 "inputs/taylor/taylor_medium.mpm"]
+        if os.environ.get("BENCH_FINE") == "1":
+            decks.append("inputs/taylor/taylor_fine.mpm")
+        if os.path.isfile("../shared/decks/Taylor.mpm"):
+            decks.insert(0, "../shared/decks/Taylor.mpm")
+    steps = int(os.environ.get("BENCH_STEPS", "100"))
+    repeats = int(os.environ.get("BENCH_REPEATS", "3"))
+    regrid = int(os.environ.get("BENCH_REGRID", "20"))
+    schemes = os.environ.get("BENCH_SCHEMES", "patches expansion").split()
+    exe = os.path.join(build, "cxx", "mpm3d")
+    fields = ["deck", "particles", "scatter", "regrid_every", "threads", "steps", "ns_per_particle_step",
+              "speedup", "efficiency", "peak_rss_bytes_per_particle"] + [f"share_{s}" for s in STAGES] + \
+             ["patches", "patches_empty", "patch_imbalance", "load1_before", "load1_max"]
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp, open(out_csv, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=fields)
+        w.writeheader()
+        for deck in decks:
+            for scheme in schemes:
+                for rg in (0, regrid):
+                    base = None
+                    for t in thread_counts(maxt):
+                        best, loads = None, []
+                        for _ in range(repeats):
+                            s, rss, load = run_once(exe, deck, t, steps, scheme, rg, tmp)
+                            loads.append(load)
+                            if best is None or s["ns_per_particle_step"] < best[0]["ns_per_particle_step"]:
+                                best = (s, rss)
+                        s, rss = best
+                        ns = s["ns_per_particle_step"]
+                        base = base or ns
+                        total = sum(s["stage_seconds"].values()) or 1.0
+                        row = {"deck": os.path.basename(deck), "particles": s["particles"], "scatter": scheme,
+                               "regrid_every": rg, "threads": t, "steps": s["steps"],
+                               "ns_per_particle_step": f"{ns:.1f}", "speedup": f"{base / ns:.3f}",
+                               "efficiency": f"{base / ns / t:.3f}",
+                               "peak_rss_bytes_per_particle": f"{rss / s['particles']:.0f}",
+                               "patches": s["patches"], "patches_empty": s["patches_empty"],
+                               "patch_imbalance": f"{s['patch_imbalance']:.3f}",
+                               "load1_before": f"{loads[0]:.2f}", "load1_max": f"{max(loads):.2f}"}
+                        for st in STAGES:
+                            row[f"share_{st}"] = f"{s['stage_seconds'][st] / total:.3f}"
+                        w.writerow(row)
+                        f.flush()
+                        rows.append(row)
+                        print(f"{row['deck']:24s} {scheme:9s} regrid {rg:3d} threads {t:2d}: {row['ns_per_particle_step']:>7s} ns "
+                              f"speedup {row['speedup']} eff {row['efficiency']} {row['peak_rss_bytes_per_particle']} B/p "
+                              f"(load {loads[0]:.2f})", flush=True)
+
+
+if __name__ == "__main__":
+    main()
