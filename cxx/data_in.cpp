@@ -166,6 +166,10 @@ Model Reader::read() {
       bool on = true;
       if (!ts_.at_end() && (key4(ts_.peek().text) == "on" || key4(ts_.peek().text) == "off")) on = on_off(key);
       (k == "tecp" ? m_.tecplot : m_.paraview) = on;
+    } else if (k == "hdf5") {  // extension: HDF5 + XDMF animation series
+      bool on = true;
+      if (!ts_.at_end() && (key4(ts_.peek().text) == "on" || key4(ts_.peek().text) == "off")) on = on_off(key);
+      m_.hdf5 = on;
     } else if (k == "deto") {
       for (int a = 0; a < 3; ++a) ts_.real("the detonation point");
       fail(key.line, "'deto' (detonation points for hiex) is not yet supported");
@@ -498,8 +502,19 @@ void Reader::finish(int line) {
       m_.warnings.push_back(std::string("box length along ") + char('x' + a) +
                             " is not a whole number of cells; rounded to " + std::to_string(long(std::floor(n + 0.5))));
   }
-  // Initial internal energy from E0 (per unit initial volume).
   Particles& P = m_.particles;
+  // pt2d: TecPlot output only for the particles whose initial position lies in the box
+  // (the original marks them as they are generated).
+  if (m_.has_pt2d) {
+    m_.tec_skip.assign(size_t(P.np), 0);
+    for (int p = 0; p < P.np; ++p) {
+      const double* x = &P.x[3 * size_t(p)];
+      bool in = true;
+      for (int a = 0; a < 3; ++a) in = in && x[a] >= m_.pt2d[2 * a] && x[a] <= m_.pt2d[2 * a + 1];
+      m_.tec_skip[size_t(p)] = in ? 0 : 1;
+    }
+  }
+  // Initial internal energy from E0 (per unit initial volume).
   bool thermal = false;
   for (const auto& mp : m_.mats) thermal = thermal || mp.type == MAT_JOHN || mp.type == MAT_JCF;
   if (thermal) P.temp.assign(size_t(P.np), 0.0);

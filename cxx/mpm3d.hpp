@@ -11,6 +11,9 @@
 
 namespace mpm3d {
 
+// Bounds of the per-step health check on the density: rho / rho0 must stay within them.
+constexpr double kDensityRatioMin = 1.0e-3, kDensityRatioMax = 1.0e3;
+
 // A numerical breakdown found by the per-step health check.
 class HealthError : public std::runtime_error {
  public:
@@ -23,8 +26,10 @@ class Simulation {
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
 
-  void step();  // one explicit step; throws HealthError on NaN/Inf
+  void step();  // one explicit step; throws HealthError (see health_check)
   void set_stages(const StageTable& t) { stages_ = t; }
+  // Redefines the background grid (restart of a run whose grid differs from the deck's).
+  void set_grid(const double origin[3], double h, const int nc[3], int patch_cells);
 
   Model model;
   Grid grid;
