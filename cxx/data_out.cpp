@@ -209,7 +209,21 @@ void H5Series::open(const Model& m, const std::string& dir, const std::vector<do
   if (!resume_times.empty() && file_size(path) > 0) {
     // Restart: keep the frames written before the checkpoint, drop any written after it.
     H5File f{H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT)};
-    if (f.id >= 0) {
+    // Only a series whose frames are those of the checkpoint is continued (not a stale file
+    // of another run).
+    bool same = f.id >= 0;
+    for (size_t k = 0; same && k < resume_times.size(); ++k) {
+      const std::string g = "/frames/" + std::to_string(k);
+      double t = -1.0;
+      same = H5Lexists(f.id, "/frames", H5P_DEFAULT) > 0 && H5Lexists(f.id, g.c_str(), H5P_DEFAULT) > 0 &&
+             H5Aexists_by_name(f.id, g.c_str(), "time", H5P_DEFAULT) > 0;
+      if (same) {
+        hid_t a = H5Aopen_by_name(f.id, g.c_str(), "time", H5P_DEFAULT, H5P_DEFAULT);
+        same = a >= 0 && H5Aread(a, H5T_NATIVE_DOUBLE, &t) >= 0 && t == resume_times[k];
+        if (a >= 0) H5Aclose(a);
+      }
+    }
+    if (same) {
       times_ = resume_times;
       if (H5Lexists(f.id, "/frames", H5P_DEFAULT) > 0) {
         for (size_t k = times_.size();; ++k) {
