@@ -586,7 +586,8 @@ int run_main(int argc, char** argv) {
       if (!opt.quiet) std::cout << st.str() << std::endl;
     }
     char tail[256];
-    std::snprintf(tail, sizeof tail, "done: %ld steps, t %.6g, %.2f s wall, %.1f ns per particle-step", sim.steps,
+    std::snprintf(tail, sizeof tail, "%s: %ld steps, t %.6g, %.2f s wall, %.1f ns per particle-step",
+                  interrupted ? "stopped" : (failure.empty() ? "done" : "failed"), sim.steps,
                   sim.time, wall, ns);
     out.log(tail);
     if (!opt.quiet) std::cout << tail << std::endl;
