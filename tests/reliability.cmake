@@ -14,7 +14,7 @@ mpm3d_restart_test(taylor_coarse ${CMAKE_SOURCE_DIR}/inputs/taylor/taylor_coarse
 foreach(sig TERM INT)
   add_test(NAME restart.signal_${sig}
            COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/signal_restart.sh $<TARGET_FILE:mpm3d>
-                   ${CMAKE_SOURCE_DIR}/inputs/taylor/taylor_coarse.mpm 30
+                   ${CMAKE_SOURCE_DIR}/inputs/taylor/taylor_coarse.mpm 20
                    ${CMAKE_CURRENT_BINARY_DIR}/signal_${sig} ${sig})
   set_tests_properties(restart.signal_${sig} PROPERTIES SKIP_RETURN_CODE 77)
 endforeach()
