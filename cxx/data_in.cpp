@@ -170,6 +170,10 @@ Model Reader::read() {
       bool on = true;
       if (!ts_.at_end() && (key4(ts_.peek().text) == "on" || key4(ts_.peek().text) == "off")) on = on_off(key);
       (k == "tecp" ? m_.tecplot : m_.paraview) = on;
+    } else if (k == "hdf5") {  // extension: HDF5 + XDMF animation series
+      bool on = true;
+      if (!ts_.at_end() && (key4(ts_.peek().text) == "on" || key4(ts_.peek().text) == "off")) on = on_off(key);
+      m_.hdf5 = on;
     } else if (k == "deto") {
       double xyz[3];
       for (double& v : xyz) v = ts_.real("the detonation point");
@@ -555,6 +559,17 @@ void Reader::finish(int line) {
     }
   }
   if (m_.has_bulk) P.qv.assign(size_t(P.np), 0.0);
+  // pt2d: TecPlot output only for the particles whose initial position lies in the box
+  // (the original marks them as they are generated).
+  if (m_.has_pt2d) {
+    m_.tec_skip.assign(size_t(P.np), 0);
+    for (int p = 0; p < P.np; ++p) {
+      const double* x = &P.x[3 * size_t(p)];
+      bool in = true;
+      for (int a = 0; a < 3; ++a) in = in && x[a] >= m_.pt2d[2 * a] && x[a] <= m_.pt2d[2 * a + 1];
+      m_.tec_skip[size_t(p)] = in ? 0 : 1;
+    }
+  }
   bool thermal = false;
   for (const auto& mp : m_.mats) thermal = thermal || mp.type == MAT_JOHN || mp.type == MAT_JCF;
   if (thermal) P.temp.assign(size_t(P.np), 0.0);

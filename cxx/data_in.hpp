@@ -28,6 +28,8 @@ struct Model {
   bool tecplot = false, paraview = false;
   bool has_pt2d = false;
   double pt2d[6] = {0, 0, 0, 0, 0, 0};
+  std::vector<uint8_t> tec_skip;  // (np) with pt2d: 1 = left out of TecPlot (initial position)
+  bool hdf5 = false;              // extension 'hdf5': HDF5 + XDMF time series of the animation
   std::vector<MaterialParams> mats;
   Particles particles;
   std::vector<Body> bodies;

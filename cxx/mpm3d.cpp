@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -11,6 +12,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "checkpoint.hpp"
 #include "data_out.hpp"
 #include "ffi.hpp"
 
@@ -158,6 +160,21 @@ void Simulation::ensure_expansion_buffers() {
   ctx.ntgrid = threads;
 }
 
+void Simulation::set_grid(const double origin[3], double h, const int deck_nc[3], int patch_cells, const int off[3],
+                          const int nc[3]) {
+  if (patch_cells < 1) throw std::invalid_argument("patch size must be at least one cell");
+  double hi[3];
+  for (int a = 0; a < 3; ++a) hi[a] = origin[a] + double(deck_nc[a]) * h;
+  grid.define(origin, hi, h, patch_cells);
+  for (int a = 0; a < 3; ++a)
+    if (grid.deck_nc[a] != deck_nc[a]) throw std::runtime_error("grid: cannot rebuild the stored grid");
+  grid.set_window(off, nc);
+  for (int f = 0; f < 6; ++f) grid.fix[f] = model.fix[f];
+  grid.mass_cutoff = model.mass_cutoff;
+  grid.patch_part.assign(size_t(model.particles.np), 0);
+  bind();
+}
+
 void Simulation::ensure_patch_buffers() {
   const size_t need = size_t(ctx.nslot) * size_t(grid.patch_nodes) * kNodeFields;
   if (grid.patch_buf.size() < need) {
@@ -239,7 +256,59 @@ void Simulation::measure() {
   for (int a = 0; a < 3; ++a) momentum[a] = ctx.result[2 + a];
 }
 
+// After every step: non-finite values (when an energy sum is not finite), then one pass
+// over the particles for a non-positive volume or a density outside
+// [kDensityRatioMin, kDensityRatioMax] rho0 (parallel, the lowest such particle index is
+// reported, whatever the thread count), then runaway energy. The pass reads two doubles and
+// one int per particle: about 1% of a step.
 void Simulation::health_check() {
+  const Particles& P = model.particles;
+  if (!(std::isfinite(kinetic) && std::isfinite(internal))) {
+    for (int p = 0; p < P.np; ++p) {
+      const char* what = nullptr;
+      for (int a = 0; a < 3 && !what; ++a) {
+        if (!std::isfinite(P.x[3 * size_t(p) + a])) what = "position";
+        else if (!std::isfinite(P.v[3 * size_t(p) + a])) what = "velocity";
+      }
+      for (int s = 0; s < 6 && !what; ++s)
+        if (!std::isfinite(P.sig[6 * size_t(p) + s])) what = "stress";
+      if (!what && !std::isfinite(P.ie[p])) what = "internal energy";
+      if (!what && !std::isfinite(P.vol[p])) what = "volume";
+      if (what) {
+        std::ostringstream os;
+        os << "numerical breakdown at step " << steps << " (t = " << time << "): particle " << p + 1 << " (body "
+           << P.body[p] + 1 << ") has a non-finite " << what;
+        throw HealthError(os.str());
+      }
+    }
+  }
+  {
+    const double* vol = P.vol.data();
+    const double* mass = P.mass.data();
+    const int* mat = P.mat.data();
+    const MaterialParams* mats = model.mats.data();
+    const int np = P.np;
+    int bad = np;
+#pragma omp parallel for schedule(static) reduction(min : bad)
+    for (int p = 0; p < np; ++p) {
+      const double r0v = mats[mat[p]].rho0 * vol[p];
+      const bool ok = vol[p] > 0.0 && mass[p] >= kDensityRatioMin * r0v && mass[p] <= kDensityRatioMax * r0v;
+      if (!ok && p < bad) bad = p;
+    }
+    if (bad < np) {
+      const int p = bad;
+      std::ostringstream os;
+      os << "numerical breakdown at step " << steps << " (t = " << time << "): particle " << p + 1 << " (body "
+         << P.body[p] + 1 << ") has ";
+      const double rho0 = mats[mat[p]].rho0;
+      if (!(vol[p] > 0.0))
+        os << "a non-positive volume " << vol[p] << " (crushed: reduce dtscale, or the impact speed is too high for the grid)";
+      else
+        os << "density " << mass[p] / vol[p] << " = " << (mass[p] / vol[p]) / rho0 << " rho0 (rho0 = " << rho0
+           << "), outside the bounds [" << kDensityRatioMin << ", " << kDensityRatioMax << "] rho0";
+      throw HealthError(os.str());
+    }
+  }
   if (std::isfinite(kinetic) && std::isfinite(internal)) {
     // Runaway energy: the total may not exceed twice the initial energy plus the work of
     // the external forces (integrated with the end-of-step velocities; the factor two
@@ -247,7 +316,6 @@ void Simulation::health_check() {
     const double total = kinetic + internal;
     if (std::fabs(total) <= 2.0 * (std::fabs(initial_total_energy) + std::fabs(external_work)) + 1e-300)
       return;
-    const Particles& P = model.particles;
     int worst = 0;
     double vmax = -1.0;
     for (int p = 0; p < P.np; ++p) {
@@ -264,24 +332,6 @@ void Simulation::health_check() {
        << external_work << "; fastest particle " << worst + 1 << " (body " << P.body[worst] + 1 << ") at speed "
        << std::sqrt(vmax) << " (reduce dtscale, or use MUSL)";
     throw HealthError(os.str());
-  }
-  const Particles& P = model.particles;
-  for (int p = 0; p < P.np; ++p) {
-    const char* what = nullptr;
-    for (int a = 0; a < 3 && !what; ++a) {
-      if (!std::isfinite(P.x[3 * size_t(p) + a])) what = "position";
-      else if (!std::isfinite(P.v[3 * size_t(p) + a])) what = "velocity";
-    }
-    for (int s = 0; s < 6 && !what; ++s)
-      if (!std::isfinite(P.sig[6 * size_t(p) + s])) what = "stress";
-    if (!what && !std::isfinite(P.ie[p])) what = "internal energy";
-    if (!what && !(P.vol[p] > 0.0)) what = "volume";
-    if (what) {
-      std::ostringstream os;
-      os << "numerical breakdown at step " << steps << " (t = " << time << "): particle " << p + 1 << " (body "
-         << P.body[p] + 1 << ") has a non-finite " << what;
-      throw HealthError(os.str());
-    }
   }
   throw HealthError("numerical breakdown at step " + std::to_string(steps) + ": non-finite energy");
 }
@@ -306,6 +356,10 @@ const char* kUsage =
     "                     extent every N steps (0: off; default: the deck's 'adgr', else off)\n"
     "  --scatter patches|expansion  grid scatter scheme (default patches: bit-identical for\n"
     "                     any thread count; expansion: per-thread grid copies, a benchmark)\n"
+    "  --hdf5             write the animation as an HDF5 + XDMF series (name_anim.h5/.xdmf)\n"
+    "  --checkpoint F.h5  write a checkpoint when the run ends (and every N steps, below)\n"
+    "  --checkpoint-every N   also write it every N steps (default file name_checkpoint.h5)\n"
+    "  --restart F.h5     continue the run of the same deck from a checkpoint\n"
     "  --kernel cxx|fortran       take every step stage from one language\n"
     "  --kernels STAGE=LANG,...   take single stages from a language (see --list-stages)\n"
     "  --list-stages      print the stage names, one per line\n"
@@ -313,14 +367,29 @@ const char* kUsage =
     "  --help, --version\n";
 
 struct Options {
-  std::string deck, out_dir = ".", summary, state, kernel, kernels;
-  long max_steps = -1;
+  std::string deck, out_dir = ".", summary, state, kernel, kernels, checkpoint, restart;
+  long max_steps = -1, checkpoint_every = 0;
   double end_time = -1.0;
   int threads = 0, patch_cells = 8;
   long regrid_every = -1;  // -1: the deck's
   std::string scatter = "patches";
-  bool no_output = false, quiet = false;
+  bool no_output = false, quiet = false, hdf5 = false, patch_given = false;
 };
+
+// SIGINT/SIGTERM: the time loop finishes the current step, writes a checkpoint and exits
+// with 128 + the signal number. The handler is one-shot: a second signal kills at once.
+volatile std::sig_atomic_t g_signal = 0;
+extern "C" void on_stop_signal(int sig) { g_signal = sig; }
+
+void install_signal_handlers() {
+  struct sigaction sa;
+  std::memset(&sa, 0, sizeof sa);
+  sa.sa_handler = on_stop_signal;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = SA_RESTART | SA_RESETHAND;
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
 
 struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -366,7 +435,17 @@ Options parse_args(int argc, char** argv, bool& exit_now) {
       o.summary = value();
     } else if (a == "--state") {
       o.state = value();
+    } else if (a == "--hdf5") {
+      o.hdf5 = true;
+    } else if (a == "--checkpoint") {
+      o.checkpoint = value();
+    } else if (a == "--checkpoint-every") {
+      o.checkpoint_every = to_long(a, value());
+      if (o.checkpoint_every < 1) throw UsageError("--checkpoint-every must be at least 1");
+    } else if (a == "--restart") {
+      o.restart = value();
     } else if (a == "--patch-cells") {
+      o.patch_given = true;
       o.patch_cells = int(to_long(a, value()));
       if (o.patch_cells < 1 || o.patch_cells > 64) throw UsageError("--patch-cells must lie in 1..64");
     } else if (a == "--regrid-every") {
@@ -454,7 +533,12 @@ int run_main(int argc, char** argv) {
     Model model = read_deck(opt.deck);
     if (opt.regrid_every >= 0) model.regrid_every = int(opt.regrid_every);
     if (!dir_writable(opt.out_dir)) throw std::runtime_error("output directory '" + opt.out_dir + "' is not writable");
-    for (const std::string* f : {&opt.summary, &opt.state}) {
+    // A checkpoint is written with --checkpoint, --checkpoint-every or on a signal; the
+    // default file is name_checkpoint.h5 in the output directory.
+    const std::string default_ckpt = opt.out_dir + "/" + model.base_name + "_checkpoint.h5";
+    const std::string ckpt_path =
+        !opt.checkpoint.empty() ? opt.checkpoint : (opt.checkpoint_every > 0 ? default_ckpt : std::string());
+    for (const std::string* f : std::initializer_list<const std::string*>{&opt.summary, &opt.state, &ckpt_path}) {
       if (f->empty()) continue;
       const size_t slash = f->find_last_of('/');
       const std::string d = slash == std::string::npos ? "." : f->substr(0, slash == 0 ? 1 : slash);
@@ -467,7 +551,9 @@ int run_main(int argc, char** argv) {
     const int threads = 1;
 #endif
     const auto t_start = std::chrono::steady_clock::now();
-    Simulation sim(std::move(model), opt.patch_cells);
+    // A restart keeps the patch size of the checkpoint (it fixes the summation order).
+    const int patch_cells = opt.restart.empty() ? opt.patch_cells : checkpoint_patch_cells(opt.restart);
+    Simulation sim(std::move(model), patch_cells);
     {
       StageTable t = cxx_stages();
       if (!opt.kernel.empty()) select_stages(t, opt.kernel, false);
@@ -475,10 +561,15 @@ int run_main(int argc, char** argv) {
       sim.set_stages(t);
       if (opt.scatter == "expansion") sim.use_expansion_scatter();
     }
+    OutputSchedule resume;
+    const bool restarted = !opt.restart.empty();
+    if (restarted) read_checkpoint(opt.restart, sim, resume);
     const Model& m = sim.model;
     const double end_time = opt.end_time > 0.0 ? opt.end_time : m.endtime;
+    const bool series = opt.hdf5 || (m.hdf5 && !opt.no_output);
     LegacyOutput out;
-    if (!opt.no_output) out.open(m, opt.out_dir);
+    if (!opt.no_output || series) out.open(m, opt.out_dir, !opt.no_output, series, restarted ? &resume : nullptr);
+    install_signal_handlers();
     std::ostringstream head;
     head << "MPM3D-CXX: " << m.title << "\n  deck " << opt.deck << ", " << m.particles.np << " particles, "
          << m.bodies.size() << " bodies, " << m.nmat << " materials\n  grid " << sim.grid.deck_nc[0] << " x "
@@ -489,6 +580,9 @@ int run_main(int argc, char** argv) {
     head << "\n  scheme "
          << (m.scheme == SCHEME_MUSL ? "MUSL" : m.scheme == SCHEME_USL ? "USL" : "USF") << ", dt " << m.dt
          << ", end time " << end_time << ", threads " << threads;
+    if (restarted) head << "\n  restarted from " << opt.restart << " at step " << sim.steps << ", t " << sim.time;
+    if (opt.patch_given && restarted && opt.patch_cells != patch_cells)
+      head << "\n  warning: --patch-cells ignored: a restart keeps the checkpoint's " << patch_cells;
     for (const auto& w : m.warnings) head << "\n  warning: " << w;
     out.log(head.str());
     if (!opt.quiet) std::cout << head.str() << std::endl;
@@ -501,10 +595,22 @@ int run_main(int argc, char** argv) {
     log_regrid();
 
     double step_seconds = 0.0, dt_min = m.dt, dt_max = m.dt, max_epeff = 0.0;
-    double next_out = m.outtime, next_rpt = m.rpttime;
-    if (!opt.no_output && (m.tecplot || m.paraview)) out.frame(m, 0.0);
+    double next_out = restarted ? resume.next_out : m.outtime, next_rpt = restarted ? resume.next_rpt : m.rpttime;
+    if (!restarted && out.animates()) out.frame(m, 0.0, 0);
     const double eps = 1e-9 * m.dt;
     std::string failure;
+    long steps_run = 0, last_ckpt = restarted ? sim.steps : -1;
+    std::string last_ckpt_path = restarted ? opt.restart : std::string();
+    auto save_checkpoint = [&](const std::string& path) {
+      OutputSchedule o;
+      out.save_state(o);
+      o.next_out = next_out;
+      o.next_rpt = next_rpt;
+      write_checkpoint(path, sim, o);
+      last_ckpt = sim.steps;
+      last_ckpt_path = path;
+    };
+    int interrupted = 0;
     while (sim.time < end_time - eps && (opt.max_steps < 0 || sim.steps < opt.max_steps)) {
       const auto t0 = std::chrono::steady_clock::now();
       try {
@@ -512,19 +618,18 @@ int run_main(int argc, char** argv) {
       } catch (const HealthError& e) {
         failure = e.what();
       }
+      ++steps_run;
       step_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       log_regrid();
       if (!failure.empty()) break;
-      if (!opt.no_output) {
-        out.step(m, sim.time, sim.kinetic, sim.internal, sim.momentum);
-        if (sim.time >= next_out - eps) {
-          if (m.tecplot || m.paraview) out.frame(m, sim.time);
-          next_out += m.outtime;
-        }
+      out.step(m, sim.time, sim.kinetic, sim.internal, sim.momentum);
+      if (sim.time >= next_out - eps) {
+        if (out.animates()) out.frame(m, sim.time, sim.steps);
+        next_out += m.outtime;
       }
       if (sim.time >= next_rpt - eps || sim.time >= end_time - eps) {
         next_rpt += m.rpttime;
-        const double left = (end_time - sim.time) / m.dt * (step_seconds / double(sim.steps));
+        const double left = (end_time - sim.time) / m.dt * (step_seconds / double(steps_run));
         char line[256];
         std::snprintf(line, sizeof line, "step %7ld  t %.4e  KE %.4e  IE %.4e  E %.4e  outside %d  eta %.1f s",
                       sim.steps, sim.time, sim.kinetic, sim.internal, sim.kinetic + sim.internal, sim.outside,
@@ -532,6 +637,20 @@ int run_main(int argc, char** argv) {
         out.log(line);
         if (!opt.quiet) std::cout << line << std::endl;
       }
+      if (opt.checkpoint_every > 0 && sim.steps % opt.checkpoint_every == 0) save_checkpoint(ckpt_path);
+      if (g_signal) {
+        interrupted = int(g_signal);
+        break;
+      }
+    }
+    if (!failure.empty()) {
+      if (last_ckpt >= 0)
+        failure += "; the last checkpoint (step " + std::to_string(last_ckpt) + ") is kept in " + last_ckpt_path;
+    } else if (interrupted) {
+      const std::string path = ckpt_path.empty() ? default_ckpt : ckpt_path;
+      if (last_ckpt != sim.steps || last_ckpt_path != path) save_checkpoint(path);
+    } else if (!ckpt_path.empty() && last_ckpt != sim.steps) {
+      save_checkpoint(ckpt_path);
     }
     const Particles& P = m.particles;
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
@@ -543,12 +662,20 @@ int run_main(int argc, char** argv) {
       }
     }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
-    const double ns = sim.steps > 0 ? step_seconds * 1e9 / (double(P.np) * double(sim.steps)) : 0.0;
+    const double ns = steps_run > 0 ? step_seconds * 1e9 / (double(P.np) * double(steps_run)) : 0.0;
     std::vector<std::string> warnings = m.warnings;
     if (sim.outside > 0)
       warnings.push_back(std::to_string(sim.outside) + " particles left the grid and were frozen");
     if (!failure.empty()) warnings.push_back(failure);
-    if (!opt.state.empty()) write_state_h5(opt.state, m, sim.time, sim.steps, m.dt);
+    std::string stop_note;
+    if (interrupted) {
+      stop_note = std::string("interrupted by ") + (interrupted == SIGINT ? "SIGINT" : "SIGTERM") + " at step " +
+                  std::to_string(sim.steps) + "; checkpoint " + last_ckpt_path + " (continue with --restart " +
+                  last_ckpt_path + ")";
+      warnings.push_back(stop_note);
+    }
+    // The state file holds the final state: not written when a signal stopped the run.
+    if (!opt.state.empty() && !interrupted) write_state_h5(opt.state, m, sim.time, sim.steps, m.dt);
     if (!opt.summary.empty()) {
       std::ostringstream js;
       js << "{\n  \"deck\": \"" << json_escape(opt.deck) << "\",\n  \"title\": \"" << json_escape(m.title)
@@ -586,16 +713,22 @@ int run_main(int argc, char** argv) {
       if (!opt.quiet) std::cout << st.str() << std::endl;
     }
     char tail[256];
-    std::snprintf(tail, sizeof tail, "done: %ld steps, t %.6g, %.2f s wall, %.1f ns per particle-step", sim.steps,
+    std::snprintf(tail, sizeof tail, "%s: %ld steps, t %.6g, %.2f s wall, %.1f ns per particle-step",
+                  interrupted ? "stopped" : (failure.empty() ? "done" : "failed"), sim.steps,
                   sim.time, wall, ns);
     out.log(tail);
     if (!opt.quiet) std::cout << tail << std::endl;
     for (const auto& w : warnings)
-      if (!opt.quiet && w != failure) std::cerr << "mpm3d: warning: " << w << "\n";
+      if (!opt.quiet && w != failure && w != stop_note) std::cerr << "mpm3d: warning: " << w << "\n";
+    if (!stop_note.empty() || !failure.empty()) out.log(stop_note.empty() ? failure : stop_note);
     out.close();
     if (!failure.empty()) {
       std::cerr << "mpm3d: " << failure << "\n";
       return 3;
+    }
+    if (interrupted) {
+      std::cerr << "mpm3d: " << stop_note << "\n";
+      return 128 + interrupted;
     }
     return 0;
   } catch (const DeckError& e) {

@@ -11,6 +11,9 @@
 
 namespace mpm3d {
 
+// Bounds of the per-step health check on the density: rho / rho0 must stay within them.
+constexpr double kDensityRatioMin = 1.0e-3, kDensityRatioMax = 1.0e3;
+
 // A numerical breakdown found by the per-step health check.
 class HealthError : public std::runtime_error {
  public:
@@ -23,12 +26,16 @@ class Simulation {
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
 
-  void step();  // one explicit step; throws HealthError on NaN/Inf
+  void step();  // one explicit step; throws HealthError (see health_check)
   void set_stages(const StageTable& t) { stages_ = t; }
   // --scatter expansion: P2G, forces and G2P from the per-thread grid copies
   // (cxx/update_step_expansion.cpp) instead of the patches. Call after set_stages.
   void use_expansion_scatter();
   bool expansion_scatter() const { return expansion_; }
+  // Redefines the background grid (restart): the lattice (origin, cell h, deck_nc cells,
+  // patch size) and the window of cells off .. off + nc - 1 on it.
+  void set_grid(const double origin[3], double h, const int deck_nc[3], int patch_cells, const int off[3],
+                const int nc[3]);
 
   Model model;
   Grid grid;

@@ -15,4 +15,20 @@ void Particles::resize(int n) {
   body.assign(n, 0);
 }
 
+std::vector<ParticleField> particle_fields(Particles& P) {
+  return {{"position", 3, &P.x, nullptr},
+          {"velocity", 3, &P.v, nullptr},
+          {"stress", 6, &P.sig, nullptr},
+          {"mass", 1, &P.mass, nullptr},
+          {"volume", 1, &P.vol, nullptr},
+          {"epeff", 1, &P.epeff, nullptr},
+          {"internal_energy", 1, &P.ie, nullptr},
+          {"material", 1, nullptr, &P.mat},
+          {"body", 1, nullptr, &P.body},
+          {"temperature", 1, &P.temp, nullptr},
+          {"external_force", 3, &P.fext, nullptr},
+          {"lighting_time", 1, &P.tlight, nullptr},
+          {"bulk_viscosity", 1, &P.qv, nullptr}};
+}
+
 }  // namespace mpm3d

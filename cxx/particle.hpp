@@ -29,6 +29,19 @@ struct Particles {
   double density(int p) const { return mass[p] / vol[p]; }
 };
 
+// Every array of Particles by name, for generic code (the checkpoint stores and restores
+// each allocated one). Exactly one of d, i is set; ncomp values per particle. A new array
+// in Particles must be listed in particle_fields() (cxx/particle.cpp); cxx/checkpoint.cpp
+// checks sizeof(Particles) so a forgotten one stops the build.
+struct ParticleField {
+  const char* name;
+  int ncomp;
+  std::vector<double>* d;
+  std::vector<int32_t>* i;
+};
+std::vector<ParticleField> particle_fields(Particles& P);
+constexpr int kParticleArrays = 13;  // arrays listed by particle_fields
+
 // Physical sums over all particles (deterministic, see update_step).
 struct Energies {
   double kinetic = 0.0, internal = 0.0;

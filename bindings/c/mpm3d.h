@@ -112,6 +112,15 @@ MPM3D_API int mpm3d_set_array(mpm3d_sim* sim, const char* name, const double* sr
  * section 6; written to a temporary file and renamed). */
 MPM3D_API int mpm3d_write_state(const mpm3d_sim* sim, const char* path);
 
+/* Checkpoint and restart (docs/RELIABILITY.md). mpm3d_write_checkpoint writes everything a
+ * step needs (every particle array, step, time, dt, energies, external work, the grid) to
+ * an HDF5 file, atomically (temporary file + rename). mpm3d_restart loads such a file into
+ * a handle opened from the same deck (counts and arrays are checked: MPM3D_ERR_IO naming
+ * the problem, the handle unchanged); later steps then give the same bits as the run that
+ * wrote it, for any thread count. */
+MPM3D_API int mpm3d_write_checkpoint(const mpm3d_sim* sim, const char* path);
+MPM3D_API int mpm3d_restart(mpm3d_sim* sim, const char* path);
+
 #ifdef __cplusplus
 }
 #endif

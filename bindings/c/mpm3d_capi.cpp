@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "checkpoint.hpp"
 #include "data_in.hpp"
 #include "data_out.hpp"
 #include "ffi.hpp"
@@ -270,6 +271,42 @@ MPM3D_API int mpm3d_write_state(const mpm3d_sim* sim, const char* path) {
     return fail(MPM3D_ERR_IO, "mpm3d_write_state: %s", e.what());
   } catch (...) {
     return fail(MPM3D_ERR_IO, "mpm3d_write_state: cannot write %s", path);
+  }
+}
+
+MPM3D_API int mpm3d_write_checkpoint(const mpm3d_sim* sim, const char* path) {
+  clear_error();
+  if (!sim) return fail(MPM3D_ERR_ARGUMENT, "mpm3d_write_checkpoint: null handle");
+  if (!path || !*path) return fail(MPM3D_ERR_ARGUMENT, "mpm3d_write_checkpoint: no file name");
+  try {
+    mpm3d::OutputSchedule o;  // the library writes no result files: an empty schedule
+    o.next_out = sim->sim.model.outtime;
+    o.next_rpt = sim->sim.model.rpttime;
+    mpm3d::write_checkpoint(path, sim->sim, o);
+    return MPM3D_OK;
+  } catch (const std::bad_alloc&) {
+    return fail(MPM3D_ERR_MEMORY, "mpm3d_write_checkpoint: out of memory");
+  } catch (const std::exception& e) {
+    return fail(MPM3D_ERR_IO, "mpm3d_write_checkpoint: %s", e.what());
+  } catch (...) {
+    return fail(MPM3D_ERR_IO, "mpm3d_write_checkpoint: cannot write %s", path);
+  }
+}
+
+MPM3D_API int mpm3d_restart(mpm3d_sim* sim, const char* path) {
+  clear_error();
+  if (!sim) return fail(MPM3D_ERR_ARGUMENT, "mpm3d_restart: null handle");
+  if (!path || !*path) return fail(MPM3D_ERR_ARGUMENT, "mpm3d_restart: no file name");
+  try {
+    mpm3d::OutputSchedule o;
+    mpm3d::read_checkpoint(path, sim->sim, o);
+    return MPM3D_OK;
+  } catch (const std::bad_alloc&) {
+    return fail(MPM3D_ERR_MEMORY, "mpm3d_restart: out of memory");
+  } catch (const std::exception& e) {
+    return fail(MPM3D_ERR_IO, "mpm3d_restart: %s", e.what());
+  } catch (...) {
+    return fail(MPM3D_ERR_IO, "mpm3d_restart: cannot read %s", path);
   }
 }
 

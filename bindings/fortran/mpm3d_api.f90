@@ -29,6 +29,7 @@ module mpm3d_api
   public :: mpm3d_time, mpm3d_steps, mpm3d_num_particles, mpm3d_dt, mpm3d_end_time
   public :: mpm3d_kinetic_energy, mpm3d_internal_energy, mpm3d_momentum
   public :: mpm3d_array_size, mpm3d_get_array, mpm3d_set_array, mpm3d_write_state
+  public :: mpm3d_write_checkpoint, mpm3d_restart
 
   !> Return codes (mpm3d.h).
   integer(c_int), parameter, public :: MPM3D_OK = 0
@@ -155,6 +156,18 @@ module mpm3d_api
       integer(c_int) :: r
     end function
     function c_write_state(sim, path) bind(C, name="mpm3d_write_state") result(r)
+      import :: c_ptr, c_int, c_char
+      type(c_ptr), value :: sim
+      character(kind=c_char), dimension(*), intent(in) :: path
+      integer(c_int) :: r
+    end function
+    function c_write_checkpoint(sim, path) bind(C, name="mpm3d_write_checkpoint") result(r)
+      import :: c_ptr, c_int, c_char
+      type(c_ptr), value :: sim
+      character(kind=c_char), dimension(*), intent(in) :: path
+      integer(c_int) :: r
+    end function
+    function c_restart(sim, path) bind(C, name="mpm3d_restart") result(r)
       import :: c_ptr, c_int, c_char
       type(c_ptr), value :: sim
       character(kind=c_char), dimension(*), intent(in) :: path
@@ -328,6 +341,20 @@ contains
     type(c_ptr), intent(in) :: sim
     character(len=*), intent(in) :: path
     mpm3d_write_state = c_write_state(sim, c_string(path))
+  end function
+
+  !> Writes a checkpoint (HDF5, atomically): everything a later step needs.
+  integer(c_int) function mpm3d_write_checkpoint(sim, path)
+    type(c_ptr), intent(in) :: sim
+    character(len=*), intent(in) :: path
+    mpm3d_write_checkpoint = c_write_checkpoint(sim, c_string(path))
+  end function
+
+  !> Loads a checkpoint into a handle opened from the same deck.
+  integer(c_int) function mpm3d_restart(sim, path)
+    type(c_ptr), intent(in) :: sim
+    character(len=*), intent(in) :: path
+    mpm3d_restart = c_restart(sim, c_string(path))
   end function
 
 end module mpm3d_api

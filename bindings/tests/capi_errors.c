@@ -148,6 +148,33 @@ int main(int argc, char** argv) {
   CHECK(mpm3d_step(sim, 2) == MPM3D_OK, "step(2) after failed calls: %s", mpm3d_last_error());
   CHECK(mpm3d_steps(sim) == 2, "steps %ld", mpm3d_steps(sim));
 
+  /* Checkpoint after 2 steps, 3 more steps; a second handle restarted from it takes the
+   * same 3 steps to the same bits. A missing checkpoint is an I/O error. */
+  {
+    mpm3d_sim* twin = NULL;
+    double* a = (double*)malloc(sizeof(double) * (size_t)n3);
+    double* b = (double*)malloc(sizeof(double) * (size_t)n3);
+    snprintf(path, sizeof path, "%s/capi_checkpoint.h5", argv[2]);
+    CHECK(mpm3d_write_checkpoint(sim, path) == MPM3D_OK, "write_checkpoint: %s", mpm3d_last_error());
+    CHECK(mpm3d_open(good, &twin) == MPM3D_OK, "open twin: %s", mpm3d_last_error());
+    rc = mpm3d_restart(twin, "/no/such/checkpoint.h5");
+    expect_error(rc, MPM3D_ERR_IO, "restart(missing file)", "checkpoint", "cannot open");
+    CHECK(mpm3d_steps(twin) == 0, "a failed restart changed the handle");
+    CHECK(mpm3d_restart(twin, path) == MPM3D_OK, "restart: %s", mpm3d_last_error());
+    CHECK(mpm3d_steps(twin) == 2, "restarted handle at step %ld", mpm3d_steps(twin));
+    CHECK(mpm3d_step(sim, 3) == MPM3D_OK && mpm3d_step(twin, 3) == MPM3D_OK, "steps after the checkpoint");
+    CHECK(mpm3d_get_array(sim, "position", a, n3) == MPM3D_OK, "get position");
+    CHECK(mpm3d_get_array(twin, "position", b, n3) == MPM3D_OK, "get position (twin)");
+    CHECK(memcmp(a, b, sizeof(double) * (size_t)n3) == 0, "restarted handle differs after 3 steps");
+    CHECK(mpm3d_time(sim) == mpm3d_time(twin), "times differ");
+    free(a);
+    free(b);
+    mpm3d_close(twin);
+    mpm3d_close(sim);
+    CHECK(mpm3d_open(good, &sim) == MPM3D_OK, "reopen: %s", mpm3d_last_error());
+    CHECK(mpm3d_step(sim, 2) == MPM3D_OK, "step(2) after reopening: %s", mpm3d_last_error());
+  }
+
   /* State file in a directory that does not exist. */
   snprintf(path, sizeof path, "%s/no_such_dir/state.h5", argv[2]);
   rc = mpm3d_write_state(sim, path);

@@ -1,0 +1,38 @@
+// Checkpoint and restart (HDF5): everything a step needs to continue a run bit for bit.
+// Not a module of the original MPM3D (it has none); used by the driver (mpm3d.cpp) and
+// the C API.
+#pragma once
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace mpm3d {
+
+class Simulation;
+
+// The driver's output schedule at the checkpoint: when the next animation frame and
+// progress line fall due, the times of the frames written so far (TecPlot zones, ParaView
+// files and HDF5 series groups share one schedule), and the sizes of the appended text
+// files (a restart truncates them back to these sizes, so rows written after the
+// checkpoint by the interrupted run are not repeated).
+struct OutputSchedule {
+  double next_out = 0.0, next_rpt = 0.0;
+  std::vector<double> frame_times;
+  std::vector<std::pair<std::string, long long>> files;  // file name (no directory), bytes
+};
+
+// Writes the checkpoint atomically (temporary file + rename): format tag and version, the
+// simulation counters (step, time, dt, energies, external work), the grid definition, every
+// allocated particle array (particle_fields) and the output schedule.
+void write_checkpoint(const std::string& path, const Simulation& sim, const OutputSchedule& out);
+
+// Restores a checkpoint into sim, which must have been built from the same deck (the
+// particle, body and material counts are checked, and every particle array the model has
+// allocated must be in the file with the same size). The grid and the patch size are those
+// of the checkpoint. Throws std::runtime_error naming the file and the problem.
+void read_checkpoint(const std::string& path, Simulation& sim, OutputSchedule& out);
+
+// The patch size stored in a checkpoint (to build the Simulation before restoring it).
+int checkpoint_patch_cells(const std::string& path);
+
+}  // namespace mpm3d

@@ -1,0 +1,33 @@
+# Checkpoint, restart and signals (docs/RELIABILITY.md): restart equality bit for bit
+# (also across thread counts), and a SIGTERM/SIGINT mid-run leaving a checkpoint that
+# restarts to the same final bits.
+function(mpm3d_restart_test name deck steps mid)
+  add_test(NAME restart.${name}
+           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/restart_equality.sh $<TARGET_FILE:mpm3d> ${deck} ${steps} ${mid}
+                   ${CMAKE_CURRENT_BINARY_DIR}/restart_${name} ${ARGN})
+  set_tests_properties(restart.${name} PROPERTIES SKIP_RETURN_CODE 77)
+endfunction()
+mpm3d_restart_test(two_blocks ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks.mpm 207 100)
+mpm3d_restart_test(mixed_thermal ${CMAKE_CURRENT_SOURCE_DIR}/decks/mixed_thermal.mpm 60 25)
+mpm3d_restart_test(taylor_coarse ${CMAKE_SOURCE_DIR}/inputs/taylor/taylor_coarse.mpm 12 5)
+# State beyond the basic fields: lighting times and bulk viscosity pressures (hiex, bulk),
+# and the adaptive grid's window (regridded every 4 steps, a checkpoint between regrids).
+mpm3d_restart_test(slab_small ${CMAKE_SOURCE_DIR}/inputs/explosives/slab_small.mpm 80 30)
+mpm3d_restart_test(two_blocks_adaptive ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks.mpm 60 26 --regrid-every 4)
+
+foreach(sig TERM INT)
+  add_test(NAME restart.signal_${sig}
+           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/signal_restart.sh $<TARGET_FILE:mpm3d>
+                   ${CMAKE_SOURCE_DIR}/inputs/taylor/taylor_coarse.mpm 20
+                   ${CMAKE_CURRENT_BINARY_DIR}/signal_${sig} ${sig})
+  set_tests_properties(restart.signal_${sig} PROPERTIES SKIP_RETURN_CODE 77)
+endforeach()
+
+# The HDF5 series: the XDMF parses (python3 xml.etree) and every DataItem names an existing
+# dataset of its stated shape (h5ls). The files come from Series.* in test_cli.
+find_package(Python3 COMPONENTS Interpreter)
+if(Python3_FOUND)
+  add_test(NAME series.xdmf_points_at_datasets
+           COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/check_xdmf.py $<TARGET_FILE:mpm3d>
+                   ${CMAKE_CURRENT_SOURCE_DIR}/decks/small.mpm ${CMAKE_CURRENT_BINARY_DIR}/series_xdmf)
+endif()
