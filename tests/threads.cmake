@@ -15,7 +15,7 @@ mpm3d_thread_test(taylor_coarse ${CMAKE_SOURCE_DIR}/inputs/taylor/taylor_coarse.
 mpm3d_thread_test(legacy_taylor ${CMAKE_SOURCE_DIR}/../shared/decks/Taylor.mpm 60)
 mpm3d_thread_test(slab_small ${CMAKE_SOURCE_DIR}/inputs/explosives/slab_small.mpm 200)
 mpm3d_thread_test(slope ${CMAKE_SOURCE_DIR}/inputs/granular/slope.mpm 200)
-mpm3d_thread_test(legacy_deto1k ${CMAKE_SOURCE_DIR}/../shared/decks/Deto1k.mpm 100)
+mpm3d_thread_test(legacy_deto1k ${CMAKE_SOURCE_DIR}/../shared/decks/Deto1k.mpm 60)
 mpm3d_thread_test(legacy_tnt3d ${CMAKE_SOURCE_DIR}/../shared/decks/TNT3D.mpm 30)
 # The adaptive background grid (regrids every 5 steps; the rising block also forces one).
 mpm3d_thread_test(two_blocks_adaptive ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks.mpm 207 --regrid-every 5)
