@@ -216,3 +216,24 @@ TEST(Adaptive, BadOptions) {
     EXPECT_EQ(r.err.rfind("mpm3d: ", 0), 0u) << r.err;
   }
 }
+
+// The elastic benchmark twin has the Taylor scene's geometry, grid, time step and boundary
+// conditions, and no EOS or plasticity.
+TEST(Adaptive, ElasticBenchDeckIsTheTaylorGeometry) {
+  const mpm3d::Model t = mpm3d::read_deck(kInputs + "/taylor/taylor_coarse.mpm");
+  const mpm3d::Model e = mpm3d::read_deck(kInputs + "/taylor/taylor_coarse_elastic.mpm");
+  EXPECT_TRUE(same_bits(t.particles.x, e.particles.x));
+  EXPECT_TRUE(same_bits(t.particles.v, e.particles.v));
+  EXPECT_TRUE(same_bits(t.particles.mass, e.particles.mass));
+  EXPECT_EQ(t.dt, e.dt);  // dt from the same E, nu, rho
+  EXPECT_EQ(t.dcell, e.dcell);
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_EQ(t.box_lo[a], e.box_lo[a]);
+    EXPECT_EQ(t.box_hi[a], e.box_hi[a]);
+  }
+  for (int f = 0; f < 6; ++f) EXPECT_EQ(t.fix[f], e.fix[f]);
+  ASSERT_EQ(e.mats.size(), 1u);
+  EXPECT_EQ(e.mats[0].type, MAT_ELAS);
+  EXPECT_EQ(e.mats[0].eos_type, EOS_NONE);
+  EXPECT_NE(t.mats[0].eos_type, EOS_NONE);
+}
