@@ -62,7 +62,7 @@ if(TARGET mpm3d AND TARGET mpm3d_ref)
     fref_add(fref_${tag}_adaptive_same kernels ${deck} --threads 3 --regrid-every 5)
     fref_add(fref_${tag}_adaptive_kernel_fortran kernels ${deck} --threads 1 --kernel fortran --regrid-every 5)
     foreach(stage ${_fref_stages})
-      fref_add(fref_${tag}_adaptive_stage_${stage} kernels ${deck} --threads 2 --kernels ${stage}=fortran
+      fref_add(fref_${tag}_adaptive_stage_${stage} kernels ${deck} --threads 1 --kernels ${stage}=fortran
                --regrid-every 5)
     endforeach()
     fref_add(fref_${tag}_adaptive_mpm3d_ref regrid ${deck} --regrid-every 5)

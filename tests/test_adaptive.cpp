@@ -158,11 +158,17 @@ TEST(Adaptive, WindowRules) {
 // the node sums grouped differently, so equal to round-off (measured: positions within
 // 1e-12 mm, velocities 1e-8 mm/ms, stresses 1e-8 MPa after 60 steps of the Taylor bar).
 // Tolerances: 1e-10 mm, 1e-7 mm/ms (5e-10 of the impact speed), 1e-6 MPa.
+// The USF (forces stage) and USL decks of fortran_ref/testdecks are checked the same way.
 TEST(Adaptive, ExpansionScatterAgreesWithPatches) {
-  for (const std::string deck : {kInputs + "/taylor/taylor_coarse.mpm", kInputs + "/impact/two_blocks.mpm"}) {
-    const bool taylor = deck.find("taylor") != std::string::npos;  // 58k particles: one thread, 20 steps
+  const std::string fdecks = std::string(MPM3D_TEST_DECKS) + "/../../fortran_ref/testdecks";
+  for (const std::string deck : {kInputs + "/taylor/taylor_coarse.mpm", kInputs + "/impact/two_blocks.mpm",
+                                 fdecks + "/usf_john.mpm", fdecks + "/usl_blocks.mpm"}) {
+    // Two threads on the smallest deck only (ctest runs tests side by side on few cores);
+    // the Taylor bar (58k particles) for 20 steps.
+    const bool taylor = deck.find("taylor") != std::string::npos;
+    const bool two = deck.find("two_blocks") != std::string::npos;
     for (int threads : {1, 2}) {
-      if (taylor && threads > 1) continue;
+      if (!two && threads > 1) continue;
 #ifdef _OPENMP
       omp_set_num_threads(threads);
 #else
@@ -171,7 +177,7 @@ TEST(Adaptive, ExpansionScatterAgreesWithPatches) {
       mpm3d::Simulation p(mpm3d::read_deck(deck)), e(mpm3d::read_deck(deck));
       e.use_expansion_scatter();
       ASSERT_TRUE(e.expansion_scatter());
-      for (int k = 0; k < (taylor ? 20 : 100); ++k) {
+      for (int k = 0; k < (taylor ? 20 : 60); ++k) {
         p.step();
         e.step();
       }
@@ -209,4 +215,25 @@ TEST(Adaptive, BadOptions) {
     EXPECT_EQ(testutil::split_lines(r.err).size(), 1u) << r.err;
     EXPECT_EQ(r.err.rfind("mpm3d: ", 0), 0u) << r.err;
   }
+}
+
+// The elastic benchmark twin has the Taylor scene's geometry, grid, time step and boundary
+// conditions, and no EOS or plasticity.
+TEST(Adaptive, ElasticBenchDeckIsTheTaylorGeometry) {
+  const mpm3d::Model t = mpm3d::read_deck(kInputs + "/taylor/taylor_coarse.mpm");
+  const mpm3d::Model e = mpm3d::read_deck(kInputs + "/taylor/taylor_coarse_elastic.mpm");
+  EXPECT_TRUE(same_bits(t.particles.x, e.particles.x));
+  EXPECT_TRUE(same_bits(t.particles.v, e.particles.v));
+  EXPECT_TRUE(same_bits(t.particles.mass, e.particles.mass));
+  EXPECT_EQ(t.dt, e.dt);  // dt from the same E, nu, rho
+  EXPECT_EQ(t.dcell, e.dcell);
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_EQ(t.box_lo[a], e.box_lo[a]);
+    EXPECT_EQ(t.box_hi[a], e.box_hi[a]);
+  }
+  for (int f = 0; f < 6; ++f) EXPECT_EQ(t.fix[f], e.fix[f]);
+  ASSERT_EQ(e.mats.size(), 1u);
+  EXPECT_EQ(e.mats[0].type, MAT_ELAS);
+  EXPECT_EQ(e.mats[0].eos_type, EOS_NONE);
+  EXPECT_NE(t.mats[0].eos_type, EOS_NONE);
 }
