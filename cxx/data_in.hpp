@@ -36,6 +36,11 @@ struct Model {
   std::vector<CurveRequest> curves;    // curv, curx
   double dt = 0.0;                     // initial time step
   double mass_cutoff = 0.0;
+  bool gimp = false;                   // uGIMP shape functions (particles.psize set)
+  bool contact = false;                // cont: multi-velocity contact of components 1, 2
+  double contact_mu = 0.0;             // Coulomb friction coefficient
+  int contact_normbody = 0;            // normals from component 1, 2, or 0 (both)
+  int contact_line = 0;                // deck line of the cont card
   std::vector<std::string> warnings;
 };
 

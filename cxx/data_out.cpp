@@ -147,6 +147,7 @@ void LegacyOutput::open(const Model& m, const std::string& dir) {
   curv_ = create(base_ + "_curv.dat");
   energy_ = create("EnergyPlot.dat");
   momentum_ = create("MomentumPlot.dat");
+  if (m.contact) contact_ = create("ContforcPlot.dat");
   std::fprintf(curv_, "Time %-12s%-12s", "engk1", "engi1");
   for (const auto& c : m.curves) std::fprintf(curv_, "%-12s", (c.var + std::to_string(c.particle + 1)).c_str());
   std::fprintf(curv_, "\n");
@@ -172,6 +173,14 @@ void LegacyOutput::step(const Model& m, double time, double ke, double ie, const
   std::fprintf(curv_, "%s%s%s", t.c_str(), fortran_e12_4(ke).c_str(), fortran_e12_4(ie).c_str());
   for (const auto& c : m.curves) std::fprintf(curv_, "%s", fortran_e12_4(particle_variable(m, c.var, c.particle)).c_str());
   std::fprintf(curv_, "\n");
+}
+
+void LegacyOutput::contact(double time, const double force[3]) {
+  if (!contact_) return;
+  // Columns: time, Fx, Fy, Fz (E12.4, as EnergyPlot.dat), the force that component 2 exerts
+  // on component 1, summed over the contact nodes of the step.
+  std::fprintf(contact_, "%s%s%s%s\n", fortran_e12_4(time).c_str(), fortran_e12_4(force[0]).c_str(),
+               fortran_e12_4(force[1]).c_str(), fortran_e12_4(force[2]).c_str());
 }
 
 static bool in_pt2d(const Model& m, int p) {
@@ -230,7 +239,7 @@ void LegacyOutput::frame(const Model& m, double time) {
 }
 
 void LegacyOutput::close() {
-  for (FILE** f : {&out_, &curv_, &energy_, &momentum_, &tec_})
+  for (FILE** f : {&out_, &curv_, &energy_, &momentum_, &tec_, &contact_})
     if (*f) {
       std::fclose(*f);
       *f = nullptr;

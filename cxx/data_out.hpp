@@ -27,12 +27,15 @@ class LegacyOutput {
   void log(const std::string& line);       // name.out
   void step(const Model& m, double time, double ke, double ie, const double mom[3]);
   void frame(const Model& m, double time);  // TecPlot zone and/or ParaView file
+  // ContforcPlot.dat (decks with 'cont'): time and the contact force on component 1.
+  void contact(double time, const double force[3]);
   void close();
   std::vector<std::string> written;
 
  private:
   std::string dir_, base_;
   FILE *out_ = nullptr, *curv_ = nullptr, *energy_ = nullptr, *momentum_ = nullptr, *tec_ = nullptr;
+  FILE* contact_ = nullptr;
   std::vector<std::pair<double, std::string>> pvd_;
   int frames_ = 0;
   FILE* create(const std::string& name);

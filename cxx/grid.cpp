@@ -5,9 +5,10 @@
 
 namespace mpm3d {
 
-void Grid::setup(const double lo[3], const double hi[3], double cell, int patch_cells_) {
+void Grid::setup(const double lo[3], const double hi[3], double cell, int patch_cells_, int halo) {
   h = cell;
   patch_cells = patch_cells_;
+  patch_halo = halo;
   for (int a = 0; a < 3; ++a) {
     origin[a] = lo[a];
     const double n = std::floor((hi[a] - lo[a]) / cell + 0.5);
@@ -17,7 +18,8 @@ void Grid::setup(const double lo[3], const double hi[3], double cell, int patch_
     npd[a] = (nc[a] + patch_cells - 1) / patch_cells;
   }
   npatch = npd[0] * npd[1] * npd[2];
-  patch_nodes = (patch_cells + 1) * (patch_cells + 1) * (patch_cells + 1);
+  const int q = patch_cells + 1 + 2 * halo;
+  patch_nodes = q * q * q;
   const size_t nnodes = size_t(nnode());
   mass.assign(nnodes, 0.0);
   mom.assign(3 * nnodes, 0.0);

@@ -24,13 +24,20 @@ Simulation::Simulation(Model m, int patch_cells) : model(std::move(m)), stages_(
   if (patch_cells < 1) throw std::invalid_argument("patch size must be at least one cell");
   double hi[3];
   for (int a = 0; a < 3; ++a) hi[a] = model.box_hi[a];
-  grid.setup(model.box_lo, hi, model.dcell, patch_cells);
+  const int halo = model.gimp ? 1 : 0;  // GIMP stencils reach one node beyond a patch's cells
+  grid.setup(model.box_lo, hi, model.dcell, patch_cells, halo);
   for (int f = 0; f < 6; ++f) grid.fix[f] = model.fix[f];
   grid.mass_cutoff = model.mass_cutoff;
   const size_t np = size_t(model.particles.np);
   lx_.assign(3 * np, 0.0);
   cell_.assign(np, -1);
   grid.patch_part.assign(np, 0);
+  if (model.contact) {
+    grid2.setup(model.box_lo, hi, model.dcell, patch_cells, halo);
+    for (int f = 0; f < 6; ++f) grid2.fix[f] = model.fix[f];
+    grid2.mass_cutoff = model.mass_cutoff;
+    grid2.patch_part.assign(np, 0);
+  }
   bind();
   measure();
   initial_total_energy = kinetic + internal;
@@ -90,6 +97,41 @@ void Simulation::bind() {
   for (int f = 0; f < 6; ++f) c.fix[f] = grid.fix[f];
   c.scheme = model.scheme;
   c.has_body_force = (model.has_gravity || model.has_loads) ? 1 : 0;
+  // GIMP: 27-node stencils, patch buffers with a halo of one node layer.
+  c.psize = model.gimp ? P.psize.data() : nullptr;
+  c.shape = model.gimp ? 1 : 0;
+  c.patch_halo = grid.patch_halo;
+  c.body_comp = nullptr;
+  c.other = nullptr;
+  c.gnormal = nullptr;
+  c.cpartials = nullptr;
+  c.only_comp = 0;
+  if (model.contact) {
+    // Two contexts over the same particles: each bins, scatters and updates the particles
+    // of its component on its own grid; the contact stage (in ctx) couples the two grids.
+    body_comp_.assign(model.bodies.size(), 1);
+    for (size_t b = 0; b < model.bodies.size(); ++b) body_comp_[b] = model.bodies[b].component;
+    gnormal1_.assign(3 * size_t(grid.nnode()), 0.0);
+    gnormal2_.assign(3 * size_t(grid.nnode()), 0.0);
+    cpartials_.assign(3 * size_t(grid.npatch), 0.0);
+    c.body_comp = body_comp_.data();
+    c.contact_mu = model.contact_mu;
+    c.contact_normbody = model.contact_normbody;
+    c.cpartials = cpartials_.data();
+    ctx2 = c;
+    c.only_comp = 1;
+    c.gnormal = gnormal1_.data();
+    c.other = &ctx2;
+    ctx2.only_comp = 2;
+    ctx2.gnormal = gnormal2_.data();
+    ctx2.gmass = grid2.mass.data();
+    ctx2.gmom = grid2.mom.data();
+    ctx2.gforce = grid2.force.data();
+    ctx2.patch_start = grid2.patch_start.data();
+    ctx2.patch_part = grid2.patch_part.data();
+    ctx2.patch_slot = grid2.patch_slot.data();
+    ctx2.patch_buf = grid2.patch_buf.data();
+  }
 }
 
 void Simulation::ensure_patch_buffers() {
@@ -98,16 +140,34 @@ void Simulation::ensure_patch_buffers() {
     grid.patch_buf.resize(need + need / 4);
     ctx.patch_buf = grid.patch_buf.data();
   }
+  if (model.contact) {
+    const size_t need2 = size_t(ctx2.nslot) * size_t(grid2.patch_nodes) * kNodeFields;
+    if (grid2.patch_buf.size() < need2) {
+      grid2.patch_buf.resize(need2 + need2 / 4);
+      ctx2.patch_buf = grid2.patch_buf.data();
+    }
+  }
 }
 
 void Simulation::step() {
   StepContext* c = &ctx;
   c->dt = model.dt;
   c->dt_int = steps == 0 ? 0.5 * model.dt : model.dt;  // first step: momentum with dt/2
-  auto run = [&](int s) {
+  const bool contact = model.contact;
+  if (contact) {
+    ctx2.dt = c->dt;
+    ctx2.dt_int = c->dt_int;
+  }
+  // A stage on one context; with contact, the particle and grid stages run on both
+  // components' contexts in turn (component 1 first).
+  auto run1 = [&](int s, StepContext* x) {
     const auto t0 = std::chrono::steady_clock::now();
-    stages_.fn[s](c);
+    stages_.fn[s](x);
     stage_seconds[s] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  auto run = [&](int s) {
+    run1(s, c);
+    if (contact) run1(s, &ctx2);
   };
   run(ST_BIN);
   ensure_patch_buffers();
@@ -117,10 +177,15 @@ void Simulation::step() {
     run(ST_FORCES);
   }
   run(ST_INTEGRATE);
+  if (contact) {  // both grids integrated: correct the momenta and forces of the pair
+    run1(ST_CONTACT, c);
+    for (int a = 0; a < 3; ++a) contact_force[a] = c->result[5 + a];
+    contact_nodes = c->ncontact;
+  }
   run(ST_G2P);
   if (c->scheme != SCHEME_USF) run(ST_STRESS);
-  run(ST_ENERGY);
-  outside = c->noutside;
+  run1(ST_ENERGY, c);
+  outside = c->noutside + (contact ? ctx2.noutside : 0);
   kinetic = c->result[0];
   internal = c->result[1];
   for (int a = 0; a < 3; ++a) momentum[a] = c->result[2 + a];
@@ -402,6 +467,7 @@ int run_main(int argc, char** argv) {
       if (!failure.empty()) break;
       if (!opt.no_output) {
         out.step(m, sim.time, sim.kinetic, sim.internal, sim.momentum);
+        if (m.contact) out.contact(sim.time, sim.contact_force);
         if (sim.time >= next_out - eps) {
           if (m.tecplot || m.paraview) out.frame(m, sim.time);
           next_out += m.outtime;

@@ -12,6 +12,7 @@ struct Body {
   int first = 0;      // first particle (0-based)
   int count = 0;      // particles in the body
   int component = 1;  // contact component (1-based, as in the deck)
+  double spacing = 0.0;  // particle spacing dp of bloc/sphe/cyli cards; 0 for poin
   double gravity[3] = {0.0, 0.0, 0.0};
 };
 
@@ -22,6 +23,7 @@ struct Particles {
   std::vector<int32_t> mat, body;          // 0-based material and body index
   std::vector<double> temp;                // (np) only with thermal Johnson-Cook
   std::vector<double> fext;                // (3,np) only with point/body loads
+  std::vector<double> psize;               // (np) GIMP particle half-size lp, only with gimp
 
   void resize(int n);
   double density(int p) const { return mass[p] / vol[p]; }

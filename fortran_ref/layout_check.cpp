@@ -5,28 +5,30 @@
 
 #include "update_step.hpp"
 
-// The Fortran mirror stops after reduce_block: later fields are C++-internal scratch.
+// The Fortran mirror stops after ncontact: later fields are C++-internal scratch.
 
-extern "C" void mpm3d_f_context_layout(size_t out[8]);
+extern "C" void mpm3d_f_context_layout(size_t out[10]);
 
 int main() {
-  size_t f[8];
+  size_t f[10];
   mpm3d_f_context_layout(f);
-  const size_t c[8] = {sizeof(StepContext),
+  const size_t c[10] = {sizeof(StepContext),
                        offsetof(StepContext, result),
                        offsetof(StepContext, np),
                        offsetof(StepContext, fix),
                        offsetof(StepContext, reduce_block),
                        sizeof(MaterialParams),
                        offsetof(MaterialParams, eos_e0),
-                       offsetof(MaterialParams, eos_type)};
-  const char* what[8] = {"sizeof(StepContext)", "offsetof(result)", "offsetof(np)", "offsetof(fix)",
+                       offsetof(MaterialParams, eos_type),
+                       offsetof(StepContext, psize),
+                       offsetof(StepContext, ncontact)};
+  const char* what[10] = {"sizeof(StepContext)", "offsetof(result)", "offsetof(np)", "offsetof(fix)",
                          "offsetof(reduce_block)", "sizeof(MaterialParams)", "offsetof(eos_e0)",
-                         "offsetof(eos_type)"};
+                         "offsetof(eos_type)", "offsetof(psize)", "offsetof(ncontact)"};
   int bad = 0;
-  for (int i = 0; i < 8; ++i) {
+  for (int i = 0; i < 10; ++i) {
     // sizeof(StepContext) may exceed the Fortran size by the C++ scratch fields only.
-    const bool ok = i == 0 ? (f[0] <= c[0] && f[0] >= offsetof(StepContext, reduce_block) + sizeof(int))
+    const bool ok = i == 0 ? (f[0] <= c[0] && f[0] >= offsetof(StepContext, ncontact) + sizeof(int))
                            : c[i] == f[i];
     std::printf("%-24s C %4zu  Fortran %4zu%s\n", what[i], c[i], f[i], ok ? "" : "  MISMATCH");
     if (!ok) bad = 1;

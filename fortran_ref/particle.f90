@@ -11,6 +11,7 @@ module mpm3d_particle
     integer :: first = 0       ! first particle (0-based)
     integer :: count = 0       ! particles in the body
     integer :: component = 1   ! contact component (1-based, as in the deck)
+    real(dp) :: spacing = 0.0_dp   ! particle spacing of bloc/sphe/cyli cards; 0 for poin
     real(dp) :: gravity(3) = 0.0_dp
   end type body_t
 
@@ -21,6 +22,7 @@ module mpm3d_particle
     integer(c_int), allocatable :: mat(:), body(:)   ! 0-based
     real(dp), allocatable :: temp(:)    ! only with thermal Johnson-Cook
     real(dp), allocatable :: fext(:,:)  ! only with point/body loads
+    real(dp), allocatable :: psize(:)   ! only with gimp: particle half-size lp
   end type particles_t
 
   public :: particles_resize
@@ -34,6 +36,7 @@ contains
     if (allocated(p%x)) deallocate(p%x, p%v, p%sig, p%mass, p%vol, p%epeff, p%ie, p%mat, p%body)
     if (allocated(p%temp)) deallocate(p%temp)
     if (allocated(p%fext)) deallocate(p%fext)
+    if (allocated(p%psize)) deallocate(p%psize)
     allocate(p%x(3, n), p%v(3, n), p%sig(6, n), p%mass(n), p%vol(n), p%epeff(n), p%ie(n), &
              p%mat(n), p%body(n))
     p%x = 0.0_dp

@@ -12,3 +12,7 @@ endfunction()
 mpm3d_thread_test(two_blocks ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks.mpm 207)
 mpm3d_thread_test(taylor_coarse ${CMAKE_SOURCE_DIR}/inputs/taylor/taylor_coarse.mpm 40)
 mpm3d_thread_test(legacy_taylor ${CMAKE_SOURCE_DIR}/../shared/decks/Taylor.mpm 60)
+# GIMP shape functions and multi-velocity contact (issue 5).
+mpm3d_thread_test(two_blocks_gimp ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks_gimp.mpm 60)
+mpm3d_thread_test(spheres ${CMAKE_SOURCE_DIR}/inputs/contact/spheres.mpm 120)
+mpm3d_thread_test(sliding_block ${CMAKE_SOURCE_DIR}/inputs/contact/sliding_block.mpm 80)
