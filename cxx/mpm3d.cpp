@@ -22,6 +22,10 @@ namespace mpm3d {
 
 Simulation::Simulation(Model m, int patch_cells) : model(std::move(m)), stages_(cxx_stages()) {
   if (patch_cells < 1) throw std::invalid_argument("patch size must be at least one cell");
+  // A GIMP stencil reaches one node beyond its patch's cells; the node loops find every
+  // node a patch's particles touch among its own and its neighbours' nodes only when a
+  // patch is at least two cells wide.
+  if (model.gimp && patch_cells < 2) throw std::invalid_argument("GIMP needs patches of at least two cells");
   double hi[3];
   for (int a = 0; a < 3; ++a) hi[a] = model.box_hi[a];
   const int halo = model.gimp ? 1 : 0;  // GIMP stencils reach one node beyond a patch's cells
@@ -447,6 +451,10 @@ int run_main(int argc, char** argv) {
          << " patches of " << sim.grid.patch_cells << "^3 cells\n  scheme "
          << (m.scheme == SCHEME_MUSL ? "MUSL" : m.scheme == SCHEME_USL ? "USL" : "USF") << ", dt " << m.dt
          << ", end time " << end_time << ", threads " << threads;
+    if (m.gimp) head << "\n  GIMP shape functions (27 nodes)";
+    if (m.contact)
+      head << "\n  contact between components 1 and 2, friction " << m.contact_mu << ", normals from "
+           << (m.contact_normbody == 0 ? std::string("both components") : "component " + std::to_string(m.contact_normbody));
     for (const auto& w : m.warnings) head << "\n  warning: " << w;
     out.log(head.str());
     if (!opt.quiet) std::cout << head.str() << std::endl;

@@ -91,6 +91,7 @@ program mpm3d_ref
   if (end_time <= 0.0_dp) end_time = model%endtime
   np = model%particles%np
   halo = merge(1, 0, model%gimp)   ! GIMP stencils reach one node beyond a patch's cells
+  if (model%gimp .and. patch_cells < 2) call usage('GIMP needs patches of at least two cells')
   call grid_setup(grid, model%box_lo, model%box_hi, model%dcell, patch_cells, halo, err)
   if (len(err) > 0) call fatal(deck // ': ' // err)
   grid%fix = model%fix
