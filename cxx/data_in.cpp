@@ -186,9 +186,20 @@ Model Reader::read() {
         fail(key.line, "bulk viscosity coefficients must not be negative");
       m_.has_bulk = true;
     } else if (k == "gimp") {
-      fail(key.line, "'gimp' (GIMP shape functions) is not yet supported");
+      m_.gimp = true;
     } else if (k == "cont") {
-      fail(key.line, "'cont' (multi-velocity contact) is not yet supported");
+      if (ts_.at_end()) fail(key.line, "'cont' needs 'lagr mu normbody'");
+      const Token& how = ts_.next();
+      if (key4(how.text) != "lagr")
+        fail(how.line, "'cont': only 'lagr' (multi-velocity grid contact) is supported, found '" + how.text + "'");
+      m_.contact_mu = ts_.real("the friction coefficient");
+      if (!(m_.contact_mu >= 0.0)) fail(key.line, "'cont': friction coefficient must not be negative");
+      const Token& nbt = ts_.peek();
+      const long nb = ts_.integer("the normal body (0, 1 or 2)");
+      if (nb < 0 || nb > 2) fail(nbt.line, "'cont': normal body must be 0 (average), 1 or 2");
+      m_.contact_normbody = int(nb);
+      m_.contact = true;
+      m_.contact_line = key.line;
     } else if (k == "endi") {
       ended_ = true;
       finish(key.line);
@@ -390,6 +401,7 @@ void Reader::read_particles(const Token& key) {
     if (!(rho > 0.0) || !(dp > 0.0)) fail(kind.line, "density and spacing must be positive");
     const double vol = (dp * dp) * dp;
     const double mass = rho * vol;
+    m_.bodies.back().spacing = dp;
     if (k == "bloc") {
       double o[3];
       long n[3];
@@ -518,6 +530,7 @@ void Reader::finish(int line) {
     if (!m_.box_set[a]) fail(line, std::string("no grid box along ") + char('x' + a) + " (spx/spy/spz or grid)");
   if (!(m_.dcell > 0.0)) fail(line, "no cell size ('dcel')");
   if (!(m_.endtime > 0.0)) fail(line, "no end time ('endt')");
+  if (m_.contact && m_.nbco != 2) fail(m_.contact_line, "'cont' needs two components ('nbco 2')");
   if (m_.rpttime <= 0.0) m_.rpttime = m_.outtime;
   for (int a = 0; a < 3; ++a) {
     const double n = (m_.box_hi[a] - m_.box_lo[a]) / m_.dcell;
@@ -582,6 +595,25 @@ void Reader::finish(int line) {
     const MaterialParams& mp = m_.mats[size_t(P.mat[p])];
     if (mp.eos_type != EOS_NONE) P.ie[p] = mp.eos_e0 * (P.mass[p] / mp.rho0);
     if (thermal) P.temp[p] = mp.t_room;
+  }
+  // GIMP particle half-size lp: half the spacing of bloc/sphe/cyli particles, half the
+  // cube root of the volume of poin particles; at most h/2 (the 27-node stencil).
+  if (m_.gimp) {
+    P.psize.assign(size_t(P.np), 0.0);
+    bool clamped = false;
+    for (const Body& b : m_.bodies)
+      for (int p = b.first; p < b.first + b.count; ++p) {
+        double lp = b.spacing > 0.0 ? 0.5 * b.spacing : 0.5 * std::pow(P.vol[p], 1.0 / 3.0);
+        if (lp > 0.5 * m_.dcell) {
+          lp = 0.5 * m_.dcell;
+          clamped = true;
+        }
+        P.psize[p] = lp;
+      }
+    if (clamped) m_.warnings.push_back("gimp: particles larger than the cell size take half a cell as their half-size");
+    for (int a = 0; a < 3; ++a)
+      if (std::floor((m_.box_hi[a] - m_.box_lo[a]) / m_.dcell + 0.5) < 2.0)
+        fail(line, "'gimp' needs at least two cells along each axis");
   }
   // dt = dtscale * h / c_max (the dilatational wave speed, D for hiex, c for null), fixed
   // for the run as in the original. With bulk viscosity the stable step of a material at

@@ -42,6 +42,11 @@ struct Model {
   double dt = 0.0;                     // initial time step
   double mass_cutoff = 0.0;
   int regrid_every = 0;  // adaptive grid: redefine the grid every N steps (adgr; 0 off)
+  bool gimp = false;                   // uGIMP shape functions (particles.psize set)
+  bool contact = false;                // cont: multi-velocity contact of components 1, 2
+  double contact_mu = 0.0;             // Coulomb friction coefficient
+  int contact_normbody = 0;            // normals from component 1, 2, or 0 (both)
+  int contact_line = 0;                // deck line of the cont card
   std::vector<std::string> warnings;
 };
 

@@ -352,6 +352,7 @@ void LegacyOutput::open(const Model& m, const std::string& dir, bool legacy, boo
     curv_ = create(base_ + "_curv.dat", resume, curv_app);
     energy_ = create("EnergyPlot.dat", resume, app);
     momentum_ = create("MomentumPlot.dat", resume, app);
+    if (m.contact) contact_ = create("ContforcPlot.dat", resume, app);
     if (!curv_app) {
       std::fprintf(curv_, "Time %-12s%-12s", "engk1", "engi1");
       for (const auto& c : m.curves) std::fprintf(curv_, "%-12s", (c.var + std::to_string(c.particle + 1)).c_str());
@@ -380,7 +381,7 @@ void LegacyOutput::open(const Model& m, const std::string& dir, bool legacy, boo
 void LegacyOutput::save_state(OutputSchedule& o) {
   o.frame_times = frame_times_;
   o.files.clear();
-  for (FILE* f : {out_, curv_, energy_, momentum_, tec_}) {
+  for (FILE* f : {out_, curv_, energy_, momentum_, tec_, contact_}) {
     if (!f) continue;
     std::fflush(f);
   }
@@ -388,7 +389,8 @@ void LegacyOutput::save_state(OutputSchedule& o) {
                                                  {curv_, base_ + "_curv.dat"},
                                                  {energy_, "EnergyPlot.dat"},
                                                  {momentum_, "MomentumPlot.dat"},
-                                                 {tec_, base_ + "_anim.dat"}};
+                                                 {tec_, base_ + "_anim.dat"},
+                                                 {contact_, "ContforcPlot.dat"}};
   for (const auto& e : named)
     if (e.first) o.files.emplace_back(e.second, (long long)std::ftell(e.first));
 }
@@ -408,6 +410,14 @@ void LegacyOutput::step(const Model& m, double time, double ke, double ie, const
   for (size_t c = 0; c < m.curves.size(); ++c)
     std::fprintf(curv_, "%s", fortran_e12_4(curve_fn_[c](m, m.curves[c].particle)).c_str());
   std::fprintf(curv_, "\n");
+}
+
+void LegacyOutput::contact(double time, const double force[3]) {
+  if (!contact_) return;
+  // Columns: time, Fx, Fy, Fz (E12.4, as EnergyPlot.dat), the force that component 2 exerts
+  // on component 1, summed over the contact nodes of the step.
+  std::fprintf(contact_, "%s%s%s%s\n", fortran_e12_4(time).c_str(), fortran_e12_4(force[0]).c_str(),
+               fortran_e12_4(force[1]).c_str(), fortran_e12_4(force[2]).c_str());
 }
 
 void LegacyOutput::frame(const Model& m, double time, long step) {
@@ -466,7 +476,7 @@ void LegacyOutput::frame(const Model& m, double time, long step) {
 }
 
 void LegacyOutput::close() {
-  for (FILE** f : {&out_, &curv_, &energy_, &momentum_, &tec_})
+  for (FILE** f : {&out_, &curv_, &energy_, &momentum_, &tec_, &contact_})
     if (*f) {
       std::fclose(*f);
       *f = nullptr;

@@ -76,6 +76,8 @@ class LegacyOutput {
   bool animates() const { return tec_ || paraview_ || series_.is_open(); }
   // Flushes the text files and records their sizes and the frames written so far.
   void save_state(OutputSchedule& o);
+  // ContforcPlot.dat (decks with 'cont'): time and the contact force on component 1.
+  void contact(double time, const double force[3]);
   void close();
   std::vector<std::string> written;
   const H5Series& series() const { return series_; }
@@ -84,6 +86,7 @@ class LegacyOutput {
   std::string dir_, base_;
   FILE *out_ = nullptr, *curv_ = nullptr, *energy_ = nullptr, *momentum_ = nullptr, *tec_ = nullptr;
   bool paraview_ = false;
+  FILE* contact_ = nullptr;
   std::vector<std::pair<double, std::string>> pvd_;
   std::vector<double> frame_times_;
   H5Series series_;

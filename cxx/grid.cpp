@@ -5,20 +5,22 @@
 
 namespace mpm3d {
 
-void Grid::define(const double lo[3], const double hi[3], double cell, int patch_cells_) {
+void Grid::define(const double lo[3], const double hi[3], double cell, int patch_cells_, int halo) {
   h = cell;
   patch_cells = patch_cells_;
+  patch_halo = halo;
   for (int a = 0; a < 3; ++a) {
     origin[a] = lo[a];
     const double n = std::floor((hi[a] - lo[a]) / cell + 0.5);
     if (!(n >= 1.0) || n > 1.0e6) throw std::runtime_error("grid: bad cell count");
     deck_nc[a] = static_cast<int>(n);
   }
-  patch_nodes = (patch_cells + 1) * (patch_cells + 1) * (patch_cells + 1);
+  const int q = patch_cells + 1 + 2 * halo;
+  patch_nodes = q * q * q;
 }
 
-void Grid::setup(const double lo[3], const double hi[3], double cell, int patch_cells_) {
-  define(lo, hi, cell, patch_cells_);
+void Grid::setup(const double lo[3], const double hi[3], double cell, int patch_cells_, int halo) {
+  define(lo, hi, cell, patch_cells_, halo);
   const int zero[3] = {0, 0, 0};
   set_window(zero, deck_nc);
 }

@@ -1,5 +1,6 @@
 // GridData: the background grid, its patch decomposition and the shape functions.
 #pragma once
+#include <cmath>
 #include <vector>
 
 namespace mpm3d {
@@ -27,7 +28,9 @@ struct Grid {
   int patch_cells = 8;
   int npd[3] = {0, 0, 0};  // patches per axis
   int npatch = 0;
-  int patch_nodes = 0;     // (patch_cells + 1)^3 nodes in one patch buffer
+  int patch_halo = 0;      // node layers a buffer holds beyond its cells' nodes, each side:
+                           // 0 trilinear, 1 GIMP (27-node stencils reach one node further)
+  int patch_nodes = 0;     // (patch_cells + 1 + 2 patch_halo)^3 nodes in one patch buffer
   std::vector<int> patch_start;  // (npatch + 1) offsets into patch_part
   std::vector<int> patch_part;   // particle indices, ascending within each patch
   std::vector<int> patch_slot;   // (npatch) buffer slot of a non-empty patch, -1 if empty
@@ -36,9 +39,10 @@ struct Grid {
 
   int nnode() const { return nn[0] * nn[1] * nn[2]; }
   // define() and set_window() over the whole box.
-  void setup(const double lo[3], const double hi[3], double cell, int patch_cells_);
-  // The deck's box and lattice (no allocation).
-  void define(const double lo[3], const double hi[3], double cell, int patch_cells_);
+  void setup(const double lo[3], const double hi[3], double cell, int patch_cells_, int halo = 0);
+  // The deck's box and lattice (no allocation); halo: node layers a patch buffer holds
+  // beyond its cells (1 with GIMP).
+  void define(const double lo[3], const double hi[3], double cell, int patch_cells_, int halo = 0);
   // Makes cells off_[a] .. off_[a] + nc_[a] - 1 the window: counts, patches, node arrays
   // (allocated afresh at the window's size, zero).
   void set_window(const int off_[3], const int nc_[3]);
@@ -82,6 +86,65 @@ inline void shape_linear(const double* lx, double inv_h, double* N, double* G) {
     G[3 * k + 1] = (wx[a] * g[b]) * wz[c];
     G[3 * k + 2] = (wx[a] * wy[b]) * g[c];
   }
+}
+
+// uGIMP (uniform generalized interpolation material point, Bardenhagen & Kober 2004) weights
+// of the three nodes at offsets o, o+1, o+2 (o = -1 or 0) from the base node of the
+// particle's cell along one axis: lx in [0,1) is the local coordinate in the cell, l = lp/h
+// the particle half-size in cells (0 < l <= 1/2), r = lx - (o + k) = (x_p - x_k)/h:
+//   |r| < l            S = 1 - (r^2 + l^2)/(2 l)   dS/dr = -r/l
+//   l <= |r| <= 1 - l  S = 1 - |r|                 dS/dr = -sign(r)
+//   1 - l < |r| < 1+l  S = (1 + l - |r|)^2/(4 l)   dS/dr = -sign(r) (1 + l - |r|)/(2 l)
+// and 0 beyond; g = dS/dr / h. Operation order as fortran_ref/grid.f90 (gimp_1d).
+inline void gimp_1d(double lx, int o, double l, double inv_h, double* w, double* g) {
+  for (int k = 0; k < 3; ++k) {
+    const double r = lx - double(o + k);
+    const double a = std::fabs(r);
+    double s = 0.0, d = 0.0;
+    if (a < l) {
+      s = 1.0 - ((r * r) + (l * l)) / (2.0 * l);
+      d = -(r / l);
+    } else if (a <= 1.0 - l) {
+      s = 1.0 - a;
+      d = r > 0.0 ? -1.0 : 1.0;
+    } else if (a < 1.0 + l) {
+      const double t = (1.0 + l) - a;
+      s = (t * t) / (4.0 * l);
+      d = r > 0.0 ? -(t / (2.0 * l)) : t / (2.0 * l);
+    }
+    w[k] = s;
+    g[k] = d * inv_h;
+  }
+}
+
+// uGIMP shape functions of the 27 nodes of a particle's stencil: local node
+// k = a + 3 b + 9 c sits at offset (o[0] + a, o[1] + b, o[2] + c) from the base node of the
+// particle's cell. Same products as shape_linear: N = (wx * wy) * wz, dN/dx = (gx * wy) * wz.
+inline void shape_gimp(const double* lx, const int* o, double l, double inv_h, double* N, double* G) {
+  double wx[3], wy[3], wz[3], gx[3], gy[3], gz[3];
+  gimp_1d(lx[0], o[0], l, inv_h, wx, gx);
+  gimp_1d(lx[1], o[1], l, inv_h, wy, gy);
+  gimp_1d(lx[2], o[2], l, inv_h, wz, gz);
+  for (int c = 0; c < 3; ++c)
+    for (int b = 0; b < 3; ++b)
+      for (int a = 0; a < 3; ++a) {
+        const int k = a + 3 * b + 9 * c;
+        N[k] = (wx[a] * wy[b]) * wz[c];
+        G[3 * k + 0] = (gx[a] * wy[b]) * wz[c];
+        G[3 * k + 1] = (wx[a] * gy[b]) * wz[c];
+        G[3 * k + 2] = (wx[a] * wy[b]) * gz[c];
+      }
+}
+
+// Stencil offset of one axis: the three nodes nearest the particle (o = -1 in the lower
+// half of the cell, 0 in the upper half), shifted inwards at the ends of the grid so that
+// all three exist (cell index i of nc cells, nc >= 2); the weight that would fall on a
+// node beyond the box is dropped there.
+inline int gimp_offset(double lx, int i, int nc) {
+  int o = lx < 0.5 ? -1 : 0;
+  if (i + o < 0) o = 0;
+  if (i + o + 2 > nc) o = -1;
+  return o;
 }
 
 }  // namespace mpm3d

@@ -24,13 +24,23 @@ namespace mpm3d {
 
 Simulation::Simulation(Model m, int patch_cells) : model(std::move(m)), stages_(cxx_stages()) {
   if (patch_cells < 1) throw std::invalid_argument("patch size must be at least one cell");
+  // A GIMP stencil reaches one node beyond its patch's cells; the node loops find every
+  // node a patch's particles touch among its own and its neighbours' nodes only when a
+  // patch is at least two cells wide.
+  if (model.gimp && patch_cells < 2) throw std::invalid_argument("GIMP needs patches of at least two cells");
   double hi[3];
   for (int a = 0; a < 3; ++a) hi[a] = model.box_hi[a];
-  grid.define(model.box_lo, hi, model.dcell, patch_cells);
+  const int halo = model.gimp ? 1 : 0;  // GIMP stencils reach one node beyond a patch's cells
+  grid.define(model.box_lo, hi, model.dcell, patch_cells, halo);
   for (int f = 0; f < 6; ++f) grid.fix[f] = model.fix[f];
   grid.mass_cutoff = model.mass_cutoff;
   const size_t np = size_t(model.particles.np);
   regrid_every = model.regrid_every;
+  if (model.contact && regrid_every > 0) {
+    // The two contact grids share one node numbering; the adaptive window is not applied.
+    regrid_every = 0;
+    model.warnings.push_back("adaptive grid ignored: 'cont' (multi-velocity contact) keeps the deck's box");
+  }
   // The first window (the whole box without the adaptive grid); the node arrays are
   // allocated at the window's size only.
   int off[3] = {0, 0, 0}, nc[3] = {grid.deck_nc[0], grid.deck_nc[1], grid.deck_nc[2]};
@@ -41,6 +51,12 @@ Simulation::Simulation(Model m, int patch_cells) : model(std::move(m)), stages_(
   lx_.assign(3 * np, 0.0);
   cell_.assign(np, -1);
   grid.patch_part.assign(np, 0);
+  if (model.contact) {
+    grid2.setup(model.box_lo, hi, model.dcell, patch_cells, halo);
+    for (int f = 0; f < 6; ++f) grid2.fix[f] = model.fix[f];
+    grid2.mass_cutoff = model.mass_cutoff;
+    grid2.patch_part.assign(np, 0);
+  }
   bind();
   measure();
   initial_total_energy = kinetic + internal;
@@ -99,7 +115,42 @@ void Simulation::bind() {
   for (int f = 0; f < 6; ++f) c.fix[f] = grid.fix[f];
   c.scheme = model.scheme;
   c.has_body_force = (model.has_gravity || model.has_loads) ? 1 : 0;
-  bind_grid();
+  // GIMP: 27-node stencils, patch buffers with a halo of one node layer.
+  c.psize = model.gimp ? P.psize.data() : nullptr;
+  c.shape = model.gimp ? 1 : 0;
+  c.patch_halo = grid.patch_halo;
+  c.body_comp = nullptr;
+  c.other = nullptr;
+  c.gnormal = nullptr;
+  c.cpartials = nullptr;
+  c.only_comp = 0;
+  bind_grid();  // before the contact copy: ctx2 starts as a copy of ctx
+  if (model.contact) {
+    // Two contexts over the same particles: each bins, scatters and updates the particles
+    // of its component on its own grid; the contact stage (in ctx) couples the two grids.
+    body_comp_.assign(model.bodies.size(), 1);
+    for (size_t b = 0; b < model.bodies.size(); ++b) body_comp_[b] = model.bodies[b].component;
+    gnormal1_.assign(3 * size_t(grid.nnode()), 0.0);
+    gnormal2_.assign(3 * size_t(grid.nnode()), 0.0);
+    cpartials_.assign(3 * size_t(grid.npatch), 0.0);
+    c.body_comp = body_comp_.data();
+    c.contact_mu = model.contact_mu;
+    c.contact_normbody = model.contact_normbody;
+    c.cpartials = cpartials_.data();
+    ctx2 = c;
+    c.only_comp = 1;
+    c.gnormal = gnormal1_.data();
+    c.other = &ctx2;
+    ctx2.only_comp = 2;
+    ctx2.gnormal = gnormal2_.data();
+    ctx2.gmass = grid2.mass.data();
+    ctx2.gmom = grid2.mom.data();
+    ctx2.gforce = grid2.force.data();
+    ctx2.patch_start = grid2.patch_start.data();
+    ctx2.patch_part = grid2.patch_part.data();
+    ctx2.patch_slot = grid2.patch_slot.data();
+    ctx2.patch_buf = grid2.patch_buf.data();
+  }
 }
 
 void Simulation::bind_grid() {
@@ -165,7 +216,7 @@ void Simulation::set_grid(const double origin[3], double h, const int deck_nc[3]
   if (patch_cells < 1) throw std::invalid_argument("patch size must be at least one cell");
   double hi[3];
   for (int a = 0; a < 3; ++a) hi[a] = origin[a] + double(deck_nc[a]) * h;
-  grid.define(origin, hi, h, patch_cells);
+  grid.define(origin, hi, h, patch_cells, model.gimp ? 1 : 0);
   for (int a = 0; a < 3; ++a)
     if (grid.deck_nc[a] != deck_nc[a]) throw std::runtime_error("grid: cannot rebuild the stored grid");
   grid.set_window(off, nc);
@@ -181,6 +232,13 @@ void Simulation::ensure_patch_buffers() {
     grid.patch_buf.resize(need + need / 4);
     ctx.patch_buf = grid.patch_buf.data();
   }
+  if (model.contact) {
+    const size_t need2 = size_t(ctx2.nslot) * size_t(grid2.patch_nodes) * kNodeFields;
+    if (grid2.patch_buf.size() < need2) {
+      grid2.patch_buf.resize(need2 + need2 / 4);
+      ctx2.patch_buf = grid2.patch_buf.data();
+    }
+  }
 }
 
 void Simulation::step() {
@@ -188,10 +246,22 @@ void Simulation::step() {
   c->dt = model.dt;
   c->dt_int = steps == 0 ? 0.5 * model.dt : model.dt;  // first step: momentum with dt/2
   c->time = time + model.dt;  // the end of this step (programmed burn)
-  auto run = [&](int s) {
+  const bool contact = model.contact;
+  if (contact) {
+    ctx2.dt = c->dt;
+    ctx2.dt_int = c->dt_int;
+    ctx2.time = c->time;
+  }
+  // A stage on one context; with contact, the particle and grid stages run on both
+  // components' contexts in turn (component 1 first).
+  auto run1 = [&](int s, StepContext* x) {
     const auto t0 = std::chrono::steady_clock::now();
-    stages_.fn[s](c);
+    stages_.fn[s](x);
     stage_seconds[s] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  auto run = [&](int s) {
+    run1(s, c);
+    if (contact) run1(s, &ctx2);
   };
   const bool scheduled = regrid_every > 0 && steps > 0 && steps % regrid_every == 0;
   if (scheduled) {
@@ -222,10 +292,15 @@ void Simulation::step() {
     run(ST_FORCES);
   }
   run(ST_INTEGRATE);
+  if (contact) {  // both grids integrated: correct the momenta and forces of the pair
+    run1(ST_CONTACT, c);
+    for (int a = 0; a < 3; ++a) contact_force[a] = c->result[5 + a];
+    contact_nodes = c->ncontact;
+  }
   run(ST_G2P);
   if (c->scheme != SCHEME_USF) run(ST_STRESS);
-  run(ST_ENERGY);
-  outside = c->noutside;
+  run1(ST_ENERGY, c);
+  outside = c->noutside + (contact ? ctx2.noutside : 0);
   kinetic = c->result[0];
   internal = c->result[1];
   for (int a = 0; a < 3; ++a) momentum[a] = c->result[2 + a];
@@ -559,7 +634,11 @@ int run_main(int argc, char** argv) {
       if (!opt.kernel.empty()) select_stages(t, opt.kernel, false);
       if (!opt.kernels.empty()) select_stages(t, opt.kernels, true);
       sim.set_stages(t);
-      if (opt.scatter == "expansion") sim.use_expansion_scatter();
+      if (opt.scatter == "expansion") {
+        // The per-thread copies are a trilinear, single-grid benchmark.
+        if (sim.model.gimp || sim.model.contact) throw UsageError("--scatter expansion supports neither 'gimp' nor 'cont'");
+        sim.use_expansion_scatter();
+      }
     }
     OutputSchedule resume;
     const bool restarted = !opt.restart.empty();
@@ -583,6 +662,10 @@ int run_main(int argc, char** argv) {
     if (restarted) head << "\n  restarted from " << opt.restart << " at step " << sim.steps << ", t " << sim.time;
     if (opt.patch_given && restarted && opt.patch_cells != patch_cells)
       head << "\n  warning: --patch-cells ignored: a restart keeps the checkpoint's " << patch_cells;
+    if (m.gimp) head << "\n  GIMP shape functions (27 nodes)";
+    if (m.contact)
+      head << "\n  contact between components 1 and 2, friction " << m.contact_mu << ", normals from "
+           << (m.contact_normbody == 0 ? std::string("both components") : "component " + std::to_string(m.contact_normbody));
     for (const auto& w : m.warnings) head << "\n  warning: " << w;
     out.log(head.str());
     if (!opt.quiet) std::cout << head.str() << std::endl;
@@ -623,6 +706,7 @@ int run_main(int argc, char** argv) {
       log_regrid();
       if (!failure.empty()) break;
       out.step(m, sim.time, sim.kinetic, sim.internal, sim.momentum);
+      if (m.contact) out.contact(sim.time, sim.contact_force);
       if (sim.time >= next_out - eps) {
         if (out.animates()) out.frame(m, sim.time, sim.steps);
         next_out += m.outtime;

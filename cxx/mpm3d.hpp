@@ -39,7 +39,11 @@ class Simulation {
 
   Model model;
   Grid grid;
-  StepContext ctx{};
+  StepContext ctx{};  // every particle; with contact: component 1 (ctx.other = &ctx2)
+  Grid grid2;         // contact only: component 2's grid
+  StepContext ctx2{};  // contact only: component 2's context
+  double contact_force[3] = {0, 0, 0};  // contact: force on component 1 in the last step
+  int contact_nodes = 0;                // contact: nodes corrected in the last step
   long steps = 0;
   double time = 0.0;
   double kinetic = 0.0, internal = 0.0, momentum[3] = {0, 0, 0};
@@ -65,6 +69,8 @@ class Simulation {
   std::vector<double> lx_, partials_;
   std::vector<int> cell_, pscratch_;
   std::vector<double> gravity_;
+  std::vector<int> body_comp_;                        // contact: component of each body
+  std::vector<double> gnormal1_, gnormal2_, cpartials_;  // contact only
   void bind();       // points ctx at the arrays
   void bind_grid();  // ... and at the grid's (again after a regrid)
   void regrid(int escaped);

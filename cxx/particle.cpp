@@ -28,7 +28,8 @@ std::vector<ParticleField> particle_fields(Particles& P) {
           {"temperature", 1, &P.temp, nullptr},
           {"external_force", 3, &P.fext, nullptr},
           {"lighting_time", 1, &P.tlight, nullptr},
-          {"bulk_viscosity", 1, &P.qv, nullptr}};
+          {"bulk_viscosity", 1, &P.qv, nullptr},
+          {"gimp_half_size", 1, &P.psize, nullptr}};
 }
 
 }  // namespace mpm3d

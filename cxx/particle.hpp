@@ -12,6 +12,7 @@ struct Body {
   int first = 0;      // first particle (0-based)
   int count = 0;      // particles in the body
   int component = 1;  // contact component (1-based, as in the deck)
+  double spacing = 0.0;  // particle spacing dp of bloc/sphe/cyli cards; 0 for poin
   double gravity[3] = {0.0, 0.0, 0.0};
 };
 
@@ -24,6 +25,7 @@ struct Particles {
   std::vector<double> fext;                // (3,np) only with point/body loads
   std::vector<double> tlight;              // (np) only with hiex: lighting time
   std::vector<double> qv;                  // (np) only with 'bulk': bulk viscosity pressure
+  std::vector<double> psize;               // (np) GIMP particle half-size lp, only with gimp
 
   void resize(int n);
   double density(int p) const { return mass[p] / vol[p]; }
@@ -40,7 +42,7 @@ struct ParticleField {
   std::vector<int32_t>* i;
 };
 std::vector<ParticleField> particle_fields(Particles& P);
-constexpr int kParticleArrays = 13;  // arrays listed by particle_fields
+constexpr int kParticleArrays = 14;  // arrays listed by particle_fields
 
 // Physical sums over all particles (deterministic, see update_step).
 struct Energies {

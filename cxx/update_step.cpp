@@ -17,11 +17,11 @@
 namespace mpm3d {
 
 const char* const kStageNames[ST_COUNT] = {"bin", "p2g", "forces", "integrate",
-                                           "g2p", "stress", "energy"};
+                                           "g2p", "stress", "energy", "contact"};
 
 StageTable cxx_stages() {
   return StageTable{{mpm3d_cxx_bin, mpm3d_cxx_p2g, mpm3d_cxx_forces, mpm3d_cxx_integrate,
-                     mpm3d_cxx_g2p, mpm3d_cxx_stress, mpm3d_cxx_energy}};
+                     mpm3d_cxx_g2p, mpm3d_cxx_stress, mpm3d_cxx_energy, mpm3d_cxx_contact}};
 }
 
 bool have_fortran_stages() {
@@ -35,7 +35,7 @@ bool have_fortran_stages() {
 StageTable fortran_stages() {
 #ifdef MPM3D_HAVE_FORTRAN
   return StageTable{{mpm3d_f_bin, mpm3d_f_p2g, mpm3d_f_forces, mpm3d_f_integrate, mpm3d_f_g2p,
-                     mpm3d_f_stress, mpm3d_f_energy}};
+                     mpm3d_f_stress, mpm3d_f_energy, mpm3d_f_contact}};
 #else
   throw std::runtime_error("this build has no Fortran reference kernels");
 #endif
@@ -107,9 +107,14 @@ inline int node_of(const StepContext* c, int base, int k) {
   return base + (k & 1) + c->nn[0] * (((k >> 1) & 1) + c->nn[1] * ((k >> 2) & 1));
 }
 
+// Nodes in one patch buffer: (patch_cells + 1 + 2 halo)^3.
+inline int patch_nodes(const StepContext* c) {
+  const int Q = c->patch_cells + 1 + 2 * c->patch_halo;
+  return Q * Q * Q;
+}
+
 inline double* patch_buffer(const StepContext* c, int slot) {
-  const int pn = (c->patch_cells + 1) * (c->patch_cells + 1) * (c->patch_cells + 1);
-  return c->patch_buf + size_t(slot) * size_t(pn) * kNodeFields;
+  return c->patch_buf + size_t(slot) * size_t(patch_nodes(c)) * kNodeFields;
 }
 
 // Local node index, in the buffer of patch (qx, qy, qz), of the base node of a cell.
@@ -133,8 +138,8 @@ inline int patch_local(int P, int k) {
 
 // Nodes owned by patch q: [lo, hi) per axis; the last patch of an axis also owns the
 // grid's last node layer. A patch is active when it or one of its seven lower neighbours
-// holds particles; nodes of inactive patches are never read by any stage, so node loops
-// skip them (their values are left as they were).
+// holds particles (GIMP, halo 1: one of its 26 neighbours); nodes of inactive patches are
+// never read by any stage, so node loops skip them (their values are left as they were).
 struct OwnedNodes {
   int lo[3], hi[3];
   bool active;
@@ -149,11 +154,13 @@ inline OwnedNodes owned_nodes(const StepContext* c, int q) {
     o.hi[a] = q3[a] == c->npd[a] - 1 ? c->nn[a] : o.lo[a] + P;
   }
   o.active = false;
-  for (int cz = 0; cz < 2 && !o.active; ++cz)
-    for (int cy = 0; cy < 2 && !o.active; ++cy)
-      for (int cx = 0; cx < 2 && !o.active; ++cx) {
+  const int ne = 2 + c->patch_halo;
+  for (int cz = 0; cz < ne && !o.active; ++cz)
+    for (int cy = 0; cy < ne && !o.active; ++cy)
+      for (int cx = 0; cx < ne && !o.active; ++cx) {
         const int px = q3[0] - 1 + cx, py = q3[1] - 1 + cy, pz = q3[2] - 1 + cz;
-        if (px >= 0 && py >= 0 && pz >= 0 && c->patch_slot[px + c->npd[0] * (py + c->npd[1] * pz)] >= 0)
+        if (px >= 0 && py >= 0 && pz >= 0 && px < c->npd[0] && py < c->npd[1] && pz < c->npd[2] &&
+            c->patch_slot[px + c->npd[0] * (py + c->npd[1] * pz)] >= 0)
           o.active = true;
       }
   return o;
@@ -164,8 +171,15 @@ inline OwnedNodes owned_nodes(const StepContext* c, int q) {
 // Fields first..first+count-1 of the buffers go to dst_mass (field 0), dst_mom (1-3)
 // and dst_force (4-6). Every node is written by exactly one owner patch (the patch whose
 // lower corner region holds it), so owners run in parallel.
+void assemble_wide(const StepContext* c, int first, int count, double* dst_mass, double* dst_mom,
+                   double* dst_force);
+
 void assemble(const StepContext* c, int first, int count, double* dst_mass, double* dst_mom,
               double* dst_force) {
+  if (c->patch_halo > 0) {
+    assemble_wide(c, first, count, dst_mass, dst_mom, dst_force);
+    return;
+  }
   const int P = c->patch_cells, Q = P + 1;
   const int npd0 = c->npd[0], npd1 = c->npd[1], npd2 = c->npd[2];
   const int pn = Q * Q * Q;
@@ -231,6 +245,96 @@ void assemble(const StepContext* c, int first, int count, double* dst_mass, doub
   }
 }
 
+// Patches whose buffers (halo H) hold node n along one axis: [lo, hi].
+inline void patch_range(int n, int P, int H, int npd, int& lo, int& hi) {
+  const int t = n - P - H;
+  lo = t <= 0 ? 0 : (t + P - 1) / P;
+  hi = (n + H) / P;
+  if (hi > npd - 1) hi = npd - 1;
+}
+
+// The canonical assembly for buffers with a halo (GIMP): each node's value is 0.0 plus the
+// values of the non-empty patches holding it, in ascending patch index, as assemble; the
+// owner patch of each node gathers them (owners run in parallel).
+void assemble_wide(const StepContext* c, int first, int count, double* dst_mass, double* dst_mom,
+                   double* dst_force) {
+  const int P = c->patch_cells, H = c->patch_halo, Q = P + 1 + 2 * H;
+  const size_t pn = size_t(Q) * size_t(Q) * size_t(Q);
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int q = 0; q < c->npatch; ++q) {
+    const OwnedNodes o = owned_nodes(c, q);
+    if (!o.active) continue;
+    for (int k = o.lo[2]; k < o.hi[2]; ++k) {
+      int zlo, zhi;
+      patch_range(k, P, H, c->npd[2], zlo, zhi);
+      for (int j = o.lo[1]; j < o.hi[1]; ++j) {
+        int ylo, yhi;
+        patch_range(j, P, H, c->npd[1], ylo, yhi);
+        for (int i = o.lo[0]; i < o.hi[0]; ++i) {
+          int xlo, xhi;
+          patch_range(i, P, H, c->npd[0], xlo, xhi);
+          double sum[kNodeFields] = {0, 0, 0, 0, 0, 0, 0};
+          for (int qz = zlo; qz <= zhi; ++qz)
+            for (int qy = ylo; qy <= yhi; ++qy)
+              for (int qx = xlo; qx <= xhi; ++qx) {
+                const int slot = c->patch_slot[qx + c->npd[0] * (qy + c->npd[1] * qz)];
+                if (slot < 0) continue;
+                const int ln = (i - qx * P + H) + Q * ((j - qy * P + H) + Q * (k - qz * P + H));
+                const double* v = c->patch_buf + (size_t(slot) * pn + size_t(ln)) * kNodeFields + first;
+                for (int f = 0; f < count; ++f) sum[f] += v[f];
+              }
+          const int n = i + c->nn[0] * (j + c->nn[1] * k);
+          for (int f = 0; f < count; ++f) {
+            const int field = first + f;
+            if (field == 0) dst_mass[n] = sum[f];
+            else if (field <= 3) dst_mom[3 * n + field - 1] = sum[f];
+            else dst_force[3 * n + field - 4] = sum[f];
+          }
+        }
+      }
+    }
+  }
+}
+
+// GIMP stencil of one particle: its cell (i, j, k), the stencil offsets o and the 27
+// weights and gradients; node (a, b, c) of the stencil is grid node
+// (i + o0 + a, j + o1 + b, k + o2 + c).
+struct GimpStencil {
+  int ci[3], o[3];
+  double N[27], G[81];
+};
+
+inline void gimp_stencil(const StepContext* c, const CellDecoder& dec, int p, GimpStencil& s) {
+  dec(c->cell[p], s.ci[0], s.ci[1], s.ci[2]);
+  const double* lx = c->lx + 3 * p;
+  for (int a = 0; a < 3; ++a) s.o[a] = gimp_offset(lx[a], s.ci[a], c->nc[a]);
+  shape_gimp(lx, s.o, c->psize[p] * c->inv_h, c->inv_h, s.N, s.G);
+}
+
+// Global node index of the stencil's first node (a = b = c = 0).
+inline int gimp_corner(const StepContext* c, const GimpStencil& s) {
+  return (s.ci[0] + s.o[0]) + c->nn[0] * ((s.ci[1] + s.o[1]) + c->nn[1] * (s.ci[2] + s.o[2]));
+}
+
+// Buffer node index, in the buffer of patch q3 (halo 1), of the stencil's first node.
+inline int gimp_patch_corner(const StepContext* c, const int q3[3], const GimpStencil& s) {
+  const int P = c->patch_cells, H = c->patch_halo, Q = P + 1 + 2 * H;
+  return (s.ci[0] + s.o[0] - q3[0] * P + H) +
+         Q * ((s.ci[1] + s.o[1] - q3[1] * P + H) + Q * (s.ci[2] + s.o[2] - q3[2] * P + H));
+}
+
+// Offset of stencil node k = a + 3 b + 9 c from the stencil's first node, in an array of
+// row length r0 and plane size r0 r1.
+inline int stencil_offset(int k, int r0, int r1) {
+  const int a = k % 3, b = (k / 3) % 3, cc = k / 9;
+  return a + r0 * (b + r1 * cc);
+}
+
+// True when particle p belongs to another component than the context's (contact).
+inline bool other_component(const StepContext* c, int p) {
+  return c->only_comp > 0 && c->body_comp[c->body[p]] != c->only_comp;
+}
+
 // Boundary conditions of the box faces on a nodal vector field (3,nnode):
 // 1 fixed (all components zero), 2 symmetry (normal component zero).
 void apply_bc(const StepContext* c, double* a) {
@@ -258,8 +362,14 @@ void apply_bc(const StepContext* c, double* a) {
   }
 }
 
+void scatter_p2g_gimp(StepContext* c, bool with_mass_mom, bool with_forces);
+
 // Scatter of mass, momentum and (optionally) forces of every particle into its patch buffer.
 void scatter_p2g(StepContext* c, bool with_mass_mom, bool with_forces) {
+  if (c->shape == 1) {
+    scatter_p2g_gimp(c, with_mass_mom, with_forces);
+    return;
+  }
   const int P = c->patch_cells;
   const int pn = (P + 1) * (P + 1) * (P + 1);
   const CellDecoder dec(c);
@@ -318,6 +428,247 @@ void scatter_p2g(StepContext* c, bool with_mass_mom, bool with_forces) {
   }
 }
 
+// The same with the 27-node GIMP stencils (buffers with a halo of one node layer).
+void scatter_p2g_gimp(StepContext* c, bool with_mass_mom, bool with_forces) {
+  const int Q = c->patch_cells + 1 + 2 * c->patch_halo;
+  const int pn = patch_nodes(c);
+  const CellDecoder dec(c);
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int q = 0; q < c->npatch; ++q) {
+    const int slot = c->patch_slot[q];
+    if (slot < 0) continue;
+    int q3[3];
+    patch_coords(c, q, q3);
+    double* buf = patch_buffer(c, slot);
+    std::memset(buf, 0, sizeof(double) * size_t(pn) * kNodeFields);
+    for (int idx = c->patch_start[q]; idx < c->patch_start[q + 1]; ++idx) {
+      const int p = c->patch_part[idx];
+      GimpStencil st;
+      gimp_stencil(c, dec, p, st);
+      const int base = gimp_patch_corner(c, q3, st);
+      const double mp = c->mass[p];
+      const double* vp = c->v + 3 * p;
+      double vs[6] = {0, 0, 0, 0, 0, 0}, fb[3] = {0, 0, 0};
+      if (with_forces) {
+        const double volp = c->vol[p];
+        for (int s = 0; s < 6; ++s) vs[s] = c->sig[6 * p + s] * volp;
+        if (c->has_body_force) {
+          const double* g = c->gravity + 3 * c->body[p];
+          for (int a = 0; a < 3; ++a) {
+            fb[a] = mp * g[a];
+            if (c->fext) fb[a] = fb[a] + c->fext[3 * p + a];
+          }
+        }
+      }
+      for (int k = 0; k < 27; ++k) {
+        double* b = buf + size_t(base + stencil_offset(k, Q, Q)) * kNodeFields;
+        const double Nk = st.N[k];
+        if (with_mass_mom) {
+          const double mn = mp * Nk;
+          b[0] += mn;
+          b[1] += mn * vp[0];
+          b[2] += mn * vp[1];
+          b[3] += mn * vp[2];
+        }
+        if (with_forces) {
+          const double gx = st.G[3 * k], gy = st.G[3 * k + 1], gz = st.G[3 * k + 2];
+          double fx = -((vs[0] * gx + vs[5] * gy) + vs[4] * gz);
+          double fy = -((vs[5] * gx + vs[1] * gy) + vs[3] * gz);
+          double fz = -((vs[4] * gx + vs[3] * gy) + vs[2] * gz);
+          if (c->has_body_force) {
+            fx = Nk * fb[0] + fx;
+            fy = Nk * fb[1] + fy;
+            fz = Nk * fb[2] + fz;
+          }
+          b[4] += fx;
+          b[5] += fy;
+          b[6] += fz;
+        }
+      }
+    }
+  }
+}
+
+// G2P with the GIMP stencils: as mpm3d_cxx_g2p.
+void g2p_gimp(StepContext* c) {
+  const bool remap = c->scheme == SCHEME_MUSL;
+  const int Q = c->patch_cells + 1 + 2 * c->patch_halo;
+  const int pn = patch_nodes(c);
+  const double cutoff = c->mass_cutoff, dt = c->dt, dt_int = c->dt_int;
+  const int nn0 = c->nn[0], nn1 = c->nn[1];
+  const CellDecoder dec(c);
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int q = 0; q < c->npatch; ++q) {
+    const int slot = c->patch_slot[q];
+    if (slot < 0) continue;
+    int q3[3];
+    patch_coords(c, q, q3);
+    double* buf = patch_buffer(c, slot);
+    if (remap)
+      for (int ln = 0; ln < pn; ++ln)
+        for (int f = 1; f <= 3; ++f) buf[size_t(ln) * kNodeFields + f] = 0.0;
+    for (int idx = c->patch_start[q]; idx < c->patch_start[q + 1]; ++idx) {
+      const int p = c->patch_part[idx];
+      GimpStencil st;
+      gimp_stencil(c, dec, p, st);
+      const int base = gimp_corner(c, st);
+      double ax = 0.0, ay = 0.0, az = 0.0, ux = 0.0, uy = 0.0, uz = 0.0;
+      for (int k = 0; k < 27; ++k) {
+        const int n = base + stencil_offset(k, nn0, nn1);
+        const double m = c->gmass[n];
+        if (!(m > cutoff)) continue;
+        const double r = st.N[k] / m;
+        const double* f = c->gforce + 3 * n;
+        const double* pm = c->gmom + 3 * n;
+        ax += f[0] * r;
+        ay += f[1] * r;
+        az += f[2] * r;
+        ux += pm[0] * r;
+        uy += pm[1] * r;
+        uz += pm[2] * r;
+      }
+      double* vp = c->v + 3 * p;
+      double* xp = c->x + 3 * p;
+      vp[0] = vp[0] + ax * dt_int;
+      vp[1] = vp[1] + ay * dt_int;
+      vp[2] = vp[2] + az * dt_int;
+      xp[0] = xp[0] + ux * dt;
+      xp[1] = xp[1] + uy * dt;
+      xp[2] = xp[2] + uz * dt;
+      if (remap) {
+        const int pbase = gimp_patch_corner(c, q3, st);
+        const double mp = c->mass[p];
+        for (int k = 0; k < 27; ++k) {
+          double* b = buf + size_t(pbase + stencil_offset(k, Q, Q)) * kNodeFields;
+          const double mn = mp * st.N[k];
+          b[1] += mn * vp[0];
+          b[2] += mn * vp[1];
+          b[3] += mn * vp[2];
+        }
+      }
+    }
+  }
+  if (remap) {
+    assemble(c, 1, 3, c->gmass, c->gmom, c->gforce);
+    apply_bc(c, c->gmom);
+  }
+}
+
+// The particle loop of the stress stage: velocity gradient from the node velocities gvel
+// (trilinear or GIMP stencil), strain and spin increments, volume, stress update.
+template <bool kGimp>
+void stress_particles(StepContext* c, const double* gvel) {
+  const double dt = c->dt, cutoff = c->mass_cutoff;
+  const bool filter = c->only_comp > 0;
+  const CellDecoder dec(c);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (int p = 0; p < c->np; ++p) {
+    const int cell = c->cell[p];
+    if (cell < 0) continue;
+    if (filter && other_component(c, p)) continue;
+    // Velocity gradient L[3a+b] = d v_a / d x_b, summed over the nodes in stencil order.
+    double l0 = 0, l1 = 0, l2 = 0, l3 = 0, l4 = 0, l5 = 0, l6 = 0, l7 = 0, l8 = 0;
+    if constexpr (kGimp) {
+      GimpStencil st;
+      gimp_stencil(c, dec, p, st);
+      const int base = gimp_corner(c, st);
+      for (int k = 0; k < 27; ++k) {
+        const int n = base + stencil_offset(k, c->nn[0], c->nn[1]);
+        if (!(c->gmass[n] > cutoff)) continue;
+        const double vx = gvel[3 * n], vy = gvel[3 * n + 1], vz = gvel[3 * n + 2];
+        const double gx = st.G[3 * k], gy = st.G[3 * k + 1], gz = st.G[3 * k + 2];
+        l0 += vx * gx;
+        l1 += vx * gy;
+        l2 += vx * gz;
+        l3 += vy * gx;
+        l4 += vy * gy;
+        l5 += vy * gz;
+        l6 += vz * gx;
+        l7 += vz * gy;
+        l8 += vz * gz;
+      }
+    } else {
+      double N[8], G[24];
+      shape_linear(c->lx + 3 * p, c->inv_h, N, G);
+      const int base = base_node(c, dec, cell);
+      for (int k = 0; k < 8; ++k) {
+        const int n = node_of(c, base, k);
+        if (!(c->gmass[n] > cutoff)) continue;
+        const double vx = gvel[3 * n], vy = gvel[3 * n + 1], vz = gvel[3 * n + 2];
+        const double gx = G[3 * k], gy = G[3 * k + 1], gz = G[3 * k + 2];
+        l0 += vx * gx;
+        l1 += vx * gy;
+        l2 += vx * gz;
+        l3 += vy * gx;
+        l4 += vy * gy;
+        l5 += vy * gz;
+        l6 += vz * gx;
+        l7 += vz * gy;
+        l8 += vz * gz;
+      }
+    }
+    const double L[9] = {l0, l1, l2, l3, l4, l5, l6, l7, l8};
+    const double de[6] = {L[0] * dt, L[4] * dt, L[8] * dt, (0.5 * (L[5] + L[7])) * dt,
+                          (0.5 * (L[2] + L[6])) * dt, (0.5 * (L[1] + L[3])) * dt};
+    const double dw[3] = {(0.5 * (L[5] - L[7])) * dt, (0.5 * (L[2] - L[6])) * dt,
+                          (0.5 * (L[1] - L[3])) * dt};
+    const double vol_old = c->vol[p];
+    const double vol_new = vol_old * (1.0 + ((de[0] + de[1]) + de[2]));
+    StressState st{c->sig + 6 * p, c->epeff + p, c->ie + p, c->temp ? c->temp + p : nullptr,
+                   c->qv ? c->qv + p : nullptr};
+    const MaterialParams& mp = c->mats[c->mat[p]];
+    const double burn = c->tlight ? burn_fraction(mp, c->tlight[p], c->time) : 1.0;
+    stress_update(mp, de, dw, dt, c->mass[p], vol_old, vol_new, st, burn, c->bulk_q1, c->bulk_q2, c->h);
+    c->vol[p] = vol_new;
+  }
+}
+
+// Contact: g_i = sum_p m_p grad N_i(x_p) of the context's particles (the outward normal
+// direction of its body at node i) into gnormal,
+// through the force fields (4-6) of the patch buffers, which no stage reads after the
+// force assembly.
+void scatter_mass_gradient(StepContext* c) {
+  const int P = c->patch_cells, Q = P + 1 + 2 * c->patch_halo;
+  const int pn = patch_nodes(c);
+  const CellDecoder dec(c);
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int q = 0; q < c->npatch; ++q) {
+    const int slot = c->patch_slot[q];
+    if (slot < 0) continue;
+    int q3[3];
+    patch_coords(c, q, q3);
+    double* buf = patch_buffer(c, slot);
+    for (int ln = 0; ln < pn; ++ln)
+      for (int f = 4; f <= 6; ++f) buf[size_t(ln) * kNodeFields + f] = 0.0;
+    for (int idx = c->patch_start[q]; idx < c->patch_start[q + 1]; ++idx) {
+      const int p = c->patch_part[idx];
+      const double mp = c->mass[p];
+      if (c->shape == 1) {
+        GimpStencil st;
+        gimp_stencil(c, dec, p, st);
+        const int base = gimp_patch_corner(c, q3, st);
+        for (int k = 0; k < 27; ++k) {
+          double* b = buf + size_t(base + stencil_offset(k, Q, Q)) * kNodeFields;
+          b[4] += mp * st.G[3 * k];
+          b[5] += mp * st.G[3 * k + 1];
+          b[6] += mp * st.G[3 * k + 2];
+        }
+      } else {
+        double N[8], G[24];
+        shape_linear(c->lx + 3 * p, c->inv_h, N, G);
+        const int base = patch_base(c, dec, q3, c->cell[p]);
+        for (int k = 0; k < 8; ++k) {
+          double* b = buf + size_t(base + patch_local(P, k)) * kNodeFields;
+          b[4] += mp * G[3 * k];
+          b[5] += mp * G[3 * k + 1];
+          b[6] += mp * G[3 * k + 2];
+        }
+      }
+    }
+  }
+  assemble(c, 4, 3, c->gmass, c->gmom, c->gnormal);
+}
+
 }  // namespace
 }  // namespace mpm3d
 
@@ -328,8 +679,13 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
   const int np = c->np, npatch = c->npatch;
   int* patch_of = c->pscratch;  // patch of each particle, -1 outside
   int outside = 0;
+  const bool filter = c->only_comp > 0;  // contact: this context's component only
 #pragma omp parallel for schedule(static) reduction(+ : outside)
   for (int p = 0; p < np; ++p) {
+    if (filter && other_component(c, p)) {
+      patch_of[p] = -1;
+      continue;
+    }
     int idx[3];
     bool in = true;
     for (int a = 0; a < 3; ++a) {
@@ -425,6 +781,10 @@ extern "C" void mpm3d_cxx_integrate(StepContext* c) {
 }
 
 extern "C" void mpm3d_cxx_g2p(StepContext* c) {
+  if (c->shape == 1) {
+    g2p_gimp(c);
+    return;
+  }
   const bool remap = c->scheme == SCHEME_MUSL;
   const int P = c->patch_cells;
   const int pn = (P + 1) * (P + 1) * (P + 1);
@@ -488,7 +848,7 @@ extern "C" void mpm3d_cxx_g2p(StepContext* c) {
 }
 
 extern "C" void mpm3d_cxx_stress(StepContext* c) {
-  const double dt = c->dt, cutoff = c->mass_cutoff;
+  const double cutoff = c->mass_cutoff;
   // Node velocities once per node (the same division p/m as per particle, so the same bits).
   // They are kept in the force array, which no stage reads again before the next p2g or
   // forces stage overwrites it (USF: stress runs before forces).
@@ -506,45 +866,10 @@ extern "C" void mpm3d_cxx_stress(StepContext* c) {
           for (int a = 0; a < 3; ++a) gvel[3 * n + a] = c->gmom[3 * n + a] / m;
         }
   }
-  const CellDecoder dec(c);
-#pragma omp parallel for schedule(dynamic, 256)
-  for (int p = 0; p < c->np; ++p) {
-    const int cell = c->cell[p];
-    if (cell < 0) continue;
-    double N[8], G[24];
-    shape_linear(c->lx + 3 * p, c->inv_h, N, G);
-    const int base = base_node(c, dec, cell);
-    // Velocity gradient L[3a+b] = d v_a / d x_b, summed over the nodes in order k = 0..7.
-    double l0 = 0, l1 = 0, l2 = 0, l3 = 0, l4 = 0, l5 = 0, l6 = 0, l7 = 0, l8 = 0;
-    for (int k = 0; k < 8; ++k) {
-      const int n = node_of(c, base, k);
-      if (!(c->gmass[n] > cutoff)) continue;
-      const double vx = gvel[3 * n], vy = gvel[3 * n + 1], vz = gvel[3 * n + 2];
-      const double gx = G[3 * k], gy = G[3 * k + 1], gz = G[3 * k + 2];
-      l0 += vx * gx;
-      l1 += vx * gy;
-      l2 += vx * gz;
-      l3 += vy * gx;
-      l4 += vy * gy;
-      l5 += vy * gz;
-      l6 += vz * gx;
-      l7 += vz * gy;
-      l8 += vz * gz;
-    }
-    const double L[9] = {l0, l1, l2, l3, l4, l5, l6, l7, l8};
-    const double de[6] = {L[0] * dt, L[4] * dt, L[8] * dt, (0.5 * (L[5] + L[7])) * dt,
-                          (0.5 * (L[2] + L[6])) * dt, (0.5 * (L[1] + L[3])) * dt};
-    const double dw[3] = {(0.5 * (L[5] - L[7])) * dt, (0.5 * (L[2] - L[6])) * dt,
-                          (0.5 * (L[1] - L[3])) * dt};
-    const double vol_old = c->vol[p];
-    const double vol_new = vol_old * (1.0 + ((de[0] + de[1]) + de[2]));
-    StressState st{c->sig + 6 * p, c->epeff + p, c->ie + p, c->temp ? c->temp + p : nullptr,
-                   c->qv ? c->qv + p : nullptr};
-    const MaterialParams& mp = c->mats[c->mat[p]];
-    const double burn = c->tlight ? burn_fraction(mp, c->tlight[p], c->time) : 1.0;
-    stress_update(mp, de, dw, dt, c->mass[p], vol_old, vol_new, st, burn, c->bulk_q1, c->bulk_q2, c->h);
-    c->vol[p] = vol_new;
-  }
+  if (c->shape == 1)
+    stress_particles<true>(c, gvel);
+  else
+    stress_particles<false>(c, gvel);
 }
 
 extern "C" void mpm3d_cxx_energy(StepContext* c) {
@@ -571,4 +896,84 @@ extern "C" void mpm3d_cxx_energy(StepContext* c) {
     for (int blk = 0; blk < nblock; ++blk) s += c->partials[kReduceFields * blk + f];
     c->result[f] = s;
   }
+}
+
+// Multi-velocity contact (Bardenhagen et al. 2000, 2001) between component 1 (this context)
+// and component 2 (c->other), after both grids are integrated. At a node where both
+// components have mass above the cut-off:
+// - the unit normal n points from component 1 into component 2; it is g1 (normbody 1),
+//   -g2 (2) or g1 - g2 (0), normalised, where g_k = sum_p m_p grad N_i(x_p) over the
+//   particles of component k points out of body k;
+// - q = (m2 p1 - m1 p2)/(m1 + m2) is the momentum component 1 gives up to reach the common
+//   velocity; they approach when q.n > 0, and then component 1's momentum changes by
+//   d = -(q.n n + f t), t = q - q.n n the tangential part, f = 1 (stick) or mu q.n / |t|
+//   when |t| exceeds mu q.n (Coulomb slip), and component 2's by -d;
+// - the forces change by d/dt_int (so that G2P's accelerations agree); then the boundary
+//   conditions are applied again.
+// The contact force on component 1, the sum of d/dt_int over the nodes, goes to
+// result[5..7]: per-patch partials (owned nodes in k, j, i order) folded in patch order.
+extern "C" void mpm3d_cxx_contact(StepContext* c) {
+  StepContext* c2 = c->other;
+  if (!c2) return;
+  scatter_mass_gradient(c);
+  scatter_mass_gradient(c2);
+  const double cutoff = c->mass_cutoff, mu = c->contact_mu, dt_int = c->dt_int;
+  const int nb = c->contact_normbody;
+  int count = 0;
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : count)
+  for (int q = 0; q < c->npatch; ++q) {
+    double part[3] = {0.0, 0.0, 0.0};
+    const OwnedNodes o = owned_nodes(c, q);
+    if (o.active && owned_nodes(c2, q).active) {
+      for (int k = o.lo[2]; k < o.hi[2]; ++k)
+        for (int j = o.lo[1]; j < o.hi[1]; ++j)
+          for (int i = o.lo[0]; i < o.hi[0]; ++i) {
+            const int n = i + c->nn[0] * (j + c->nn[1] * k);
+            const double m1 = c->gmass[n], m2 = c2->gmass[n];
+            if (!(m1 > cutoff) || !(m2 > cutoff)) continue;
+            const double* g1 = c->gnormal + 3 * n;
+            const double* g2 = c2->gnormal + 3 * n;
+            double nv[3];
+            for (int a = 0; a < 3; ++a) nv[a] = nb == 1 ? g1[a] : (nb == 2 ? -g2[a] : g1[a] - g2[a]);
+            const double len = std::sqrt((nv[0] * nv[0] + nv[1] * nv[1]) + nv[2] * nv[2]);
+            if (!(len > 0.0)) continue;
+            double un[3], qv[3];
+            for (int a = 0; a < 3; ++a) un[a] = nv[a] / len;
+            double* p1 = c->gmom + 3 * n;
+            double* p2 = c2->gmom + 3 * n;
+            const double mt = m1 + m2;
+            for (int a = 0; a < 3; ++a) qv[a] = (m2 * p1[a] - m1 * p2[a]) / mt;
+            const double qn = (qv[0] * un[0] + qv[1] * un[1]) + qv[2] * un[2];
+            if (!(qn > 0.0)) continue;
+            double t[3];
+            for (int a = 0; a < 3; ++a) t[a] = qv[a] - qn * un[a];
+            const double tl = std::sqrt((t[0] * t[0] + t[1] * t[1]) + t[2] * t[2]);
+            const double fr = mu * qn;
+            const double ft = tl > fr ? fr / tl : 1.0;
+            double* f1 = c->gforce + 3 * n;
+            double* f2 = c2->gforce + 3 * n;
+            for (int a = 0; a < 3; ++a) {
+              const double d = -(qn * un[a] + ft * t[a]);
+              p1[a] = p1[a] + d;
+              p2[a] = p2[a] - d;
+              const double fc = d / dt_int;
+              f1[a] = f1[a] + fc;
+              f2[a] = f2[a] - fc;
+              part[a] += fc;
+            }
+            ++count;
+          }
+    }
+    for (int a = 0; a < 3; ++a) c->cpartials[3 * q + a] = part[a];
+  }
+  for (int a = 0; a < 3; ++a) {
+    double s = 0.0;
+    for (int q = 0; q < c->npatch; ++q) s += c->cpartials[3 * q + a];
+    c->result[5 + a] = s;
+  }
+  c->ncontact = count;
+  apply_bc(c, c->gmom);
+  apply_bc(c, c->gforce);
+  apply_bc(c2, c2->gmom);
+  apply_bc(c2, c2->gforce);
 }

@@ -26,7 +26,7 @@ struct StepContext {
   int *patch_start, *patch_part, *patch_slot;
   double *patch_buf;
   double *partials;  // (kReduceFields, nblock) scratch of the energy stage
-  double result[8];  // energy stage: kinetic, internal, momentum (3)
+  double result[8];  // energy stage: kinetic, internal, momentum (3); contact stage: force (3)
   double origin[3];  // lower corner of the deck's box (the lattice origin)
   double h, inv_h, dt, dt_int, mass_cutoff;
   int np, nbody, nmat, nnode;
@@ -44,6 +44,19 @@ struct StepContext {
   double bulk_q1, bulk_q2;  // bulk viscosity coefficients (quadratic, linear); length h
   int cell_off[3];     // first cell of the grid window on the deck's lattice (adaptive grid):
                        // cell i of the window is cell cell_off + i of the deck's box
+  // GIMP shape functions and multi-velocity contact (issue 5): null / 0 when the deck does
+  // not ask for them.
+  double *psize;             // (np) GIMP particle half-size lp, or null (trilinear)
+  const int *body_comp;      // (nbody) contact component (1 or 2) of each body, or null
+  struct StepContext *other; // contact: component 2's context, set in component 1's; else null
+  double *gnormal;           // contact: (3,nnode) sum_p m_p grad N_i(x_p) of this component
+  double *cpartials;         // contact: (3,npatch) scratch of the contact-force sum
+  double contact_mu;         // contact: Coulomb friction coefficient
+  int shape;                 // 0 trilinear (8 nodes), 1 uGIMP (27 nodes)
+  int patch_halo;            // node layers a patch buffer holds beyond its cells: 0 or 1 (GIMP)
+  int only_comp;             // 0: every particle; 1 or 2: this context's component only
+  int contact_normbody;      // contact normals from component 1, 2, or 0 (both)
+  int ncontact;              // contact stage: nodes corrected in this step
   // Fields after this point are stage-internal scratch of the C++ kernels (a Fortran
   // mirror of the struct may stop before them).
   int *pscratch;       // (np) patch of each particle during binning
@@ -61,6 +74,7 @@ void mpm3d_cxx_integrate(StepContext* c);  // p += f dt_int; boundary conditions
 void mpm3d_cxx_g2p(StepContext* c);        // v, x from the grid; MUSL: momentum remap and BC
 void mpm3d_cxx_stress(StepContext* c);     // strain and spin increments, volume, stress
 void mpm3d_cxx_energy(StepContext* c);     // kinetic, internal energy, momentum
+void mpm3d_cxx_contact(StepContext* c);    // multi-velocity contact correction (c->other: comp. 2)
 
 // Benchmark alternative to the patch scheme (cxx/update_step_expansion.cpp): per-thread
 // copies of the grid ("array expansion"), reduced node by node in thread order. Correct,
@@ -77,12 +91,13 @@ void mpm3d_f_integrate(StepContext* c);
 void mpm3d_f_g2p(StepContext* c);
 void mpm3d_f_stress(StepContext* c);
 void mpm3d_f_energy(StepContext* c);
+void mpm3d_f_contact(StepContext* c);
 
 }  // extern "C"
 
 namespace mpm3d {
 
-enum Stage { ST_BIN, ST_P2G, ST_FORCES, ST_INTEGRATE, ST_G2P, ST_STRESS, ST_ENERGY, ST_COUNT };
+enum Stage { ST_BIN, ST_P2G, ST_FORCES, ST_INTEGRATE, ST_G2P, ST_STRESS, ST_ENERGY, ST_CONTACT, ST_COUNT };
 extern const char* const kStageNames[ST_COUNT];
 constexpr int kReduceFields = 5;
 

@@ -37,6 +37,11 @@ module mpm3d_data_in
     real(dp) :: dt = 0.0_dp           ! initial time step
     real(dp) :: mass_cutoff = 0.0_dp
     integer :: regrid_every = 0       ! adaptive grid: redefine the grid every N steps (adgr)
+    logical :: gimp = .false.          ! uGIMP shape functions (particles%psize set)
+    logical :: contact = .false.       ! cont: multi-velocity contact of components 1, 2
+    real(dp) :: contact_mu = 0.0_dp    ! Coulomb friction coefficient
+    integer :: contact_normbody = 0    ! normals from component 1, 2, or 0 (both)
+    integer :: contact_line = 0        ! deck line of the cont card
     integer :: nwarn = 0
     character(len=200) :: warnings(16) = ''
     integer :: ndeto = 0                ! detonation points (deto), at most 10
@@ -254,9 +259,22 @@ contains
           call ts%fail(key%line, 'bulk viscosity coefficients must not be negative')
         m%has_bulk = .true.
       case ('gimp')
-        call ts%fail(key%line, "'gimp' (GIMP shape functions) is not yet supported")
+        m%gimp = .true.
       case ('cont')
-        call ts%fail(key%line, "'cont' (multi-velocity contact) is not yet supported")
+        if (ts%at_end()) call ts%fail(key%line, "'cont' needs 'lagr mu normbody'")
+        t = ts%next()
+        if (key4(ts%text_of(t)) /= 'lagr') &
+          call ts%fail(t%line, "'cont': only 'lagr' (multi-velocity grid contact) is supported, found '" // &
+                       ts%text_of(t) // "'")
+        m%contact_mu = ts%real('the friction coefficient')
+        if (.not. (m%contact_mu >= 0.0_dp)) &
+          call ts%fail(key%line, "'cont': friction coefficient must not be negative")
+        t = ts%peek()
+        n = ts%integer('the normal body (0, 1 or 2)')
+        if (n < 0 .or. n > 2) call ts%fail(t%line, "'cont': normal body must be 0 (average), 1 or 2")
+        m%contact_normbody = int(n)
+        m%contact = .true.
+        m%contact_line = key%line
       case ('endi')
         ended = .true.
         call finish(ts, m, key%line)
@@ -610,6 +628,7 @@ contains
         call ts%fail(kind%line, 'density and spacing must be positive')
       vol = (dpp * dpp) * dpp
       mass = rho * vol
+      m%bodies(m%nbodies)%spacing = dpp
       if (k == 'bloc') then
         do a = 1, 3
           o(a) = ts%real('the block origin')
@@ -787,8 +806,8 @@ contains
     type(model_t), intent(inout) :: m
     integer, intent(in) :: line
     integer :: i, a, p, slash, dot, k
-    real(dp) :: n, fl, c_max, rho_sum, dmin, dx, dy, dz, d
-    logical :: thermal, hiex
+    real(dp) :: n, fl, c_max, rho_sum, dmin, dx, dy, dz, d, lp
+    logical :: thermal, hiex, clamped
     character(len=:), allocatable :: base
     character(len=32) :: buf
     if (m%nbmp < 0) call ts%fail(line, "no 'nbmp' (number of particles) before 'endi'")
@@ -806,6 +825,7 @@ contains
     end do
     if (.not. (m%dcell > 0.0_dp)) call ts%fail(line, "no cell size ('dcel')")
     if (.not. (m%endtime > 0.0_dp)) call ts%fail(line, "no end time ('endt')")
+    if (m%contact .and. m%nbco /= 2) call ts%fail(m%contact_line, "'cont' needs two components ('nbco 2')")
     if (m%rpttime <= 0.0_dp) m%rpttime = m%outtime
     do a = 1, 3
       n = (m%box_hi(a) - m%box_lo(a)) / m%dcell
@@ -876,6 +896,34 @@ contains
         if (thermal) m%particles%temp(p) = mp%t_room
       end associate
     end do
+    ! GIMP particle half-size lp: half the spacing of bloc/sphe/cyli particles, half the cube
+    ! root of the volume of poin particles; at most h/2 (the 27-node stencil).
+    if (m%gimp) then
+      allocate(m%particles%psize(m%particles%np))
+      m%particles%psize = 0.0_dp
+      clamped = .false.
+      do i = 1, m%nbodies
+        do p = m%bodies(i)%first + 1, m%bodies(i)%first + m%bodies(i)%count
+          if (m%bodies(i)%spacing > 0.0_dp) then
+            lp = 0.5_dp * m%bodies(i)%spacing
+          else
+            lp = 0.5_dp * (m%particles%vol(p) ** (1.0_dp / 3.0_dp))
+          end if
+          if (lp > 0.5_dp * m%dcell) then
+            lp = 0.5_dp * m%dcell
+            clamped = .true.
+          end if
+          m%particles%psize(p) = lp
+        end do
+      end do
+      if (clamped) call warn(m, 'gimp: particles larger than the cell size take half a cell as their half-size')
+      do a = 1, 3
+        n = (m%box_hi(a) - m%box_lo(a)) / m%dcell + 0.5_dp
+        fl = aint(n)
+        if (fl > n) fl = fl - 1.0_dp
+        if (fl < 2.0_dp) call ts%fail(line, "'gimp' needs at least two cells along each axis")
+      end do
+    end if
     ! dt = dtscale * h / c_max (the dilatational wave speed, D for hiex, c for null), fixed
     ! for the run; with bulk viscosity dtscale h / (c_max (q2 + sqrt(1 + q2^2))).
     if (m%has_bulk) then

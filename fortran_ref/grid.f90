@@ -25,7 +25,8 @@ module mpm3d_grid
     integer :: patch_cells = 8
     integer :: npd(3) = 0              ! patches per axis
     integer :: npatch = 0
-    integer :: patch_nodes = 0         ! (patch_cells + 1)^3
+    integer :: patch_halo = 0          ! node layers beyond a patch's cells: 0, 1 (GIMP)
+    integer :: patch_nodes = 0         ! (patch_cells + 1 + 2 patch_halo)^3
     integer, allocatable :: patch_start(:)   ! (npatch + 1), 0-based offsets
     integer, allocatable :: patch_part(:)    ! (np), 0-based particle indices
     integer, allocatable :: patch_slot(:)    ! (npatch), 0-based slot or -1
@@ -34,7 +35,7 @@ module mpm3d_grid
   end type grid_t
 
   public :: grid_setup, grid_define, grid_set_window, grid_window_is_box, grid_nnode, shape_linear
-  public :: grid_adaptive_window, grid_count_escaped
+  public :: grid_adaptive_window, grid_count_escaped, gimp_1d, shape_gimp, gimp_offset
 
 contains
 
@@ -43,30 +44,32 @@ contains
     grid_nnode = g%nn(1) * g%nn(2) * g%nn(3)
   end function grid_nnode
 
-  ! grid_define and grid_set_window over the whole box (Grid::setup).
-  subroutine grid_setup(g, lo, hi, cell, patch_cells, err)
+  ! grid_define and grid_set_window over the whole box (Grid::setup); halo: node layers a
+  ! patch buffer holds beyond its cells (1 with GIMP).
+  subroutine grid_setup(g, lo, hi, cell, patch_cells, halo, err)
     type(grid_t), intent(inout) :: g
     real(dp), intent(in) :: lo(3), hi(3), cell
-    integer, intent(in) :: patch_cells
+    integer, intent(in) :: patch_cells, halo
     character(len=:), allocatable, intent(out) :: err
     integer :: zero(3)
-    call grid_define(g, lo, hi, cell, patch_cells, err)
+    call grid_define(g, lo, hi, cell, patch_cells, halo, err)
     if (len(err) > 0) return
     zero = 0
     call grid_set_window(g, zero, g%deck_nc)
   end subroutine grid_setup
 
   ! The deck's box and lattice, no allocation (Grid::define).
-  subroutine grid_define(g, lo, hi, cell, patch_cells, err)
+  subroutine grid_define(g, lo, hi, cell, patch_cells, halo, err)
     type(grid_t), intent(inout) :: g
     real(dp), intent(in) :: lo(3), hi(3), cell
-    integer, intent(in) :: patch_cells
+    integer, intent(in) :: patch_cells, halo
     character(len=:), allocatable, intent(out) :: err
     real(dp) :: n, t
-    integer :: a
+    integer :: a, qq
     err = ''
     g%h = cell
     g%patch_cells = patch_cells
+    g%patch_halo = halo
     do a = 1, 3
       g%origin(a) = lo(a)
       t = (hi(a) - lo(a)) / cell + 0.5_dp
@@ -78,7 +81,8 @@ contains
       end if
       g%deck_nc(a) = int(n)
     end do
-    g%patch_nodes = (patch_cells + 1) * (patch_cells + 1) * (patch_cells + 1)
+    qq = patch_cells + 1 + 2 * halo
+    g%patch_nodes = qq * qq * qq
   end subroutine grid_define
 
   ! Makes cells off .. off + nc - 1 the window: counts, patches, node arrays allocated
@@ -224,5 +228,81 @@ contains
       sg(3, k + 1) = (wx(a) * wy(b)) * gr(c)
     end do
   end subroutine shape_linear
+
+  ! uGIMP weights of the three nodes at offsets o, o+1, o+2 (o = -1 or 0) from the base node
+  ! of the particle's cell along one axis (cxx/grid.hpp gimp_1d, same operations): lx in
+  ! [0,1) the local coordinate, l = lp/h the particle half-size in cells, r = lx - (o + k).
+  pure subroutine gimp_1d(lx, o, l, inv_h, w, g)
+    real(dp), intent(in) :: lx, l, inv_h
+    integer, intent(in) :: o
+    real(dp), intent(out) :: w(3), g(3)
+    real(dp) :: r, a, s, d, t
+    integer :: k
+    do k = 0, 2
+      r = lx - real(o + k, dp)
+      a = abs(r)
+      s = 0.0_dp
+      d = 0.0_dp
+      if (a < l) then
+        s = 1.0_dp - ((r * r) + (l * l)) / (2.0_dp * l)
+        d = -(r / l)
+      else if (a <= 1.0_dp - l) then
+        s = 1.0_dp - a
+        if (r > 0.0_dp) then
+          d = -1.0_dp
+        else
+          d = 1.0_dp
+        end if
+      else if (a < 1.0_dp + l) then
+        t = (1.0_dp + l) - a
+        s = (t * t) / (4.0_dp * l)
+        if (r > 0.0_dp) then
+          d = -(t / (2.0_dp * l))
+        else
+          d = t / (2.0_dp * l)
+        end if
+      end if
+      w(k + 1) = s
+      g(k + 1) = d * inv_h
+    end do
+  end subroutine gimp_1d
+
+  ! uGIMP shape functions of the 27 stencil nodes: local node k = a + 3 b + 9 c (0-based,
+  ! stored at k + 1) at offset (o(1) + a, o(2) + b, o(3) + c) from the cell's base node.
+  pure subroutine shape_gimp(lx, o, l, inv_h, sn, sg)
+    real(dp), intent(in) :: lx(3), l, inv_h
+    integer, intent(in) :: o(3)
+    real(dp), intent(out) :: sn(27), sg(3, 27)
+    real(dp) :: wx(3), wy(3), wz(3), gx(3), gy(3), gz(3)
+    integer :: a, b, c, k
+    call gimp_1d(lx(1), o(1), l, inv_h, wx, gx)
+    call gimp_1d(lx(2), o(2), l, inv_h, wy, gy)
+    call gimp_1d(lx(3), o(3), l, inv_h, wz, gz)
+    do c = 1, 3
+      do b = 1, 3
+        do a = 1, 3
+          k = a + 3 * (b - 1) + 9 * (c - 1)
+          sn(k) = (wx(a) * wy(b)) * wz(c)
+          sg(1, k) = (gx(a) * wy(b)) * wz(c)
+          sg(2, k) = (wx(a) * gy(b)) * wz(c)
+          sg(3, k) = (wx(a) * wy(b)) * gz(c)
+        end do
+      end do
+    end do
+  end subroutine shape_gimp
+
+  ! Stencil offset of one axis (cxx/grid.hpp gimp_offset): -1 in the lower half of the
+  ! cell, 0 in the upper half, shifted inwards at the ends of the grid (cell i of nc).
+  pure integer function gimp_offset(lx, i, nc) result(o)
+    real(dp), intent(in) :: lx
+    integer, intent(in) :: i, nc
+    if (lx < 0.5_dp) then
+      o = -1
+    else
+      o = 0
+    end if
+    if (i + o < 0) o = 0
+    if (i + o + 2 > nc) o = -1
+  end function gimp_offset
 
 end module mpm3d_grid

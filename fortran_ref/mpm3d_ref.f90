@@ -22,13 +22,14 @@ program mpm3d_ref
 
   integer, parameter :: REDUCE_BLOCK = 4096
   type(model_t), target :: model
-  type(grid_t), target :: grid
-  type(step_context), target :: ctx
+  type(grid_t), target :: grid, grid2          ! grid2, ctx2: contact only (component 2)
+  type(step_context), target :: ctx, ctx2
   real(dp), allocatable, target :: lx(:,:), partials(:,:), gravity(:,:)
-  integer(c_int), allocatable, target :: cell(:)
+  real(dp), allocatable, target :: gnormal1(:,:), gnormal2(:,:), cpartials(:,:)   ! contact only
+  integer(c_int), allocatable, target :: cell(:), body_comp(:)
   character(len=:), allocatable :: deck, state_path, init_path, energy_path, err
   integer(int64) :: max_steps, steps, iv
-  integer :: patch_cells, i, nargs, np, b, rc, regrid_every
+  integer :: patch_cells, i, nargs, np, b, rc, regrid_every, halo
   integer :: woff(3), wnc(3)
   real(dp) :: end_time, time, eps, kinetic, internal, rv, initial_total, momentum(3)
   real(dp) :: external_work    ! work of gravity and loads so far (health check)
@@ -99,7 +100,11 @@ program mpm3d_ref
   if (end_time <= 0.0_dp) end_time = model%endtime
   np = model%particles%np
   if (regrid_every < 0) regrid_every = model%regrid_every
-  call grid_define(grid, model%box_lo, model%box_hi, model%dcell, patch_cells, err)
+  ! The two contact grids share one node numbering: no adaptive window with contact (as mpm3d).
+  if (model%contact) regrid_every = 0
+  halo = merge(1, 0, model%gimp)   ! GIMP stencils reach one node beyond a patch's cells
+  if (model%gimp .and. patch_cells < 2) call usage('GIMP needs patches of at least two cells')
+  call grid_define(grid, model%box_lo, model%box_hi, model%dcell, patch_cells, halo, err)
   if (len(err) > 0) call fatal(deck // ': ' // err)
   grid%fix = model%fix
   grid%mass_cutoff = model%mass_cutoff
@@ -109,6 +114,13 @@ program mpm3d_ref
   if (regrid_every > 0) call grid_adaptive_window(grid, model%particles%x, model%particles%v, np, &
                                                   regrid_every, model%dt, woff, wnc)
   call grid_set_window(grid, woff, wnc)
+  if (model%contact) then
+    call grid_setup(grid2, model%box_lo, model%box_hi, model%dcell, patch_cells, halo, err)
+    grid2%fix = model%fix
+    grid2%mass_cutoff = model%mass_cutoff
+    allocate(grid2%patch_part(np))
+    grid2%patch_part = 0
+  end if
   allocate(lx(3, np), cell(np), grid%patch_part(np))
   lx = 0.0_dp
   cell = -1
@@ -161,7 +173,7 @@ program mpm3d_ref
   end do
   if (.not. quiet) then
     write (output_unit, '(a,i0,a,es14.7,a,es14.7,a,es14.7,a,i0)') 'done: ', steps, ' steps, t ', time, &
-      '  KE ', kinetic, '  IE ', internal, '  outside ', ctx%noutside
+      '  KE ', kinetic, '  IE ', internal, '  outside ', ctx%noutside + ctx2%noutside
   end if
   if (len(state_path) > 0) call write_state_h5(state_path, model, time, steps, model%dt)
   if (len(energy_path) > 0) call write_energies(energy_path)
@@ -238,6 +250,7 @@ contains
 
   ! Points the step context at the model's and the grid's arrays (Simulation::bind).
   subroutine bind_context()
+    integer :: a
     associate (p => model%particles)
       ctx%x = c_loc(p%x)
       ctx%v = c_loc(p%v)
@@ -279,7 +292,42 @@ contains
     ctx%has_body_force = merge(1, 0, model%has_gravity .or. model%has_loads)
     ctx%bulk_q1 = model%bulk_q1
     ctx%bulk_q2 = model%bulk_q2
-    call bind_grid()
+    ! GIMP: 27-node stencils, patch buffers with a halo of one node layer.
+    ctx%psize = c_null_ptr
+    if (model%gimp) ctx%psize = c_loc(model%particles%psize)
+    ctx%shape = merge(1, 0, model%gimp)
+    ctx%patch_halo = grid%patch_halo
+    call bind_grid()      ! before the contact copy: ctx2 starts as a copy of ctx
+    if (model%contact) then
+      ! Two contexts over the same particles (Simulation::bind): component 1 in ctx,
+      ! component 2 in ctx2 with its own grid; the contact stage couples them.
+      allocate(body_comp(max(model%nbodies, 1)), gnormal1(3, grid_nnode(grid)), &
+               gnormal2(3, grid_nnode(grid)), cpartials(3, grid%npatch))
+      body_comp = 1
+      do a = 1, model%nbodies
+        body_comp(a) = model%bodies(a)%component
+      end do
+      gnormal1 = 0.0_dp
+      gnormal2 = 0.0_dp
+      cpartials = 0.0_dp
+      ctx%body_comp = c_loc(body_comp)
+      ctx%contact_mu = model%contact_mu
+      ctx%contact_normbody = model%contact_normbody
+      ctx%cpartials = c_loc(cpartials)
+      ctx2 = ctx
+      ctx%only_comp = 1
+      ctx%gnormal = c_loc(gnormal1)
+      ctx%other = c_loc(ctx2)
+      ctx2%only_comp = 2
+      ctx2%gnormal = c_loc(gnormal2)
+      ctx2%gmass = c_loc(grid2%mass)
+      ctx2%gmom = c_loc(grid2%mom)
+      ctx2%gforce = c_loc(grid2%force)
+      ctx2%patch_start = c_loc(grid2%patch_start)
+      ctx2%patch_part = c_loc(grid2%patch_part)
+      ctx2%patch_slot = c_loc(grid2%patch_slot)
+      ctx2%patch_buf = c_null_ptr
+    end if
   end subroutine bind_context
 
   ! ... and at the grid's arrays, again after a regrid (Simulation::bind_grid).
@@ -311,6 +359,16 @@ contains
       allocate(grid%patch_buf(NODE_FIELDS, grid%patch_nodes, ctx%nslot))
       grid%patch_buf = 0.0_dp
       ctx%patch_buf = c_loc(grid%patch_buf)
+    end if
+    if (model%contact) then
+      have = 0
+      if (allocated(grid2%patch_buf)) have = size(grid2%patch_buf, 3)
+      if (have < ctx2%nslot) then
+        if (allocated(grid2%patch_buf)) deallocate(grid2%patch_buf)
+        allocate(grid2%patch_buf(NODE_FIELDS, grid2%patch_nodes, ctx2%nslot))
+        grid2%patch_buf = 0.0_dp
+        ctx2%patch_buf = c_loc(grid2%patch_buf)
+      end if
     end if
   end subroutine ensure_patch_buffers
 
@@ -347,6 +405,34 @@ contains
       ctx%dt_int = model%dt
     end if
     ctx%time = time + model%dt      ! the end of this step (programmed burn)
+    if (model%contact) then
+      ! With contact every particle and grid stage runs on both components' contexts.
+      ctx2%dt = ctx%dt
+      ctx2%dt_int = ctx%dt_int
+      ctx2%time = ctx%time
+      call mpm3d_f_bin(ctx)
+      call mpm3d_f_bin(ctx2)
+      call ensure_patch_buffers()
+      call mpm3d_f_p2g(ctx)
+      call mpm3d_f_p2g(ctx2)
+      if (ctx%scheme == SCHEME_USF) then
+        call mpm3d_f_stress(ctx)
+        call mpm3d_f_stress(ctx2)
+        call mpm3d_f_forces(ctx)
+        call mpm3d_f_forces(ctx2)
+      end if
+      call mpm3d_f_integrate(ctx)
+      call mpm3d_f_integrate(ctx2)
+      call mpm3d_f_contact(ctx)
+      call mpm3d_f_g2p(ctx)
+      call mpm3d_f_g2p(ctx2)
+      if (ctx%scheme /= SCHEME_USF) then
+        call mpm3d_f_stress(ctx)
+        call mpm3d_f_stress(ctx2)
+      end if
+      call mpm3d_f_energy(ctx)
+      return
+    end if
     scheduled = regrid_every > 0 .and. steps > 0 .and. mod(steps, int(max(regrid_every, 1), int64)) == 0
     if (scheduled) call regrid()
     call mpm3d_f_bin(ctx)

@@ -11,6 +11,7 @@ module mpm3d_particle
     integer :: first = 0       ! first particle (0-based)
     integer :: count = 0       ! particles in the body
     integer :: component = 1   ! contact component (1-based, as in the deck)
+    real(dp) :: spacing = 0.0_dp   ! particle spacing of bloc/sphe/cyli cards; 0 for poin
     real(dp) :: gravity(3) = 0.0_dp
   end type body_t
 
@@ -23,6 +24,7 @@ module mpm3d_particle
     real(dp), allocatable :: fext(:,:)  ! only with point/body loads
     real(dp), allocatable :: tlight(:)  ! only with hiex: lighting time
     real(dp), allocatable :: qv(:)      ! only with 'bulk': bulk viscosity pressure
+    real(dp), allocatable :: psize(:)   ! only with gimp: particle half-size lp
   end type particles_t
 
   public :: particles_resize
@@ -38,6 +40,7 @@ contains
     if (allocated(p%fext)) deallocate(p%fext)
     if (allocated(p%tlight)) deallocate(p%tlight)
     if (allocated(p%qv)) deallocate(p%qv)
+    if (allocated(p%psize)) deallocate(p%psize)
     allocate(p%x(3, n), p%v(3, n), p%sig(6, n), p%mass(n), p%vol(n), p%epeff(n), p%ie(n), &
              p%mat(n), p%body(n))
     p%x = 0.0_dp

@@ -24,16 +24,19 @@ if(TARGET mpm3d AND TARGET mpm3d_ref)
     set_tests_properties(${name} PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300 LABELS fortran_ref)
   endfunction()
 
-  # All checks of one deck.
+  # All checks of one deck; extra arguments name further stages the deck runs (contact).
   function(fref_deck tag deck)
+    set(_mix bin=fortran,p2g=cxx,forces=fortran,integrate=cxx,g2p=fortran,stress=cxx,energy=fortran)
+    foreach(extra ${ARGN})
+      set(_mix ${_mix},${extra}=fortran)
+    endforeach()
     fref_add(fref_${tag}_init init ${deck})
     fref_add(fref_${tag}_kernel_fortran kernels ${deck} --threads 1 --kernel fortran)
-    foreach(stage ${_fref_stages})
+    foreach(stage ${_fref_stages} ${ARGN})
       fref_add(fref_${tag}_stage_${stage} kernels ${deck} --threads 1 --kernels ${stage}=fortran)
     endforeach()
     # A free mix of the two languages on two threads.
-    fref_add(fref_${tag}_mixed kernels ${deck} --threads 2
-             --kernels bin=fortran,p2g=cxx,forces=fortran,integrate=cxx,g2p=fortran,stress=cxx,energy=fortran)
+    fref_add(fref_${tag}_mixed kernels ${deck} --threads 2 --kernels ${_mix})
     fref_add(fref_${tag}_mpm3d_ref ref ${deck})
   endfunction()
 
@@ -70,6 +73,13 @@ if(TARGET mpm3d AND TARGET mpm3d_ref)
   fref_adaptive(taylor_coarse ${CMAKE_SOURCE_DIR}/inputs/taylor/taylor_coarse.mpm)
   fref_adaptive(two_blocks ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks.mpm)
   fref_add(fref_rising_block_adaptive_mpm3d_ref regrid ${CMAKE_SOURCE_DIR}/tests/decks/rising_block.mpm)
+  # GIMP shape functions and multi-velocity contact (issue 5).
+  fref_deck(two_blocks_gimp ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks_gimp.mpm)
+  fref_deck(spheres ${CMAKE_SOURCE_DIR}/inputs/contact/spheres.mpm contact)
+  fref_deck(sliding_block ${CMAKE_SOURCE_DIR}/inputs/contact/sliding_block.mpm contact)
+  fref_deck(gimp_contact ${_fref_own}/gimp_contact_usf.mpm contact)
+  # GIMP with the adaptive grid (halo patches on the deck's patch lattice).
+  fref_adaptive(two_blocks_gimp ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks_gimp.mpm)
   fref_add(fref_quirks_crlf crlf ${_fref_own}/quirks.mpm)
   fref_add(fref_usl_blocks_unstable unstable ${_fref_own}/usl_blocks.mpm)
   fref_add(fref_h5diff_detects detect ${_fref_own}/musl_sjcf.mpm)

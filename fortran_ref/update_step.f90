@@ -8,7 +8,7 @@
 module mpm3d_update_step
   use, intrinsic :: iso_c_binding
   use mpm3d_material
-  use mpm3d_grid, only: NODE_FIELDS, shape_linear
+  use mpm3d_grid, only: NODE_FIELDS, shape_linear, shape_gimp, gimp_offset
   use mpm3d_constitution, only: stress_update, burn_fraction
   implicit none
   private
@@ -50,10 +50,22 @@ module mpm3d_update_step
     real(c_double) :: time = 0.0_dp       ! time at the end of this step
     real(c_double) :: bulk_q1 = 0.0_dp, bulk_q2 = 0.0_dp
     integer(c_int) :: cell_off(3) = 0     ! first cell of the grid window on the deck's lattice
+    ! GIMP and multi-velocity contact (issue 5); null / 0 when the deck does not use them.
+    type(c_ptr) :: psize = c_null_ptr      ! (np) GIMP particle half-size lp
+    type(c_ptr) :: body_comp = c_null_ptr  ! int (nbody) contact component (1 or 2) of each body
+    type(c_ptr) :: other = c_null_ptr      ! contact: component 2's step_context (in component 1's)
+    type(c_ptr) :: gnormal = c_null_ptr    ! contact: (3,nnode) sum_p m_p grad N_i(x_p), this component
+    type(c_ptr) :: cpartials = c_null_ptr  ! contact: (3,npatch) scratch of the contact-force sum
+    real(c_double) :: contact_mu = 0.0_dp  ! Coulomb friction coefficient
+    integer(c_int) :: shape = 0            ! 0 trilinear, 1 uGIMP
+    integer(c_int) :: patch_halo = 0       ! node layers a buffer holds beyond its cells: 0, 1
+    integer(c_int) :: only_comp = 0        ! 0 every particle; 1 or 2 this component only
+    integer(c_int) :: contact_normbody = 0 ! normals from component 1, 2, or 0 (both)
+    integer(c_int) :: ncontact = 0         ! contact stage: nodes corrected
   end type step_context
 
   public :: mpm3d_f_bin, mpm3d_f_p2g, mpm3d_f_forces, mpm3d_f_integrate, mpm3d_f_g2p, &
-            mpm3d_f_stress, mpm3d_f_energy
+            mpm3d_f_stress, mpm3d_f_energy, mpm3d_f_contact
   public :: mpm3d_f_context_layout
 
 contains
@@ -105,10 +117,82 @@ contains
   subroutine view_buffers(c, buf)
     type(step_context), intent(in) :: c
     real(dp), pointer, intent(out) :: buf(:,:,:)
-    integer :: pn
-    pn = (c%patch_cells + 1) * (c%patch_cells + 1) * (c%patch_cells + 1)
+    integer :: qq, pn
+    qq = c%patch_cells + 1 + 2 * c%patch_halo
+    pn = qq * qq * qq
     call c_f_pointer(c%patch_buf, buf, [NODE_FIELDS, pn, c%nslot])
   end subroutine view_buffers
+
+  ! Patches whose buffers (halo hh) hold node n (0-based) along one axis: lo..hi.
+  pure subroutine patch_range(n, pc, hh, npd, lo, hi)
+    integer, intent(in) :: n, pc, hh, npd
+    integer, intent(out) :: lo, hi
+    integer :: t
+    t = n - pc - hh
+    if (t <= 0) then
+      lo = 0
+    else
+      lo = (t + pc - 1) / pc
+    end if
+    hi = (n + hh) / pc
+    if (hi > npd - 1) hi = npd - 1
+  end subroutine patch_range
+
+  ! GIMP stencil of particle p (1-based): cell indices ci (0-based), offsets o, weights and
+  ! gradients of the 27 nodes (cxx gimp_stencil).
+  subroutine gimp_stencil(c, cl, lxp, lp, ci, o, sn, sg)
+    type(step_context), intent(in) :: c
+    integer, intent(in) :: cl
+    real(dp), intent(in) :: lxp(3), lp
+    integer, intent(out) :: ci(3), o(3)
+    real(dp), intent(out) :: sn(27), sg(3, 27)
+    integer :: a
+    ci(1) = mod(cl, c%nc(1))
+    ci(2) = mod(cl / c%nc(1), c%nc(2))
+    ci(3) = cl / (c%nc(1) * c%nc(2))
+    do a = 1, 3
+      o(a) = gimp_offset(lxp(a), ci(a), c%nc(a))
+    end do
+    call shape_gimp(lxp, o, lp * c%inv_h, c%inv_h, sn, sg)
+  end subroutine gimp_stencil
+
+  ! Offset (0-based) of stencil node k = a + 3 b + 9 c from the stencil's first node in an
+  ! array of row length r0 and plane size r0 r1.
+  pure integer function stencil_offset(k, r0, r1)
+    integer, intent(in) :: k, r0, r1
+    stencil_offset = mod(k, 3) + r0 * (mod(k / 3, 3) + r1 * (k / 9))
+  end function stencil_offset
+
+  ! Buffer node (0-based), in the buffer of patch q, of a GIMP stencil's first node.
+  pure integer function gimp_patch_corner(c, q, ci, o)
+    type(step_context), intent(in) :: c
+    integer, intent(in) :: q, ci(3), o(3)
+    integer :: pc, hh, qq, qx, qy, qz
+    pc = c%patch_cells
+    hh = c%patch_halo
+    qq = pc + 1 + 2 * hh
+    qx = mod(q, c%npd(1))
+    qy = mod(q / c%npd(1), c%npd(2))
+    qz = q / (c%npd(1) * c%npd(2))
+    gimp_patch_corner = (ci(1) + o(1) - qx * pc + hh) + &
+                        qq * ((ci(2) + o(2) - qy * pc + hh) + qq * (ci(3) + o(3) - qz * pc + hh))
+  end function gimp_patch_corner
+
+  ! Global node (0-based) of a GIMP stencil's first node.
+  pure integer function gimp_corner(c, ci, o)
+    type(step_context), intent(in) :: c
+    integer, intent(in) :: ci(3), o(3)
+    gimp_corner = (ci(1) + o(1)) + c%nn(1) * ((ci(2) + o(2)) + c%nn(2) * (ci(3) + o(3)))
+  end function gimp_corner
+
+  ! True when particle p (1-based) belongs to another component than the context's.
+  logical function other_component(c, p, body, bcomp)
+    type(step_context), intent(in) :: c
+    integer, intent(in) :: p
+    integer(c_int), intent(in) :: body(:), bcomp(:)
+    other_component = .false.
+    if (c%only_comp > 0) other_component = bcomp(body(p) + 1) /= c%only_comp
+  end function other_component
 
   ! Canonical assembly: each node's value is 0.0 plus the values of the non-empty patches
   ! holding it, in ascending patch index (x fastest, then y, z). Fields first..first+count-1
@@ -120,40 +204,20 @@ contains
     real(dp), pointer :: buf(:,:,:)
     integer, pointer :: slots(:)
     real(dp) :: acc(NODE_FIELDS)
-    integer :: pc, qq, i, j, k, qx, qy, qz, qx_lo, qx_hi, qy_lo, qy_hi, qz_lo, qz_hi
+    integer :: pc, qq, hh, i, j, k, qx, qy, qz, qx_lo, qx_hi, qy_lo, qy_hi, qz_lo, qz_hi
     integer :: q, slot, ln, n, f, field
     pc = c%patch_cells
-    qq = pc + 1
+    hh = c%patch_halo
+    qq = pc + 1 + 2 * hh
     call c_f_pointer(c%patch_slot, slots, [c%npatch])
     nullify(buf)
     if (c%nslot > 0) call view_buffers(c, buf)
     do k = 0, c%nn(3) - 1
-      if (k > 0 .and. mod(k, pc) == 0) then
-        qz_lo = k / pc - 1
-      else
-        qz_lo = k / pc
-      end if
-      qz_hi = k / pc
-      if (qz_hi > c%npd(3) - 1) qz_hi = c%npd(3) - 1
-      if (qz_lo > qz_hi) qz_lo = qz_hi
+      call patch_range(k, pc, hh, c%npd(3), qz_lo, qz_hi)
       do j = 0, c%nn(2) - 1
-        if (j > 0 .and. mod(j, pc) == 0) then
-          qy_lo = j / pc - 1
-        else
-          qy_lo = j / pc
-        end if
-        qy_hi = j / pc
-        if (qy_hi > c%npd(2) - 1) qy_hi = c%npd(2) - 1
-        if (qy_lo > qy_hi) qy_lo = qy_hi
+        call patch_range(j, pc, hh, c%npd(2), qy_lo, qy_hi)
         do i = 0, c%nn(1) - 1
-          if (i > 0 .and. mod(i, pc) == 0) then
-            qx_lo = i / pc - 1
-          else
-            qx_lo = i / pc
-          end if
-          qx_hi = i / pc
-          if (qx_hi > c%npd(1) - 1) qx_hi = c%npd(1) - 1
-          if (qx_lo > qx_hi) qx_lo = qx_hi
+          call patch_range(i, pc, hh, c%npd(1), qx_lo, qx_hi)
           do f = 1, count
             acc(f) = 0.0_dp
           end do
@@ -163,7 +227,7 @@ contains
                 q = qx + c%npd(1) * (qy + c%npd(2) * qz)
                 slot = slots(q + 1)
                 if (slot < 0) cycle
-                ln = (i - qx * pc) + qq * ((j - qy * pc) + qq * (k - qz * pc))
+                ln = (i - qx * pc + hh) + qq * ((j - qy * pc + hh) + qq * (k - qz * pc + hh))
                 do f = 1, count
                   acc(f) = acc(f) + buf(first + f, ln + 1, slot + 1)
                 end do
@@ -227,12 +291,17 @@ contains
     type(step_context), intent(inout) :: c
     logical, intent(in) :: with_mass_mom, with_forces
     real(dp), pointer :: buf(:,:,:), lx(:,:), v(:,:), sig(:,:), mass(:), vol(:), fext(:,:), grav(:,:)
+    real(dp), pointer :: psize(:)
     integer(c_int), pointer :: pstart(:), ppart(:), slots(:), cell(:), body(:)
-    real(dp) :: sn(8), sg(3, 8), vs(6), fb(3), mp, volp, mn, gx, gy, gz, fx, fy, fz
-    integer :: pc, q, slot, idx, p, base, s, a, k, ln
-    logical :: has_fext, body_force
+    real(dp) :: sn(27), sg(3, 27), vs(6), fb(3), mp, volp, mn, gx, gy, gz, fx, fy, fz
+    integer :: pc, qq, q, slot, idx, p, base, s, a, k, ln, nk
+    integer :: ci(3), o(3)
+    logical :: has_fext, body_force, gimp
     if (c%nslot <= 0) return
     pc = c%patch_cells
+    qq = pc + 1 + 2 * c%patch_halo
+    gimp = c%shape == 1
+    if (gimp) call c_f_pointer(c%psize, psize, [c%np])
     call view_buffers(c, buf)
     call c_f_pointer(c%patch_start, pstart, [c%npatch + 1])
     call c_f_pointer(c%patch_part, ppart, [c%np])
@@ -262,8 +331,15 @@ contains
       buf(:, :, slot + 1) = 0.0_dp
       do idx = pstart(q + 1), pstart(q + 2) - 1
         p = ppart(idx + 1) + 1
-        call shape_linear(lx(:, p), c%inv_h, sn, sg)
-        base = patch_base(c, q, cell(p))
+        if (gimp) then
+          call gimp_stencil(c, cell(p), lx(:, p), psize(p), ci, o, sn, sg)
+          base = gimp_patch_corner(c, q, ci, o)
+          nk = 27
+        else
+          call shape_linear(lx(:, p), c%inv_h, sn(1:8), sg(:, 1:8))
+          base = patch_base(c, q, cell(p))
+          nk = 8
+        end if
         mp = mass(p)
         vs = 0.0_dp
         fb = 0.0_dp
@@ -279,8 +355,12 @@ contains
             end do
           end if
         end if
-        do k = 0, 7
-          ln = base + patch_local(pc, k) + 1
+        do k = 0, nk - 1
+          if (gimp) then
+            ln = base + stencil_offset(k, qq, qq) + 1
+          else
+            ln = base + patch_local(pc, k) + 1
+          end if
           if (with_mass_mom) then
             mn = mp * sn(k + 1)
             buf(1, ln, slot + 1) = buf(1, ln, slot + 1) + mn
@@ -316,12 +396,17 @@ contains
   subroutine mpm3d_f_bin(c) bind(C, name='mpm3d_f_bin')
     type(step_context), intent(inout) :: c
     real(dp), pointer :: x(:,:), lx(:,:)
-    integer(c_int), pointer :: start(:), ppart(:), slots(:), cell(:)
+    integer(c_int), pointer :: start(:), ppart(:), slots(:), cell(:), body(:), bcomp(:)
     integer :: pc, q, p, a, outside, nslot, i, j, k, cl
     integer :: idx(3)
     real(dp) :: t, fl, f0
-    logical :: inside
+    logical :: inside, filter
     pc = c%patch_cells
+    filter = c%only_comp > 0     ! contact: this context's component only
+    if (filter) then
+      call c_f_pointer(c%body, body, [c%np])
+      call c_f_pointer(c%body_comp, bcomp, [max(c%nbody, 1)])
+    end if
     call c_f_pointer(c%x, x, [3, c%np])
     call c_f_pointer(c%lx, lx, [3, c%np])
     call c_f_pointer(c%patch_start, start, [c%npatch + 1])
@@ -334,6 +419,9 @@ contains
     end do
     outside = 0
     do p = 1, c%np
+      if (filter) then
+        if (other_component(c, p, body, bcomp)) cycle
+      end if
       inside = .true.
       do a = 1, 3
         ! Cell on the deck's lattice, then in the window (the same bits for any window).
@@ -375,6 +463,9 @@ contains
     end do
     start(1) = 0
     do p = 1, c%np
+      if (filter) then
+        if (other_component(c, p, body, bcomp)) cycle
+      end if
       cl = cell(p)
       if (cl < 0) cycle
       i = mod(cl, c%nc(1))
@@ -437,14 +528,18 @@ contains
   subroutine mpm3d_f_g2p(c) bind(C, name='mpm3d_f_g2p')
     type(step_context), intent(inout) :: c
     real(dp), pointer :: buf(:,:,:), lx(:,:), v(:,:), x(:,:), mass(:)
-    real(dp), pointer :: gmass(:), gmom(:,:), gforce(:,:)
+    real(dp), pointer :: gmass(:), gmom(:,:), gforce(:,:), psize(:)
     integer(c_int), pointer :: pstart(:), ppart(:), slots(:), cell(:)
-    real(dp) :: sn(8), sg(3, 8), acc(3), vel(3), m, r, mp, mn
-    integer :: pc, pn, q, slot, idx, p, base, pbase, k, n, a, ln
-    logical :: remap
+    real(dp) :: sn(27), sg(3, 27), acc(3), vel(3), m, r, mp, mn
+    integer :: pc, qq, pn, q, slot, idx, p, base, pbase, k, n, a, ln, nk
+    integer :: ci(3), o(3)
+    logical :: remap, gimp
     remap = c%scheme == SCHEME_MUSL
     pc = c%patch_cells
-    pn = (pc + 1) * (pc + 1) * (pc + 1)
+    qq = pc + 1 + 2 * c%patch_halo
+    pn = qq * qq * qq
+    gimp = c%shape == 1
+    if (gimp) call c_f_pointer(c%psize, psize, [c%np])
     call c_f_pointer(c%gmass, gmass, [c%nnode])
     call c_f_pointer(c%gmom, gmom, [3, c%nnode])
     call c_f_pointer(c%gforce, gforce, [3, c%nnode])
@@ -470,12 +565,23 @@ contains
         end if
         do idx = pstart(q + 1), pstart(q + 2) - 1
           p = ppart(idx + 1) + 1
-          call shape_linear(lx(:, p), c%inv_h, sn, sg)
-          base = base_node(c, cell(p))
+          if (gimp) then
+            call gimp_stencil(c, cell(p), lx(:, p), psize(p), ci, o, sn, sg)
+            base = gimp_corner(c, ci, o)
+            nk = 27
+          else
+            call shape_linear(lx(:, p), c%inv_h, sn(1:8), sg(:, 1:8))
+            base = base_node(c, cell(p))
+            nk = 8
+          end if
           acc = 0.0_dp
           vel = 0.0_dp
-          do k = 0, 7
-            n = node_of(c, base, k) + 1
+          do k = 0, nk - 1
+            if (gimp) then
+              n = base + stencil_offset(k, c%nn(1), c%nn(2)) + 1
+            else
+              n = node_of(c, base, k) + 1
+            end if
             m = gmass(n)
             if (.not. (m > c%mass_cutoff)) cycle
             r = sn(k + 1) / m
@@ -489,10 +595,18 @@ contains
             x(a, p) = x(a, p) + (vel(a) * c%dt)
           end do
           if (remap) then
-            pbase = patch_base(c, q, cell(p))
+            if (gimp) then
+              pbase = gimp_patch_corner(c, q, ci, o)
+            else
+              pbase = patch_base(c, q, cell(p))
+            end if
             mp = mass(p)
-            do k = 0, 7
-              ln = pbase + patch_local(pc, k) + 1
+            do k = 0, nk - 1
+              if (gimp) then
+                ln = pbase + stencil_offset(k, qq, qq) + 1
+              else
+                ln = pbase + patch_local(pc, k) + 1
+              end if
               mn = mp * sn(k + 1)
               buf(2, ln, slot + 1) = buf(2, ln, slot + 1) + (mn * v(1, p))
               buf(3, ln, slot + 1) = buf(3, ln, slot + 1) + (mn * v(2, p))
@@ -513,14 +627,22 @@ contains
     type(step_context), intent(inout) :: c
     real(dp), pointer :: lx(:,:), sig(:,:), mass(:), vol(:), epeff(:), ie(:), temp(:)
     real(dp), pointer :: tlight(:), qv(:)
-    real(dp), pointer :: gmass(:), gmom(:,:)
-    integer(c_int), pointer :: cell(:), mat(:)
+    real(dp), pointer :: gmass(:), gmom(:,:), psize(:)
+    integer(c_int), pointer :: cell(:), mat(:), body(:), bcomp(:)
     type(material_params), pointer :: mats(:)
-    real(dp) :: sn(8), sg(3, 8), lg(0:8), de(6), dw(3), dt, m, va, vol_old, vol_new, tdummy
+    real(dp) :: sn(27), sg(3, 27), lg(0:8), de(6), dw(3), dt, m, va, vol_old, vol_new, tdummy
     real(dp) :: burn, qdummy
-    integer :: p, cl, base, k, n, a, b
-    logical :: has_temp, has_tl, has_q
+    integer :: p, cl, base, k, n, a, b, nk
+    integer :: ci(3), o(3)
+    logical :: has_temp, has_tl, has_q, gimp, filter
     dt = c%dt
+    gimp = c%shape == 1
+    if (gimp) call c_f_pointer(c%psize, psize, [c%np])
+    filter = c%only_comp > 0
+    if (filter) then
+      call c_f_pointer(c%body, body, [c%np])
+      call c_f_pointer(c%body_comp, bcomp, [max(c%nbody, 1)])
+    end if
     call c_f_pointer(c%lx, lx, [3, c%np])
     call c_f_pointer(c%sig, sig, [6, c%np])
     call c_f_pointer(c%mass, mass, [c%np])
@@ -547,11 +669,25 @@ contains
     do p = 1, c%np
       cl = cell(p)
       if (cl < 0) cycle
-      call shape_linear(lx(:, p), c%inv_h, sn, sg)
-      base = base_node(c, cl)
+      if (filter) then
+        if (other_component(c, p, body, bcomp)) cycle
+      end if
+      if (gimp) then
+        call gimp_stencil(c, cl, lx(:, p), psize(p), ci, o, sn, sg)
+        base = gimp_corner(c, ci, o)
+        nk = 27
+      else
+        call shape_linear(lx(:, p), c%inv_h, sn(1:8), sg(:, 1:8))
+        base = base_node(c, cl)
+        nk = 8
+      end if
       lg = 0.0_dp             ! lg(3a+b) = d v_a / d x_b (0-based a, b)
-      do k = 0, 7
-        n = node_of(c, base, k) + 1
+      do k = 0, nk - 1
+        if (gimp) then
+          n = base + stencil_offset(k, c%nn(1), c%nn(2)) + 1
+        else
+          n = node_of(c, base, k) + 1
+        end if
         m = gmass(n)
         if (.not. (m > c%mass_cutoff)) cycle
         do a = 0, 2
@@ -628,10 +764,202 @@ contains
     end do
   end subroutine mpm3d_f_energy
 
+  ! True when patch q3 (0-based coordinates) is active: it or one of its lower neighbours
+  ! (halo 1: one of its 26 neighbours) holds particles (cxx owned_nodes).
+  logical function patch_active(c, q3)
+    type(step_context), intent(in) :: c
+    integer, intent(in) :: q3(3)
+    integer(c_int), pointer :: slots(:)
+    integer :: ne, cx, cy, cz, px, py, pz
+    call c_f_pointer(c%patch_slot, slots, [c%npatch])
+    patch_active = .false.
+    ne = 2 + c%patch_halo
+    do cz = 0, ne - 1
+      do cy = 0, ne - 1
+        do cx = 0, ne - 1
+          px = q3(1) - 1 + cx
+          py = q3(2) - 1 + cy
+          pz = q3(3) - 1 + cz
+          if (px < 0 .or. py < 0 .or. pz < 0) cycle
+          if (px >= c%npd(1) .or. py >= c%npd(2) .or. pz >= c%npd(3)) cycle
+          if (slots(px + c%npd(1) * (py + c%npd(2) * pz) + 1) >= 0) patch_active = .true.
+        end do
+      end do
+    end do
+  end function patch_active
+
+  ! Contact: g_i = sum_p m_p grad N_i(x_p) of the context's particles (outward) into gnormal,
+  ! through the force fields of the patch buffers (cxx scatter_mass_gradient).
+  subroutine scatter_mass_gradient(c)
+    type(step_context), intent(inout) :: c
+    real(dp), pointer :: buf(:,:,:), lx(:,:), mass(:), psize(:), gmass(:), gmom(:,:), gnormal(:,:)
+    integer(c_int), pointer :: pstart(:), ppart(:), slots(:), cell(:)
+    real(dp) :: sn(27), sg(3, 27), mp
+    integer :: pc, qq, pn, q, slot, idx, p, base, k, ln, nk
+    integer :: ci(3), o(3)
+    logical :: gimp
+    pc = c%patch_cells
+    qq = pc + 1 + 2 * c%patch_halo
+    pn = qq * qq * qq
+    gimp = c%shape == 1
+    call c_f_pointer(c%gmass, gmass, [c%nnode])
+    call c_f_pointer(c%gmom, gmom, [3, c%nnode])
+    call c_f_pointer(c%gnormal, gnormal, [3, c%nnode])
+    if (c%nslot > 0) then
+      call view_buffers(c, buf)
+      call c_f_pointer(c%patch_start, pstart, [c%npatch + 1])
+      call c_f_pointer(c%patch_part, ppart, [c%np])
+      call c_f_pointer(c%patch_slot, slots, [c%npatch])
+      call c_f_pointer(c%cell, cell, [c%np])
+      call c_f_pointer(c%lx, lx, [3, c%np])
+      call c_f_pointer(c%mass, mass, [c%np])
+      if (gimp) call c_f_pointer(c%psize, psize, [c%np])
+      do q = 0, c%npatch - 1
+        slot = slots(q + 1)
+        if (slot < 0) cycle
+        do ln = 1, pn
+          buf(5, ln, slot + 1) = 0.0_dp
+          buf(6, ln, slot + 1) = 0.0_dp
+          buf(7, ln, slot + 1) = 0.0_dp
+        end do
+        do idx = pstart(q + 1), pstart(q + 2) - 1
+          p = ppart(idx + 1) + 1
+          mp = mass(p)
+          if (gimp) then
+            call gimp_stencil(c, cell(p), lx(:, p), psize(p), ci, o, sn, sg)
+            base = gimp_patch_corner(c, q, ci, o)
+            nk = 27
+          else
+            call shape_linear(lx(:, p), c%inv_h, sn(1:8), sg(:, 1:8))
+            base = patch_base(c, q, cell(p))
+            nk = 8
+          end if
+          do k = 0, nk - 1
+            if (gimp) then
+              ln = base + stencil_offset(k, qq, qq) + 1
+            else
+              ln = base + patch_local(pc, k) + 1
+            end if
+            buf(5, ln, slot + 1) = buf(5, ln, slot + 1) + (mp * sg(1, k + 1))
+            buf(6, ln, slot + 1) = buf(6, ln, slot + 1) + (mp * sg(2, k + 1))
+            buf(7, ln, slot + 1) = buf(7, ln, slot + 1) + (mp * sg(3, k + 1))
+          end do
+        end do
+      end do
+    end if
+    call assemble(c, 4, 3, gmass, gmom, gnormal)
+  end subroutine scatter_mass_gradient
+
+  ! Contact: multi-velocity correction between component 1 (c) and component 2 (c%other),
+  ! as mpm3d_cxx_contact (see there for the algorithm): same nodes, same operations, the
+  ! contact force as per-patch partials folded in patch order into result(6:8).
+  subroutine mpm3d_f_contact(c) bind(C, name='mpm3d_f_contact')
+    type(step_context), intent(inout), target :: c
+    type(step_context), pointer :: c2
+    real(dp), pointer :: m1(:), m2(:), p1(:,:), p2(:,:), f1(:,:), f2(:,:), g1(:,:), g2(:,:), cpart(:,:)
+    real(dp) :: part(3), nv(3), un(3), qv(3), t(3), len, mt, qn, tl, fr, ft, d, fc, s
+    integer :: q, i, j, k, n, a, nb, ncount
+    integer :: q3(3), lo(3), hi(3)
+    if (.not. c_associated(c%other)) return
+    call c_f_pointer(c%other, c2)
+    call scatter_mass_gradient(c)
+    call scatter_mass_gradient(c2)
+    call c_f_pointer(c%gmass, m1, [c%nnode])
+    call c_f_pointer(c2%gmass, m2, [c%nnode])
+    call c_f_pointer(c%gmom, p1, [3, c%nnode])
+    call c_f_pointer(c2%gmom, p2, [3, c%nnode])
+    call c_f_pointer(c%gforce, f1, [3, c%nnode])
+    call c_f_pointer(c2%gforce, f2, [3, c%nnode])
+    call c_f_pointer(c%gnormal, g1, [3, c%nnode])
+    call c_f_pointer(c2%gnormal, g2, [3, c%nnode])
+    call c_f_pointer(c%cpartials, cpart, [3, c%npatch])
+    nb = c%contact_normbody
+    ncount = 0
+    do q = 0, c%npatch - 1
+      part = 0.0_dp
+      q3(1) = mod(q, c%npd(1))
+      q3(2) = mod(q / c%npd(1), c%npd(2))
+      q3(3) = q / (c%npd(1) * c%npd(2))
+      do a = 1, 3
+        lo(a) = q3(a) * c%patch_cells
+        if (q3(a) == c%npd(a) - 1) then
+          hi(a) = c%nn(a)
+        else
+          hi(a) = lo(a) + c%patch_cells
+        end if
+      end do
+      if (patch_active(c, q3) .and. patch_active(c2, q3)) then
+        do k = lo(3), hi(3) - 1
+          do j = lo(2), hi(2) - 1
+            do i = lo(1), hi(1) - 1
+              n = i + c%nn(1) * (j + c%nn(2) * k) + 1
+              if (.not. (m1(n) > c%mass_cutoff) .or. .not. (m2(n) > c%mass_cutoff)) cycle
+              do a = 1, 3
+                if (nb == 1) then
+                  nv(a) = g1(a, n)
+                else if (nb == 2) then
+                  nv(a) = -g2(a, n)
+                else
+                  nv(a) = g1(a, n) - g2(a, n)
+                end if
+              end do
+              len = sqrt(((nv(1) * nv(1)) + (nv(2) * nv(2))) + (nv(3) * nv(3)))
+              if (.not. (len > 0.0_dp)) cycle
+              do a = 1, 3
+                un(a) = nv(a) / len
+              end do
+              mt = m1(n) + m2(n)
+              do a = 1, 3
+                qv(a) = ((m2(n) * p1(a, n)) - (m1(n) * p2(a, n))) / mt
+              end do
+              qn = ((qv(1) * un(1)) + (qv(2) * un(2))) + (qv(3) * un(3))
+              if (.not. (qn > 0.0_dp)) cycle
+              do a = 1, 3
+                t(a) = qv(a) - (qn * un(a))
+              end do
+              tl = sqrt(((t(1) * t(1)) + (t(2) * t(2))) + (t(3) * t(3)))
+              fr = c%contact_mu * qn
+              if (tl > fr) then
+                ft = fr / tl
+              else
+                ft = 1.0_dp
+              end if
+              do a = 1, 3
+                d = -((qn * un(a)) + (ft * t(a)))
+                p1(a, n) = p1(a, n) + d
+                p2(a, n) = p2(a, n) - d
+                fc = d / c%dt_int
+                f1(a, n) = f1(a, n) + fc
+                f2(a, n) = f2(a, n) - fc
+                part(a) = part(a) + fc
+              end do
+              ncount = ncount + 1
+            end do
+          end do
+        end do
+      end if
+      do a = 1, 3
+        cpart(a, q + 1) = part(a)
+      end do
+    end do
+    do a = 1, 3
+      s = 0.0_dp
+      do q = 1, c%npatch
+        s = s + cpart(a, q)
+      end do
+      c%result(5 + a) = s
+    end do
+    c%ncontact = ncount
+    call apply_bc(c, p1)
+    call apply_bc(c, f1)
+    call apply_bc(c2, p2)
+    call apply_bc(c2, f2)
+  end subroutine mpm3d_f_contact
+
   ! Layout of step_context and material_params as this compiler sees them (for the
   ! layout test against the C structs): sizes and a few offsets, in bytes.
   subroutine mpm3d_f_context_layout(out) bind(C, name='mpm3d_f_context_layout')
-    integer(c_size_t), intent(out) :: out(11)
+    integer(c_size_t), intent(out) :: out(13)
     type(step_context), target :: c
     type(material_params), target :: m(2)
     out(1) = c_sizeof(c)
@@ -645,6 +973,8 @@ contains
     out(9) = transfer(c_loc(c%bulk_q2), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
     out(10) = transfer(c_loc(m(1)%dp_tension), 0_c_intptr_t) - transfer(c_loc(m(1)), 0_c_intptr_t)
     out(11) = transfer(c_loc(c%cell_off), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
+    out(12) = transfer(c_loc(c%psize), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
+    out(13) = transfer(c_loc(c%ncontact), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
   end subroutine mpm3d_f_context_layout
 
 end module mpm3d_update_step

@@ -151,8 +151,9 @@ case $kind in
       fi
     done <<'CARDS'
 bulk -1.5 0.06
-gimp
-cont lagr 0.1 0
+cont lagr -0.1 0
+cont lagr 0.1 3
+cont pena 0.1 0
 deto 0.0 0.0 abc
 mate 2 hiex 1.6d-3 6930.0
 mate 2 hiex 1.6d-3 -6930.0

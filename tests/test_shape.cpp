@@ -103,3 +103,140 @@ TEST(Shape, TrilinearIsTheProductOfOneDimensionalHats) {
   for (int k = 0; k < 8; ++k) val += N[k] * (((k >> 1) & 1) ? h * h : 0.0);
   EXPECT_NEAR(val, 0.6 * 4.0, 1e-15);
 }
+
+// ---------------------------------------------------------------- uGIMP (27 nodes)
+// 1D weights of a particle of half-size l (in cells) at r = (x_p - x_i)/h from node i:
+// 1 - (r^2 + l^2)/(2l) for |r| < l, 1 - |r| up to 1 - l, (1 + l - |r|)^2/(4l) up to 1 + l.
+
+namespace {
+
+// Local coordinates that probe every branch of the 1D weight: cell edges, the middle (where
+// the stencil switches), and the breakpoints l, 1 - l of each half-size, plus random ones.
+std::vector<double> gimp_coords(double l) {
+  std::vector<double> v = {0.0, 1e-12, 0.5 - 1e-12, 0.5, 0.5 + 1e-12, 1.0 - 1e-12, 0.999999,
+                           l, l - 1e-9, l + 1e-9, 1.0 - l, 1.0 - l - 1e-9, 1.0 - l + 1e-9, 0.25, 0.75};
+  std::mt19937_64 rng(777);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int i = 0; i < 60; ++i) v.push_back(u(rng));
+  std::vector<double> out;
+  for (double x : v)
+    if (x >= 0.0 && x < 1.0) out.push_back(x);
+  return out;
+}
+
+const double kHalfSizes[] = {0.25, 0.5, 0.1, 0.4, 0.3333};
+
+}  // namespace
+
+TEST(ShapeGimp, OneDimensionalWeightsByHand) {
+  // l = 1/4, lx = 0.1 in the lower half: stencil o = -1, r = 1.1, 0.1, -0.9.
+  // node -1: (1.25 - 1.1)^2 / 1 = 0.0225; node 0: 1 - (0.01 + 0.0625)/0.5 = 0.855;
+  // node 1: (1.25 - 0.9)^2 / 1 = 0.1225 (sum 1). Gradients (h = 1): -(0.15)/0.5 = -0.3,
+  // -0.1/0.25 = -0.4, +0.35/0.5 = 0.7 (sum 0).
+  double w[3], g[3];
+  mpm3d::gimp_1d(0.1, -1, 0.25, 1.0, w, g);
+  EXPECT_NEAR(w[0], 0.0225, 1e-15);
+  EXPECT_NEAR(w[1], 0.855, 1e-15);
+  EXPECT_NEAR(w[2], 0.1225, 1e-15);
+  EXPECT_NEAR(g[0], -0.3, 1e-15);
+  EXPECT_NEAR(g[1], -0.4, 1e-15);
+  EXPECT_NEAR(g[2], 0.7, 1e-15);
+  // lx = 0.5, upper stencil o = 0: r = 0.5, -0.5, -1.5: linear part 0.5, 0.5, and 0.
+  mpm3d::gimp_1d(0.5, 0, 0.25, 2.0, w, g);
+  EXPECT_EQ(w[0], 0.5);
+  EXPECT_EQ(w[1], 0.5);
+  EXPECT_EQ(w[2], 0.0);
+  EXPECT_EQ(g[0], -2.0);
+  EXPECT_EQ(g[1], 2.0);
+  EXPECT_EQ(g[2], 0.0);
+}
+
+TEST(ShapeGimp, StencilOffsetsStayInTheGrid) {
+  // Lower half of a cell: nodes i-1..i+1; upper half: i..i+2; shifted inwards at the ends.
+  EXPECT_EQ(mpm3d::gimp_offset(0.3, 5, 10), -1);
+  EXPECT_EQ(mpm3d::gimp_offset(0.7, 5, 10), 0);
+  EXPECT_EQ(mpm3d::gimp_offset(0.3, 0, 10), 0);   // no node -1
+  EXPECT_EQ(mpm3d::gimp_offset(0.7, 9, 10), -1);  // no node 11
+  EXPECT_EQ(mpm3d::gimp_offset(0.2, 0, 2), 0);
+  EXPECT_EQ(mpm3d::gimp_offset(0.9, 1, 2), -1);
+}
+
+TEST(ShapeGimp, WeightsAreContinuousAcrossTheBreakpoints) {
+  // The support of a node is piecewise: the weight is continuous at |r| = l, 1 - l, 1 + l.
+  for (double l : kHalfSizes)
+    for (double r0 : {l, 1.0 - l, 1.0 + l}) {
+      double wa[3], wb[3], g[3];
+      // Node 0 of the upper stencil (o = 0) sits at r = lx.
+      if (r0 >= 1.0) continue;
+      mpm3d::gimp_1d(r0 - 1e-10, 0, l, 1.0, wa, g);
+      mpm3d::gimp_1d(r0 + 1e-10, 0, l, 1.0, wb, g);
+      EXPECT_NEAR(wa[0], wb[0], 1e-9) << "l " << l << " r " << r0;
+    }
+  // At |r| = 1 + l (node i-1 seen from lx = l) the weight vanishes.
+  for (double l : kHalfSizes) {
+    double w[3], g[3];
+    mpm3d::gimp_1d(l, -1, l, 1.0, w, g);
+    EXPECT_NEAR(w[0], 0.0, 1e-15) << "l " << l;
+  }
+}
+
+TEST(ShapeGimp, PartitionOfUnityAndLinearReproduction) {
+  // At many points of a cell (including its edges, its middle and the breakpoints) and for
+  // several particle sizes: sum N = 1, sum G = 0, sum N x_k = x_p, sum G_b x_k,a = delta_ab,
+  // with x_k the node positions of the stencil (interior cells: no shift at the grid ends).
+  const double h = 0.76, inv_h = 1.0 / h;
+  const double x0[3] = {-11.4, -3.04, 7.6};  // base node of the particle's cell
+  std::mt19937_64 rng(99);
+  for (double l : kHalfSizes) {
+    const std::vector<double> c = gimp_coords(l);
+    std::uniform_int_distribution<size_t> pick(0, c.size() - 1);
+    for (int trial = 0; trial < 400; ++trial) {
+      const double lx[3] = {c[pick(rng)], c[pick(rng)], c[pick(rng)]};
+      int o[3];
+      for (int a = 0; a < 3; ++a) o[a] = mpm3d::gimp_offset(lx[a], 5, 10);
+      double N[27], G[81];
+      mpm3d::shape_gimp(lx, o, l, inv_h, N, G);
+      double sum = 0, gs[3] = {0, 0, 0}, xr[3] = {0, 0, 0}, J[3][3] = {};
+      for (int k = 0; k < 27; ++k) {
+        const int off[3] = {k % 3, (k / 3) % 3, k / 9};
+        EXPECT_GE(N[k], 0.0);
+        sum += N[k];
+        double xk[3];
+        for (int a = 0; a < 3; ++a) {
+          xk[a] = x0[a] + h * double(o[a] + off[a]);
+          gs[a] += G[3 * k + a];
+          xr[a] += N[k] * xk[a];
+        }
+        for (int a = 0; a < 3; ++a)
+          for (int b = 0; b < 3; ++b) J[a][b] += G[3 * k + b] * xk[a];
+      }
+      EXPECT_NEAR(sum, 1.0, 1e-15);
+      for (int a = 0; a < 3; ++a) {
+        EXPECT_NEAR(gs[a], 0.0, 4e-15 * inv_h);
+        EXPECT_NEAR(xr[a], x0[a] + lx[a] * h, 4e-14) << "l " << l << " lx " << lx[a];
+        for (int b = 0; b < 3; ++b) EXPECT_NEAR(J[a][b], a == b ? 1.0 : 0.0, 1e-13);
+      }
+    }
+  }
+}
+
+TEST(ShapeGimp, GradientsAreTheDerivativesOfTheWeights) {
+  // Central differences of N along each axis agree with G (away from the breakpoints,
+  // where the second derivative jumps; the weights are quadratic, so the difference is
+  // exact up to rounding inside one piece).
+  const double h = 2.0, l = 0.25;
+  const double lx[3] = {0.1, 0.6, 0.85};
+  const int o[3] = {-1, 0, 0};
+  double N[27], G[81];
+  mpm3d::shape_gimp(lx, o, l, 1.0 / h, N, G);
+  const double e = 1e-6;
+  for (int a = 0; a < 3; ++a) {
+    double lp[3] = {lx[0], lx[1], lx[2]}, lm[3] = {lx[0], lx[1], lx[2]};
+    lp[a] += e;
+    lm[a] -= e;
+    double Np[27], Nm[27], Gd[81];
+    mpm3d::shape_gimp(lp, o, l, 1.0 / h, Np, Gd);
+    mpm3d::shape_gimp(lm, o, l, 1.0 / h, Nm, Gd);
+    for (int k = 0; k < 27; ++k) EXPECT_NEAR((Np[k] - Nm[k]) / (2.0 * e * h), G[3 * k + a], 1e-8);
+  }
+}

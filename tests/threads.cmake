@@ -21,3 +21,8 @@ mpm3d_thread_test(legacy_tnt3d ${CMAKE_SOURCE_DIR}/../shared/decks/TNT3D.mpm 30)
 mpm3d_thread_test(two_blocks_adaptive ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks.mpm 207 --regrid-every 5)
 mpm3d_thread_test(taylor_coarse_adaptive ${CMAKE_SOURCE_DIR}/inputs/taylor/taylor_coarse.mpm 40 --regrid-every 5)
 mpm3d_thread_test(rising_block_adaptive ${CMAKE_CURRENT_SOURCE_DIR}/decks/rising_block.mpm 100)
+# GIMP shape functions and multi-velocity contact (issue 5).
+mpm3d_thread_test(two_blocks_gimp ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks_gimp.mpm 60)
+mpm3d_thread_test(spheres ${CMAKE_SOURCE_DIR}/inputs/contact/spheres.mpm 120)
+mpm3d_thread_test(sliding_block ${CMAKE_SOURCE_DIR}/inputs/contact/sliding_block.mpm 80)
+mpm3d_thread_test(two_blocks_gimp_adaptive ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks_gimp.mpm 60 --regrid-every 4)
