@@ -32,7 +32,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
   // particles and grid would need more than this (the program uses the machine's memory).
   // (MPM3D_FUZZ_NO_BUDGET: for fuzzing readers older than the budget.)
 #ifndef MPM3D_FUZZ_NO_BUDGET
-  set_deck_memory_budget(256.0 * 1024 * 1024);
+  set_deck_memory_budget(64.0 * 1024 * 1024);
 #endif
   return 0;
 }
