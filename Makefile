@@ -4,8 +4,19 @@ JOBS  ?= $(shell nproc)
 DEB_PACKAGES = g++ gfortran cmake make libeigen3-dev libhdf5-dev hdf5-tools googletest \
                libgtest-dev libbenchmark-dev python3 python3-matplotlib
 DECK ?= inputs/taylor/taylor_coarse.mpm
+# `make fuzz` only (docs/RELIABILITY.md): libFuzzer comes with Debian's clang.
+FUZZ_PACKAGES = clang libclang-rt-dev
+FUZZ_TIME ?= 600
+SAN_BUILD ?= $(BUILD)-sanitize
+# ASan/UBSan run: every report is fatal, leaks included.
+SAN_ENV = ASAN_OPTIONS=detect_leaks=1:detect_stack_use_after_return=1 \
+          UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+          LSAN_OPTIONS=suppressions=$(CURDIR)/tools/lsan.supp
+# bindings.install_example links the installed (instrumented) library into an outside
+# project built without the sanitizers: meaningless in this build.
+SAN_CTEST_ARGS ?= -E '^bindings\.install_example$$'
 
-.PHONY: all deps build run test bench report clean
+.PHONY: all deps build run test bench report clean fuzz fuzz-deps test-sanitize
 
 all: build
 
@@ -31,6 +42,19 @@ run: build
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
+# The whole test suite under AddressSanitizer + UBSan (+ LeakSanitizer), in $(SAN_BUILD).
+test-sanitize: deps
+	cmake -S . -B $(SAN_BUILD) -DCMAKE_BUILD_TYPE=Release -DMPM3D_SANITIZE=ON
+	cmake --build $(SAN_BUILD) -j $(JOBS)
+	cd $(SAN_BUILD) && $(SAN_ENV) ctest --output-on-failure -j $(JOBS) $(SAN_CTEST_ARGS)
+
+fuzz-deps:
+	@$(MAKE) --no-print-directory deps DEB_PACKAGES="$(FUZZ_PACKAGES)"
+
+# Bounded libFuzzer run of the deck reader: `make fuzz FUZZ_TIME=seconds` (default 600).
+fuzz: fuzz-deps
+	tools/fuzz.sh $(FUZZ_TIME) $(BUILD)-fuzz
+
 bench: build
 	tools/bench.sh $(BUILD)
 
@@ -38,4 +62,4 @@ report: build
 	python3 tools/report.py $(BUILD)
 
 clean:
-	rm -rf $(BUILD)
+	rm -rf $(BUILD) $(BUILD)-fuzz $(SAN_BUILD)

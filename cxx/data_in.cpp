@@ -1,5 +1,8 @@
 #include "data_in.hpp"
 
+#include <unistd.h>
+
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -16,7 +19,19 @@ bool is_output_variable(const std::string& name) {
   return false;
 }
 
+static double g_memory_budget = 0.0;
+
+void set_deck_memory_budget(double bytes) { g_memory_budget = bytes; }
+
+double deck_memory_budget() {
+  if (g_memory_budget > 0.0) return g_memory_budget;
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+  return pages > 0 && page > 0 ? double(pages) * double(page) : 1.0e18;
+}
+
 namespace {
+
+std::string megabytes(double bytes) { return std::to_string(long(bytes / 1048576.0 + 0.5)) + " MB"; }
 
 class Reader {
  public:
@@ -28,6 +43,7 @@ class Reader {
   Model m_;
   int nparticles_ = 0;  // particles read so far
   bool ended_ = false;
+  int box_line_[3] = {0, 0, 0}, dcell_line_ = 0;  // where the box and the cell size were set
 
   [[noreturn]] void fail(int line, const std::string& what) { ts_.fail(line, what); }
   bool on_off(const Token& key);
@@ -35,6 +51,7 @@ class Reader {
   void read_materials(const Token& key);
   void read_particles(const Token& key);
   void add_particle(int line, int mat, double mass, double vol, double x, double y, double z);
+  void check_room(int line, double count, const char* what);
   void read_velocities(const Token& key);
   void read_loads(const Token& key);
   void read_eos(const Token& key);
@@ -68,11 +85,16 @@ Model Reader::read() {
       m_.title = ts_.rest_of_line(key);
     } else if (k == "nbmp" || k == "nbco" || k == "nbbo" || k == "nmat") {
       const long n = ts_.integer(key.text.c_str());
-      if (n < 1 || n > 200000000) fail(key.line, "'" + key.text + "' must be a positive count, got " + std::to_string(n));
+      if (n < 1 || n > kMaxParticles)
+        fail(key.line, "'" + key.text + "' must be a count in 1.." + std::to_string(kMaxParticles) + ", got " + std::to_string(n));
       if (k == "nbmp") {
         if (m_.nbmp >= 0) fail(key.line, "'nbmp' given twice");
+        const double need = double(n) * kBytesPerParticle, budget = deck_memory_budget();
+        if (need > budget)
+          fail(key.line, "'nbmp' = " + std::to_string(n) + " particles need about " + megabytes(need) +
+                             ", more than the " + megabytes(budget) + " of memory available");
         m_.nbmp = int(n);
-        m_.particles.resize(int(n));
+        m_.particles.resize(0);  // grows as the particle cards generate particles
       } else if (k == "nbco") {
         if (n > 2) fail(key.line, "'nbco' must be 1 or 2");
         m_.nbco = int(n);
@@ -93,16 +115,21 @@ Model Reader::read() {
         m_.box_lo[a] = ts_.real("the grid box");
         m_.box_hi[a] = ts_.real("the grid box");
         m_.box_set[a] = true;
+        box_line_[a] = key.line;
+        if (!(m_.box_hi[a] > m_.box_lo[a]))
+          fail(key.line, std::string("'grid': maximum must exceed minimum along ") + char('x' + a));
       }
     } else if (k == "spx" || k == "spy" || k == "spz") {
       const int a = k[2] - 'x';
       m_.box_lo[a] = ts_.real("the box minimum");
       m_.box_hi[a] = ts_.real("the box maximum");
       m_.box_set[a] = true;
+      box_line_[a] = key.line;
       if (!(m_.box_hi[a] > m_.box_lo[a])) fail(key.line, "'" + key.text + "': maximum must exceed minimum");
     } else if (k == "dcel") {
       m_.dcell = ts_.real("the cell size");
       if (!(m_.dcell > 0.0)) fail(key.line, "cell size must be positive");
+      dcell_line_ = key.line;
     } else if (k == "dtsc") {
       m_.dtscale = ts_.real("the time-step scale");
       if (!(m_.dtscale > 0.0) || m_.dtscale > 2.5) fail(key.line, "time-step scale must lie in (0, 2.5]");
@@ -311,6 +338,8 @@ void Reader::read_materials(const Token& key) {
     if (mp.fail_strain < 0.0) fail(line, "failure strain must not be negative");
     const std::string err = material_derive(mp);
     if (!err.empty()) fail(line, "material " + std::to_string(num) + ": " + err);
+    if (!std::isfinite(mp.shear) || !std::isfinite(mp.lambda) || !(mp.wave_speed > 0.0) || !std::isfinite(mp.wave_speed))
+      fail(line, "material " + std::to_string(num) + ": elastic constants out of range (wave speed not a positive finite number)");
     if (num == m_.nmat) break;
   }
 }
@@ -342,11 +371,30 @@ void Reader::read_eos(const Token& key) {
   mp.eos_type = int(et);
 }
 
+// Refuses a particle card that would generate at least `count` more particles than 'nbmp'
+// leaves room for (checked before generating, so that no card loops for long).
+void Reader::check_room(int line, double count, const char* what) {
+  if (double(nparticles_) + count > double(m_.nbmp))
+    fail(line, std::string(what) + " of at least " + std::to_string(long(count)) + " particles exceeds 'nbmp' = " +
+                   std::to_string(m_.nbmp));
+}
+
 void Reader::add_particle(int line, int mat, double mass, double vol, double x, double y, double z) {
   if (nparticles_ >= m_.nbmp)
     fail(line, "more particles than 'nbmp' = " + std::to_string(m_.nbmp));
-  const int p = nparticles_++;
+  if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) fail(line, "particle position out of range");
   Particles& P = m_.particles;
+  if (nparticles_ >= P.np) {  // grow the arrays (contents kept) up to 'nbmp'
+    const int n = int(std::min<long>(m_.nbmp, std::max<long>(1024, 2L * P.np)));
+    P.np = n;
+    P.x.resize(3 * size_t(n), 0.0);
+    P.v.resize(3 * size_t(n), 0.0);
+    if (!P.fext.empty()) P.fext.resize(3 * size_t(n), 0.0);
+    P.sig.resize(6 * size_t(n), 0.0);
+    for (auto* v : {&P.mass, &P.vol, &P.epeff, &P.ie}) v->resize(size_t(n), 0.0);
+    for (auto* v : {&P.mat, &P.body}) v->resize(size_t(n), 0);
+  }
+  const int p = nparticles_++;
   P.mass[p] = mass;
   P.vol[p] = vol;
   P.x[3 * size_t(p)] = x;
@@ -391,8 +439,10 @@ void Reader::read_particles(const Token& key) {
       const int mat = material();
       const double mass = ts_.real("the particle mass");
       if (!(mass > 0.0)) fail(pt.line, "particle mass must be positive");
+      const double vol = mass / m_.mats[size_t(mat)].rho0;
+      if (!(vol > 0.0) || !std::isfinite(vol)) fail(pt.line, "particle volume (mass / density) out of range");
       const double x = ts_.real("x"), y = ts_.real("y"), z = ts_.real("z");
-      add_particle(pt.line, mat, mass, mass / m_.mats[size_t(mat)].rho0, x, y, z);
+      add_particle(pt.line, mat, mass, vol, x, y, z);
     }
   } else if (k == "bloc" || k == "sphe" || k == "cyli") {
     const int mat = material();
@@ -402,6 +452,8 @@ void Reader::read_particles(const Token& key) {
     const double vol = (dp * dp) * dp;
     const double mass = rho * vol;
     m_.bodies.back().spacing = dp;
+    if (!(vol > 0.0) || !(mass > 0.0) || !std::isfinite(mass))
+      fail(kind.line, "particle volume (spacing^3) or mass (density * volume) out of range");
     if (k == "bloc") {
       double o[3];
       long n[3];
@@ -422,7 +474,10 @@ void Reader::read_particles(const Token& key) {
       double c[3];
       for (double& v : c) v = ts_.real("the sphere centre");
       const long nr = ts_.integer("the sphere radius in spacings");
-      if (nr < 1 || nr > 10000) fail(kind.line, "sphere radius (in spacings) must be positive");
+      if (nr < 1 || nr > 10000) fail(kind.line, "sphere radius (in spacings) must lie in 1..10000");
+      // At least the lattice points within nr - sqrt(3)/2 of the centre lie inside.
+      const double rin = double(nr) - 0.8660254;
+      if (rin > 0.0) check_room(kind.line, std::floor(4.18879 * rin * rin * rin), "sphere");
       const double r2 = double(nr * nr);
       for (long i = -nr; i < nr; ++i)
         for (long j = -nr; j < nr; ++j)
@@ -438,9 +493,14 @@ void Reader::read_particles(const Token& key) {
       const double z0 = ts_.real("the cylinder base z");
       const double radius = ts_.real("the cylinder radius"), length = ts_.real("the cylinder length");
       if (!(radius > 0.0) || !(length > 0.0)) fail(kind.line, "cylinder radius and length must be positive");
-      const long nr = long(std::ceil(radius / dp));
-      const long nz = long(std::floor(length / dp + 0.5));
-      if (nr > 100000 || nz > 1000000) fail(kind.line, "cylinder too large for its spacing");
+      const double rs = radius / dp, zs = std::floor(length / dp + 0.5);
+      if (!(rs <= 100000.0) || !(zs <= 1000000.0)) fail(kind.line, "cylinder too large for its spacing");
+      if (!(zs >= 1.0)) fail(kind.line, "cylinder shorter than half a spacing");
+      const long nr = long(std::ceil(rs));
+      const long nz = long(zs);
+      // At least the columns within R/dp - sqrt(2)/2 of the axis lie inside.
+      const double rin = rs - 0.7071068;
+      if (rin > 0.0) check_room(kind.line, std::floor(3.14159 * rin * rin) * double(nz), "cylinder");
       const double r2 = (radius / dp) * (radius / dp) * (1.0 + 1e-12);
       for (long i = -nr; i < nr; ++i)
         for (long j = -nr; j < nr; ++j) {
@@ -496,7 +556,9 @@ void Reader::read_loads(const Token& key) {
       m_.has_loads = true;
       int first, count;
       if (k == "node") {
-        first = particle_index(t, ts_.integer("a particle id"));
+        const long pid = ts_.integer("a particle id");
+        first = particle_index(t, pid);
+        if (first >= nparticles_) fail(t.line, "load on particle " + std::to_string(pid) + " before it is defined");
         count = 1;
       } else {
         const Body& b = m_.bodies[size_t(body_index(t, ts_.integer("a body number")))];
@@ -534,6 +596,25 @@ void Reader::finish(int line) {
   if (m_.contact && m_.scheme == SCHEME_USL)
     m_.warnings.push_back("cont with USL: the contact corrections enter the strain rate unsmoothed and runs tend to diverge; MUSL or USF are safer");
   if (m_.rpttime <= 0.0) m_.rpttime = m_.outtime;
+  // Grid size: whole cells per axis, the node count and the memory of the run.
+  double nodes = 1.0;
+  for (int a = 0; a < 3; ++a) {
+    const int at = std::max(box_line_[a], dcell_line_);
+    const double n = std::floor((m_.box_hi[a] - m_.box_lo[a]) / m_.dcell + 0.5);
+    if (!(n >= 1.0)) fail(at, std::string("grid box along ") + char('x' + a) + " is shorter than half a cell");
+    if (!(n <= 1.0e6)) fail(at, std::string("grid box along ") + char('x' + a) + " has more than 1000000 cells");
+    nodes *= n + 1.0;
+  }
+  {
+    const int at = std::max({box_line_[0], box_line_[1], box_line_[2], dcell_line_});
+    if (nodes > kMaxNodes)
+      fail(at, "grid of " + std::to_string(long(nodes)) + " nodes exceeds the limit of " + std::to_string(long(kMaxNodes)));
+    const double need = nodes * kBytesPerNode + double(m_.nbmp) * kBytesPerParticle, budget = deck_memory_budget();
+    if (need > budget)
+      fail(at, "grid of " + std::to_string(long(nodes)) + " nodes and " + std::to_string(m_.nbmp) +
+                   " particles need about " + megabytes(need) + ", more than the " + megabytes(budget) +
+                   " of memory available");
+  }
   for (int a = 0; a < 3; ++a) {
     const double n = (m_.box_hi[a] - m_.box_lo[a]) / m_.dcell;
     if (std::fabs(n - std::floor(n + 0.5)) > 1e-6 * n)
@@ -624,6 +705,8 @@ void Reader::finish(int line) {
     m_.dt = (m_.dtscale * m_.dcell) / (c_max * (m_.bulk_q2 + std::sqrt(1.0 + m_.bulk_q2 * m_.bulk_q2)));
   else
     m_.dt = m_.dtscale * m_.dcell / c_max;
+  if (!(m_.dt > 0.0) || !std::isfinite(m_.dt))
+    fail(std::max(dcell_line_, line), "time step dtscale * dcel / wave speed is not a positive finite number");
   m_.mass_cutoff = 1.0e-5 * (rho_sum / double(m_.nmat)) * ((m_.dcell * m_.dcell) * m_.dcell);
   // Base name: the deck's file name up to its first '.'.
   std::string base = m_.deck_path;

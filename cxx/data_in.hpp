@@ -54,6 +54,19 @@ struct Model {
 Model read_deck(const std::string& path);
 Model read_deck_text(const std::string& text, const std::string& name);
 
+// Memory limit of a deck (DECK_FORMAT.md "Limits"): a deck whose particles and grid would
+// need more than this many bytes is refused with a line-numbered error before anything is
+// allocated. 0 (the default) means the machine's physical memory. The fuzz harness sets a
+// small budget.
+void set_deck_memory_budget(double bytes);
+double deck_memory_budget();
+// Estimated bytes per particle and per grid node of a run (reader, grid and solver arrays).
+constexpr double kBytesPerParticle = 256.0;
+constexpr double kBytesPerNode = 160.0;
+// Hard limits (int indexing of the arrays): particles and grid nodes.
+constexpr long kMaxParticles = 200000000;
+constexpr double kMaxNodes = 2.0e8;
+
 // Names accepted by outr, curv and curx.
 bool is_output_variable(const std::string& name);
 

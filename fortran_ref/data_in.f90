@@ -2,6 +2,7 @@
 ! the rules, the particle order and the arithmetic of cxx/data_in.cpp.
 module mpm3d_data_in
   use, intrinsic :: iso_fortran_env, only: int64, error_unit
+  use, intrinsic :: iso_c_binding, only: c_long
   use mpm3d_material
   use mpm3d_particle
   use mpm3d_ffi
@@ -52,10 +53,47 @@ module mpm3d_data_in
 
   public :: read_deck, is_output_variable
 
+  ! Memory limit of a deck (as cxx/data_in.hpp): estimated bytes per particle and per grid
+  ! node of a run, the hard limit of grid nodes; the budget is the machine's memory.
+  real(dp), parameter :: BYTES_PER_PARTICLE = 256.0_dp, BYTES_PER_NODE = 160.0_dp
+  real(dp), parameter :: MAX_NODES = 2.0e8_dp
+
+  interface
+    function c_sysconf(name) bind(C, name='sysconf') result(r)
+      import :: c_long
+      integer(c_long), value :: name
+      integer(c_long) :: r
+    end function c_sysconf
+  end interface
+
   character(len=4), parameter :: OUTPUT_VARS(14) = [character(len=4) :: 'seqv', 'epef', 'mat', &
       'pres', 'volu', 'engk', 'engi', 'velx', 'vely', 'velz', 'cels', 'fail', 'sspd', 'damg']
 
 contains
+
+  ! The machine's physical memory in bytes (glibc: _SC_PHYS_PAGES = 85, _SC_PAGESIZE = 30).
+  real(dp) function memory_budget()
+    integer(c_long) :: pages, page
+    pages = c_sysconf(85_c_long)
+    page = c_sysconf(30_c_long)
+    if (pages > 0 .and. page > 0) then
+      memory_budget = real(pages, dp) * real(page, dp)
+    else
+      memory_budget = 1.0e18_dp
+    end if
+  end function memory_budget
+
+  ! (ieee_arithmetic is out of reach with -nostdinc: see CMakeLists.txt.) False for Inf and NaN.
+  logical function is_finite(x)
+    real(dp), intent(in) :: x
+    is_finite = abs(x) <= huge(x)
+  end function is_finite
+
+  function megabytes(bytes) result(s)
+    real(dp), intent(in) :: bytes
+    character(len=:), allocatable :: s
+    s = itoa(int(bytes / 1048576.0_dp + 0.5_dp, int64)) // ' MB'
+  end function megabytes
 
   logical function is_output_variable(name)
     character(len=*), intent(in) :: name
@@ -94,12 +132,15 @@ contains
     real(dp) :: xyz(3), tol
     logical :: ended, on
     type(curve_t) :: cv
+    integer :: box_line(3), dcell_line   ! where the box and the cell size were set
 
     call ts_open(ts, path)
     m%deck_path = path
     m%title = ''
     allocate(m%bodies(4), m%curves(4))
     ended = .false.
+    box_line = 0
+    dcell_line = 0
     do while (.not. ts%at_end())
       key = ts%next()
       kt = ts%text_of(key)
@@ -110,9 +151,13 @@ contains
       case ('nbmp', 'nbco', 'nbbo', 'nmat')
         n = ts%integer(kt)
         if (n < 1 .or. n > 200000000_int64) &
-          call ts%fail(key%line, "'" // kt // "' must be a positive count, got " // itoa(n))
+          call ts%fail(key%line, "'" // kt // "' must be a count in 1..200000000, got " // itoa(n))
         if (k == 'nbmp') then
           if (m%nbmp >= 0) call ts%fail(key%line, "'nbmp' given twice")
+          tol = real(n, dp) * BYTES_PER_PARTICLE
+          if (tol > memory_budget()) &
+            call ts%fail(key%line, "'nbmp' = " // itoa(n) // ' particles need about ' // megabytes(tol) // &
+                         ', more than the ' // megabytes(memory_budget()) // ' of memory available')
           m%nbmp = int(n)
           call particles_resize(m%particles, int(n))
         else if (k == 'nbco') then
@@ -135,17 +180,22 @@ contains
           m%box_lo(a) = ts%real('the grid box')
           m%box_hi(a) = ts%real('the grid box')
           m%box_set(a) = .true.
+          box_line(a) = key%line
+          if (.not. (m%box_hi(a) > m%box_lo(a))) &
+            call ts%fail(key%line, "'grid': maximum must exceed minimum along " // achar(iachar('x') + a - 1))
         end do
       case ('spx', 'spy', 'spz')
         a = iachar(k(3:3)) - iachar('x') + 1
         m%box_lo(a) = ts%real('the box minimum')
         m%box_hi(a) = ts%real('the box maximum')
         m%box_set(a) = .true.
+        box_line(a) = key%line
         if (.not. (m%box_hi(a) > m%box_lo(a))) &
           call ts%fail(key%line, "'" // kt // "': maximum must exceed minimum")
       case ('dcel')
         m%dcell = ts%real('the cell size')
         if (.not. (m%dcell > 0.0_dp)) call ts%fail(key%line, 'cell size must be positive')
+        dcell_line = key%line
       case ('dtsc')
         m%dtscale = ts%real('the time-step scale')
         if (.not. (m%dtscale > 0.0_dp) .or. m%dtscale > 2.5_dp) &
@@ -277,7 +327,7 @@ contains
         m%contact_line = key%line
       case ('endi')
         ended = .true.
-        call finish(ts, m, key%line)
+        call finish(ts, m, key%line, box_line, dcell_line)
         exit
       case default
         call ts%fail(key%line, "unknown keyword '" // kt // "'")
@@ -487,6 +537,10 @@ contains
       if (mp%fail_strain < 0.0_dp) call ts%fail(line, 'failure strain must not be negative')
       call material_derive(mp, err)
       if (len(err) > 0) call ts%fail(line, 'material ' // itoa(num) // ': ' // err)
+      if (.not. is_finite(mp%shear) .or. .not. is_finite(mp%lambda) .or. &
+          .not. (mp%wave_speed > 0.0_dp) .or. .not. is_finite(mp%wave_speed)) &
+        call ts%fail(line, 'material ' // itoa(num) // &
+                     ': elastic constants out of range (wave speed not a positive finite number)')
       m%mats(num) = mp
       if (num == m%nmat) exit
     end do
@@ -543,6 +597,8 @@ contains
     integer :: p
     p = n_defined(m) + 1
     if (p > m%nbmp) call ts%fail(line, "more particles than 'nbmp' = " // i2s(m%nbmp))
+    if (.not. is_finite(x) .or. .not. is_finite(y) .or. .not. is_finite(z)) &
+      call ts%fail(line, 'particle position out of range')
     m%particles%mass(p) = mass
     m%particles%vol(p) = vol
     m%particles%x(1, p) = x
@@ -566,6 +622,19 @@ contains
       call ts%fail(at%line, 'material ' // itoa(id) // " is used before its 'mate' card")
     id0 = int(id - 1)
   end function read_material_id
+
+  ! Refuses a particle card that would generate at least count more particles than 'nbmp'
+  ! leaves room for (checked before generating, so that no card loops for long).
+  subroutine check_room(ts, m, line, count, what)
+    type(token_stream), intent(in) :: ts
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: line
+    real(dp), intent(in) :: count
+    character(len=*), intent(in) :: what
+    if (real(n_defined(m), dp) + count > real(m%nbmp, dp)) &
+      call ts%fail(line, what // ' of at least ' // itoa(int(count, int64)) // " particles exceeds 'nbmp' = " // &
+                   i2s(m%nbmp))
+  end subroutine check_room
 
   subroutine read_particles(ts, m, key)
     type(token_stream), intent(inout) :: ts
@@ -615,10 +684,13 @@ contains
         mat = read_material_id(ts, m)
         mass = ts%real('the particle mass')
         if (.not. (mass > 0.0_dp)) call ts%fail(pt%line, 'particle mass must be positive')
+        vol = mass / m%mats(mat + 1)%rho0
+        if (.not. (vol > 0.0_dp) .or. .not. is_finite(vol)) &
+          call ts%fail(pt%line, 'particle volume (mass / density) out of range')
         x = ts%real('x')
         y = ts%real('y')
         z = ts%real('z')
-        call add_particle(ts, m, pt%line, mat, mass, mass / m%mats(mat + 1)%rho0, x, y, z)
+        call add_particle(ts, m, pt%line, mat, mass, vol, x, y, z)
       end do
     case ('bloc', 'sphe', 'cyli')
       mat = read_material_id(ts, m)
@@ -629,6 +701,8 @@ contains
       vol = (dpp * dpp) * dpp
       mass = rho * vol
       m%bodies(m%nbodies)%spacing = dpp
+      if (.not. (vol > 0.0_dp) .or. .not. (mass > 0.0_dp) .or. .not. is_finite(mass)) &
+        call ts%fail(kind%line, 'particle volume (spacing^3) or mass (density * volume) out of range')
       if (k == 'bloc') then
         do a = 1, 3
           o(a) = ts%real('the block origin')
@@ -656,7 +730,10 @@ contains
           cc(a) = ts%real('the sphere centre')
         end do
         nr = ts%integer('the sphere radius in spacings')
-        if (nr < 1 .or. nr > 10000) call ts%fail(kind%line, 'sphere radius (in spacings) must be positive')
+        if (nr < 1 .or. nr > 10000) call ts%fail(kind%line, 'sphere radius (in spacings) must lie in 1..10000')
+        ! At least the lattice points within nr - sqrt(3)/2 of the centre lie inside.
+        t = real(nr, dp) - 0.8660254_dp
+        if (t > 0.0_dp) call check_room(ts, m, kind%line, aint(4.18879_dp * t * t * t), 'sphere')
         r2 = real(nr * nr, dp)
         do i = -nr, nr - 1
           do j = -nr, nr - 1
@@ -680,6 +757,7 @@ contains
         if (.not. (radius > 0.0_dp) .or. .not. (length > 0.0_dp)) &
           call ts%fail(kind%line, 'cylinder radius and length must be positive')
         t = radius / dpp
+        if (.not. (t <= 100000.0_dp)) call ts%fail(kind%line, 'cylinder too large for its spacing')
         x = aint(t)                       ! ceil, exactly
         if (x < t) x = x + 1.0_dp
         if (x > 1.0e7_dp) call ts%fail(kind%line, 'cylinder too large for its spacing')
@@ -688,8 +766,13 @@ contains
         x = aint(t)                       ! floor, exactly
         if (x > t) x = x - 1.0_dp
         if (x > 1.0e7_dp) call ts%fail(kind%line, 'cylinder too large for its spacing')
+        if (.not. (x <= 1000000.0_dp)) call ts%fail(kind%line, 'cylinder too large for its spacing')
+        if (.not. (x >= 1.0_dp)) call ts%fail(kind%line, 'cylinder shorter than half a spacing')
         nz = int(x, int64)
         if (nr > 100000 .or. nz > 1000000) call ts%fail(kind%line, 'cylinder too large for its spacing')
+        ! At least the columns within R/dp - sqrt(2)/2 of the axis lie inside.
+        t = radius / dpp - 0.7071068_dp
+        if (t > 0.0_dp) call check_room(ts, m, kind%line, aint(3.14159_dp * t * t) * real(nz, dp), 'cylinder')
         r2 = ((radius / dpp) * (radius / dpp)) * (1.0_dp + 1.0e-12_dp)
         do i = -nr, nr - 1
           do j = -nr, nr - 1
@@ -771,6 +854,8 @@ contains
         m%has_loads = .true.
         if (k == 'node') then
           first = particle_index(ts, m, t, ts%integer('a particle id'))
+          if (first >= n_defined(m)) &
+            call ts%fail(t%line, 'load on particle ' // i2s(first + 1) // ' before it is defined')
           count = 1
         else
           ib = body_index(ts, m, t, ts%integer('a body number'))
@@ -801,12 +886,12 @@ contains
     end do
   end subroutine read_loads
 
-  subroutine finish(ts, m, line)
+  subroutine finish(ts, m, line, box_line, dcell_line)
     type(token_stream), intent(in) :: ts
     type(model_t), intent(inout) :: m
-    integer, intent(in) :: line
-    integer :: i, a, p, slash, dot, k
-    real(dp) :: n, fl, c_max, rho_sum, dmin, dx, dy, dz, d, lp
+    integer, intent(in) :: line, box_line(3), dcell_line
+    integer :: i, a, p, slash, dot, k, at
+    real(dp) :: n, fl, c_max, rho_sum, dmin, dx, dy, dz, d, lp, nodes, need
     logical :: thermal, hiex, clamped
     character(len=:), allocatable :: base
     character(len=32) :: buf
@@ -829,6 +914,28 @@ contains
     if (m%contact .and. m%scheme == SCHEME_USL) call warn(m, 'cont with USL: the contact corrections enter ' // &
       'the strain rate unsmoothed and runs tend to diverge; MUSL or USF are safer')
     if (m%rpttime <= 0.0_dp) m%rpttime = m%outtime
+    ! Grid size: whole cells per axis, the node count and the memory of the run.
+    nodes = 1.0_dp
+    do a = 1, 3
+      at = max(box_line(a), dcell_line)
+      n = (m%box_hi(a) - m%box_lo(a)) / m%dcell + 0.5_dp
+      fl = aint(n)
+      if (fl > n) fl = fl - 1.0_dp
+      if (.not. (fl >= 1.0_dp)) &
+        call ts%fail(at, 'grid box along ' // achar(iachar('x') + a - 1) // ' is shorter than half a cell')
+      if (.not. (fl <= 1.0e6_dp)) &
+        call ts%fail(at, 'grid box along ' // achar(iachar('x') + a - 1) // ' has more than 1000000 cells')
+      nodes = nodes * (fl + 1.0_dp)
+    end do
+    at = max(maxval(box_line), dcell_line)
+    if (nodes > MAX_NODES) &
+      call ts%fail(at, 'grid of ' // itoa(int(nodes, int64)) // ' nodes exceeds the limit of ' // &
+                   itoa(int(MAX_NODES, int64)))
+    need = nodes * BYTES_PER_NODE + real(m%nbmp, dp) * BYTES_PER_PARTICLE
+    if (need > memory_budget()) &
+      call ts%fail(at, 'grid of ' // itoa(int(nodes, int64)) // ' nodes and ' // i2s(m%nbmp) // &
+                   ' particles need about ' // megabytes(need) // ', more than the ' // &
+                   megabytes(memory_budget()) // ' of memory available')
     do a = 1, 3
       n = (m%box_hi(a) - m%box_lo(a)) / m%dcell
       fl = aint(n + 0.5_dp)
@@ -933,6 +1040,8 @@ contains
     else
       m%dt = (m%dtscale * m%dcell) / c_max
     end if
+    if (.not. (m%dt > 0.0_dp) .or. .not. is_finite(m%dt)) &
+      call ts%fail(max(dcell_line, line), 'time step dtscale * dcel / wave speed is not a positive finite number')
     m%mass_cutoff = (1.0e-5_dp * (rho_sum / real(m%nmat, dp))) * ((m%dcell * m%dcell) * m%dcell)
     ! Base name: the deck's file name up to its first '.'.
     base = m%deck_path

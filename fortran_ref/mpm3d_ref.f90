@@ -177,6 +177,9 @@ program mpm3d_ref
   end if
   if (len(state_path) > 0) call write_state_h5(state_path, model, time, steps, model%dt)
   if (len(energy_path) > 0) call write_energies(energy_path)
+  ! The main program's deferred-length strings outlive it (implicit SAVE) and would be
+  ! reported by LeakSanitizer (make test-sanitize): free them.
+  deallocate(deck, state_path, init_path, energy_path, err)
   if (rc /= 0) stop 3, quiet=.true.
 
 contains
