@@ -159,7 +159,7 @@ contains
             call ts%fail(key%line, "'nbmp' = " // itoa(n) // ' particles need about ' // megabytes(tol) // &
                          ', more than the ' // megabytes(memory_budget()) // ' of memory available')
           m%nbmp = int(n)
-          call particles_resize(m%particles, int(n))
+          call particles_resize(m%particles, 0)   ! grows as the particle cards generate particles
         else if (k == 'nbco') then
           if (n > 2) call ts%fail(key%line, "'nbco' must be 1 or 2")
           m%nbco = int(n)
@@ -599,6 +599,7 @@ contains
     if (p > m%nbmp) call ts%fail(line, "more particles than 'nbmp' = " // i2s(m%nbmp))
     if (.not. is_finite(x) .or. .not. is_finite(y) .or. .not. is_finite(z)) &
       call ts%fail(line, 'particle position out of range')
+    if (p > m%particles%np) call particles_grow(m%particles, min(m%nbmp, max(1024, 2 * m%particles%np)))
     m%particles%mass(p) = mass
     m%particles%vol(p) = vol
     m%particles%x(1, p) = x

@@ -27,7 +27,7 @@ module mpm3d_particle
     real(dp), allocatable :: psize(:)   ! only with gimp: particle half-size lp
   end type particles_t
 
-  public :: particles_resize
+  public :: particles_resize, particles_grow
 
 contains
 
@@ -53,5 +53,51 @@ contains
     p%mat = 0
     p%body = 0
   end subroutine particles_resize
+
+  ! Grows the arrays to n particles, keeping the first np and zeroing the rest (fext too
+  ! when allocated): the reader grows them as the particle cards generate particles.
+  subroutine particles_grow(p, n)
+    type(particles_t), intent(inout) :: p
+    integer, intent(in) :: n
+    integer :: k
+    k = p%np
+    call grow2(p%x, 3)
+    call grow2(p%v, 3)
+    call grow2(p%sig, 6)
+    if (allocated(p%fext)) call grow2(p%fext, 3)
+    call grow1(p%mass)
+    call grow1(p%vol)
+    call grow1(p%epeff)
+    call grow1(p%ie)
+    call growi(p%mat)
+    call growi(p%body)
+    p%np = n
+  contains
+    subroutine grow2(a, rows)
+      real(dp), allocatable, intent(inout) :: a(:,:)
+      integer, intent(in) :: rows
+      real(dp), allocatable :: t(:,:)
+      allocate(t(rows, n))
+      t = 0.0_dp
+      if (allocated(a)) t(:, 1:k) = a(:, 1:k)
+      call move_alloc(t, a)
+    end subroutine grow2
+    subroutine grow1(a)
+      real(dp), allocatable, intent(inout) :: a(:)
+      real(dp), allocatable :: t(:)
+      allocate(t(n))
+      t = 0.0_dp
+      if (allocated(a)) t(1:k) = a(1:k)
+      call move_alloc(t, a)
+    end subroutine grow1
+    subroutine growi(a)
+      integer(c_int), allocatable, intent(inout) :: a(:)
+      integer(c_int), allocatable :: t(:)
+      allocate(t(n))
+      t = 0
+      if (allocated(a)) t(1:k) = a(1:k)
+      call move_alloc(t, a)
+    end subroutine growi
+  end subroutine particles_grow
 
 end module mpm3d_particle

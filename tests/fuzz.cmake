@@ -8,7 +8,7 @@ if(Python3_Interpreter_FOUND)
   if(TARGET mpm3d_ref)
     set(_mpm3d_ref_arg --ref $<TARGET_FILE:mpm3d_ref>)
   endif()
-  file(GLOB _fuzz_regressions ${CMAKE_SOURCE_DIR}/tests/fuzz_regressions/*.mpm)
+  file(GLOB _fuzz_regressions CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/tests/fuzz_regressions/*.mpm)
   if(_fuzz_regressions)
     add_test(NAME fuzz_regressions
              COMMAND ${Python3_EXECUTABLE} ${CMAKE_SOURCE_DIR}/tools/mutate_decks.py

@@ -182,8 +182,9 @@ def targeted():
         deck("velo node on a particle not yet defined", "node 3",
              part="velo\nnode 3 1 0 0\nendv\npart bloc 1 1 1.0 0.5 1 1 1 2 2 2"),
         deck("1e12 particles", "nbmp", nbmp="1000000000000"),
-        deck("2e8 particles (more memory than this machine, or a block too large)", None, nbmp="200000000",
-             part="part bloc 1 1 1.0 0.01 0 0 0 1000 1000 200"),
+        # Refused at nbmp where 2e8 x 256 bytes exceed the memory, else at endi (8 particles
+        # defined): the arrays grow with the particles, nothing is allocated for nbmp.
+        deck("nbmp 2e8 (the hard limit) with 8 particles", None, nbmp="200000000"),
         deck("a block of 1e15 particles", "part", part="part bloc 1 1 1.0 0.5 1 1 1 100000 100000 100000"),
         deck("a sphere far larger than nbmp", "part", part="part sphe 1 1 1.0 0.5 2 2 2 10000"),
         deck("a cylinder far larger than nbmp", "part", part="part cyli 1 1 1.0 1e-5 2 2 0 1 3"),
