@@ -2,8 +2,11 @@
 BUILD ?= build
 JOBS  ?= $(shell nproc)
 DEB_PACKAGES = g++ gfortran cmake make libeigen3-dev libhdf5-dev hdf5-tools googletest \
-               libgtest-dev libbenchmark-dev python3
+               libgtest-dev libbenchmark-dev python3 python3-numpy python3-matplotlib
 DECK ?= inputs/taylor/taylor_coarse.mpm
+# Debian's interpreter (where python3-numpy/matplotlib live), even when another python3 is first on PATH.
+PYTHON ?= $(shell test -x /usr/bin/python3 && echo /usr/bin/python3 || echo python3)
+REPORT_ARGS ?=
 
 .PHONY: all deps build run test bench report clean
 
@@ -35,7 +38,7 @@ bench: build
 	tools/bench.sh $(BUILD)
 
 report: build
-	python3 tools/report.py $(BUILD)
+	$(PYTHON) tools/report.py $(BUILD) --threads 2 $(REPORT_ARGS)
 
 clean:
 	rm -rf $(BUILD)
