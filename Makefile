@@ -2,7 +2,7 @@
 BUILD ?= build
 JOBS  ?= $(shell nproc)
 DEB_PACKAGES = g++ gfortran cmake make libeigen3-dev libhdf5-dev hdf5-tools googletest \
-               libgtest-dev libbenchmark-dev python3 python3-matplotlib
+               libgtest-dev libbenchmark-dev python3 python3-numpy python3-matplotlib
 DECK ?= inputs/taylor/taylor_coarse.mpm
 # `make fuzz` only (docs/RELIABILITY.md): libFuzzer comes with Debian's clang.
 FUZZ_PACKAGES = clang libclang-rt-dev
@@ -17,6 +17,9 @@ SAN_ENV = ASAN_OPTIONS=detect_leaks=1:detect_stack_use_after_return=1 \
 # (fref_*_stage_*) run the same kernels as the --kernel fortran and mixed variants that
 # stay in: left out to keep CI short.
 SAN_CTEST_ARGS ?= -E '^bindings\.install_example$$|_stage_'
+# Debian's interpreter (where python3-numpy/matplotlib live), even when another python3 is first on PATH.
+PYTHON ?= $(shell test -x /usr/bin/python3 && echo /usr/bin/python3 || echo python3)
+REPORT_ARGS ?=
 
 .PHONY: all deps build run test bench report clean fuzz fuzz-deps test-sanitize
 
@@ -61,7 +64,7 @@ bench: build
 	tools/bench.sh $(BUILD)
 
 report: build
-	python3 tools/report.py $(BUILD)
+	$(PYTHON) tools/report.py $(BUILD) --threads 2 $(REPORT_ARGS)
 
 clean:
 	rm -rf $(BUILD) $(BUILD)-fuzz $(SAN_BUILD)

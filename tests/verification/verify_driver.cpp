@@ -1,0 +1,316 @@
+// mpm3d_verify: the driver of the verification and stability suite (tools/report.py,
+// tests/verification/check.py). It runs a deck through the library (read_deck +
+// Simulation, the same path as the mpm3d program), records the energies and momentum of
+// every step, and writes what the analysis needs:
+//   PREFIX.json          status (ok | stopped | refused), message, counts, energies, mass,
+//                        momentum, energy error, wall time of the time loop, Taylor measures
+//   PREFIX_series.csv    step, t, kinetic, internal, px, py, pz, external work
+//   PREFIX_snap_K.bin    particle state at the K-th --snap time (raw float64, see below)
+// Options:
+//   --threads N      OpenMP threads
+//   --out PREFIX     output prefix (default: the deck's base name)
+//   --snap T1,T2,..  write snapshots at these times (after the first step reaching them)
+//   --end-time T     run to T instead of the deck's end time;  --steps N: at most N steps
+//   --mms A,C        Wallstedt & Guilkey (2008) axis-aligned manufactured solution:
+//                    u_a = A sin(2 pi X_a) sin(C pi t) for each axis a. Sets the initial
+//                    velocities and, before every step, the body force of the hypoelastic
+//                    (Jaumann) material of material 1, through the particle external-force
+//                    array (the deck must allocate it with a 'load' card, e.g. a zero load)
+//   --keep-going     when the health check's runaway-energy test trips (total energy above
+//                    twice the initial energy plus the external work), record the first
+//                    trip (step, message) and go on stepping: it is thrown after the step
+//                    is complete, so the state is whole; a non-finite value still stops.
+//                    For the dt-scale sweep, which looks for growth rather than a heuristic.
+//   --taylor DP,BIN  Taylor bar measures (cxx/analysis) with spacing DP and the radius
+//                    profile in bins of width BIN from the impact end
+// Snapshot layout: np, t, then X0(3,np), x(3,np), v(3,np), sig(6,np), mass, vol, ie,
+// epeff (np each), all float64 in machine order.
+// Exit status: 0 ok, 3 stopped by the health check, 4 deck refused, 2 usage, 1 other error.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "analysis.hpp"
+#include "data_in.hpp"
+#include "ffi.hpp"
+#include "mpm3d.hpp"
+
+using namespace mpm3d;
+
+namespace {
+
+std::string num(double v) {
+  if (!std::isfinite(v)) return "null";
+  char b[40];
+  std::snprintf(b, sizeof b, "%.17g", v);
+  return b;
+}
+
+std::string esc(const std::string& s) {
+  std::string r;
+  for (char ch : s) {
+    if (ch == '"' || ch == '\\') r += '\\', r += ch;
+    else if (static_cast<unsigned char>(ch) < 32) r += ' ';
+    else r += ch;
+  }
+  return r;
+}
+
+std::vector<double> split_reals(const std::string& s) {
+  std::vector<double> r;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ',')) r.push_back(std::atof(item.c_str()));
+  return r;
+}
+
+void write_json(const std::string& path, const std::string& text) {
+  std::ofstream f(path);
+  f << text;
+}
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Manufactured solution: body force per unit mass on axis a at material point X, time t.
+// Diagonal F = diag(1 + u_a,a): no spin, so the hypoelastic Jaumann update integrates to
+// the Hencky law sigma = lambda ln J I + 2 G ln V exactly in time-continuous form, and
+// rho0 u_tt = Div P + rho0 b with P_aa = (prod_{b != a} F_bb) sigma_aa gives
+// b_a = u_a,tt - (1/rho0) (prod_{b != a} F_bb) (lambda + 2 G) F_aa,a / F_aa.
+struct Mms {
+  double A = 0, C = 0, rho0 = 1, lam = 0, G = 0;
+  double u(double X, double t) const { return A * std::sin(2 * kPi * X) * std::sin(C * kPi * t); }
+  double v(double X, double t) const { return A * std::sin(2 * kPi * X) * C * kPi * std::cos(C * kPi * t); }
+  void force(const double* X, double t, double* b) const {
+    const double s = std::sin(C * kPi * t);
+    double F[3], dF[3], acc[3];
+    for (int a = 0; a < 3; ++a) {
+      const double sx = std::sin(2 * kPi * X[a]);
+      F[a] = 1.0 + 2 * kPi * A * std::cos(2 * kPi * X[a]) * s;
+      dF[a] = -4 * kPi * kPi * A * sx * s;
+      acc[a] = -A * (C * kPi) * (C * kPi) * sx * s;
+    }
+    for (int a = 0; a < 3; ++a) {
+      const double other = F[(a + 1) % 3] * F[(a + 2) % 3];
+      b[a] = acc[a] - other * (lam + 2 * G) * dF[a] / (F[a] * rho0);
+    }
+  }
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string deck, prefix;
+  std::vector<double> snaps, mms_args, taylor_args;
+  double end_time = -1;
+  long max_steps = -1;
+  int threads = 0;
+  bool keep_going = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto val = [&]() -> std::string {
+      if (i + 1 >= argc) {
+        std::cerr << "mpm3d_verify: " << a << " needs a value\n";
+        std::exit(2);
+      }
+      return argv[++i];
+    };
+    if (a == "--threads") threads = std::atoi(val().c_str());
+    else if (a == "--out") prefix = val();
+    else if (a == "--snap") snaps = split_reals(val());
+    else if (a == "--end-time") end_time = std::atof(val().c_str());
+    else if (a == "--steps") max_steps = std::atol(val().c_str());
+    else if (a == "--mms") mms_args = split_reals(val());
+    else if (a == "--taylor") taylor_args = split_reals(val());
+    else if (a == "--keep-going") keep_going = true;
+    else if (!a.empty() && a[0] == '-') {
+      std::cerr << "mpm3d_verify: unknown option " << a << "\n";
+      return 2;
+    } else deck = a;
+  }
+  if (deck.empty()) {
+    std::cerr << "usage: mpm3d_verify DECK [--threads N] [--out PREFIX] [--snap T,..] [--end-time T] "
+                 "[--steps N] [--mms A,C] [--taylor DP,BIN]\n";
+    return 2;
+  }
+  if (prefix.empty()) prefix = deck.substr(0, deck.find_last_of('.'));
+#ifdef _OPENMP
+  if (threads > 0) omp_set_num_threads(threads);
+  threads = omp_get_max_threads();
+#else
+  threads = 1;
+#endif
+  Model model;
+  try {
+    model = read_deck(deck);
+  } catch (const std::exception& e) {
+    write_json(prefix + ".json", "{\n  \"status\": \"refused\",\n  \"message\": \"" + esc(e.what()) + "\"\n}\n");
+    std::cerr << "mpm3d_verify: deck refused: " << e.what() << "\n";
+    return 4;
+  }
+  try {
+    const auto t_setup = std::chrono::steady_clock::now();
+    Simulation sim(std::move(model));
+    Particles& P = sim.model.particles;
+    const int np = P.np;
+    const std::vector<double> X0 = P.x;
+    Mms mms;
+    const bool use_mms = mms_args.size() == 2;
+    if (use_mms) {
+      if (P.fext.empty()) throw std::runtime_error("--mms needs a deck with a 'load' card (external-force array)");
+      const MaterialParams& m = sim.model.mats[0];
+      mms.A = mms_args[0];
+      mms.C = mms_args[1];
+      mms.rho0 = m.rho0;
+      mms.lam = m.lambda;
+      mms.G = m.shear;
+      for (int p = 0; p < np; ++p)
+        for (int a = 0; a < 3; ++a) P.v[3 * size_t(p) + a] = mms.v(X0[3 * size_t(p) + a], 0.0);
+      sim.measure();
+      sim.initial_total_energy = sim.kinetic + sim.internal;
+    }
+    double mass0 = 0;
+    for (int p = 0; p < np; ++p) mass0 += P.mass[p];
+    const double E0 = sim.initial_total_energy;
+    const double mom0[3] = {sim.momentum[0], sim.momentum[1], sim.momentum[2]};
+    const double tend = end_time > 0 ? end_time : sim.model.endtime;
+    const double eps = 1e-9 * sim.model.dt;
+    std::ofstream series(prefix + "_series.csv");
+    series << "step,t,kinetic,internal,px,py,pz,external_work\n";
+    char line[400];
+    auto record = [&]() {
+      std::snprintf(line, sizeof line, "%ld,%.10g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g\n", sim.steps, sim.time,
+                    sim.kinetic, sim.internal, sim.momentum[0], sim.momentum[1], sim.momentum[2], sim.external_work);
+      series << line;
+    };
+    record();
+    size_t next_snap = 0;
+    int nsnap_written = 0;
+    auto snapshot = [&]() {
+      const std::string path = prefix + "_snap_" + std::to_string(nsnap_written++) + ".bin";
+      std::ofstream f(path, std::ios::binary);
+      const double head[2] = {double(np), sim.time};
+      f.write(reinterpret_cast<const char*>(head), sizeof head);
+      auto put = [&](const std::vector<double>& v) {
+        f.write(reinterpret_cast<const char*>(v.data()), std::streamsize(v.size() * sizeof(double)));
+      };
+      put(X0);
+      put(P.x);
+      put(P.v);
+      put(P.sig);
+      put(P.mass);
+      put(P.vol);
+      put(P.ie);
+      put(P.epeff);
+    };
+    double loop_seconds = 0, max_energy_error = 0;
+    std::string status = "ok", message, first_trip;
+    long first_trip_step = -1;
+    const double setup_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t_setup).count();
+    while (sim.time < tend - eps && (max_steps < 0 || sim.steps < max_steps)) {
+      const auto t0 = std::chrono::steady_clock::now();
+      if (use_mms) {
+        const double t = sim.time;
+        for (int p = 0; p < np; ++p) {
+          double b[3];
+          mms.force(&X0[3 * size_t(p)], t, b);
+          for (int a = 0; a < 3; ++a) P.fext[3 * size_t(p) + a] = P.mass[p] * b[a];
+        }
+      }
+      try {
+        sim.step();
+      } catch (const HealthError& e) {
+        const bool energy_only = std::isfinite(sim.kinetic) && std::isfinite(sim.internal);
+        if (keep_going && energy_only) {
+          if (first_trip_step < 0) {
+            first_trip_step = sim.steps;
+            first_trip = e.what();
+          }
+        } else {
+          status = "stopped";
+          message = e.what();
+        }
+      }
+      loop_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      if (status != "ok") break;
+      record();
+      const double err = std::fabs((sim.kinetic + sim.internal) - E0 - sim.external_work);
+      if (err > max_energy_error) max_energy_error = err;
+      while (next_snap < snaps.size() && sim.time >= snaps[next_snap] - eps) {
+        snapshot();
+        ++next_snap;
+      }
+    }
+    if (status == "ok" && nsnap_written == 0 && !snaps.empty()) snapshot();
+    // Final checks: non-finite values anywhere, mass, momentum.
+    long nonfinite = 0;
+    for (const auto* v : {&P.x, &P.v, &P.sig, &P.ie, &P.vol})
+      for (double d : *v) nonfinite += std::isfinite(d) ? 0 : 1;
+    double mass1 = 0;
+    for (int p = 0; p < np; ++p) mass1 += P.mass[p];
+    std::ostringstream js;
+    js << "{\n  \"status\": \"" << status << "\",\n  \"message\": \"" << esc(message) << "\",\n  \"deck\": \""
+       << esc(deck) << "\",\n  \"particles\": " << np << ",\n  \"nodes\": " << sim.grid.nnode()
+       << ",\n  \"steps\": " << sim.steps << ",\n  \"time\": " << num(sim.time) << ",\n  \"dt\": " << num(sim.model.dt)
+       << ",\n  \"dcell\": " << num(sim.model.dcell) << ",\n  \"threads\": " << threads
+       << ",\n  \"wall_seconds\": " << num(loop_seconds) << ",\n  \"setup_seconds\": " << num(setup_seconds)
+       << ",\n  \"mass_initial\": " << num(mass0) << ",\n  \"mass_final\": " << num(mass1)
+       << ",\n  \"kinetic_energy\": " << num(sim.kinetic) << ",\n  \"internal_energy\": " << num(sim.internal)
+       << ",\n  \"initial_total_energy\": " << num(E0) << ",\n  \"external_work\": " << num(sim.external_work)
+       << ",\n  \"max_energy_error\": " << num(max_energy_error) << ",\n  \"momentum_initial\": [" << num(mom0[0])
+       << ", " << num(mom0[1]) << ", " << num(mom0[2]) << "],\n  \"momentum\": [" << num(sim.momentum[0]) << ", "
+       << num(sim.momentum[1]) << ", " << num(sim.momentum[2]) << "],\n  \"nonfinite_values\": " << nonfinite
+       << ",\n  \"particles_outside_grid\": " << sim.outside << ",\n  \"snapshots\": " << nsnap_written
+       << ",\n  \"energy_check_first_step\": " << first_trip_step << ",\n  \"energy_check_message\": \""
+       << esc(first_trip) << "\"";
+    if (taylor_args.size() == 2) {
+      const double dp = taylor_args[0], bin = taylor_args[1];
+      const TaylorMeasures tm = taylor_measures(P.x, dp, 25.4);
+      js << ",\n  \"taylor\": {\"L\": " << num(tm.length) << ", \"D\": " << num(tm.impact_diameter)
+         << ", \"W\": " << num(tm.width_02) << "}";
+      // Radius profile: axis through the mean (x, y); bins of width BIN from the lowest z.
+      double cx = 0, cy = 0, zmin = INFINITY, zmax = -INFINITY;
+      for (int p = 0; p < np; ++p) {
+        cx += P.x[3 * size_t(p)];
+        cy += P.x[3 * size_t(p) + 1];
+        zmin = std::min(zmin, P.x[3 * size_t(p) + 2]);
+        zmax = std::max(zmax, P.x[3 * size_t(p) + 2]);
+      }
+      cx /= np;
+      cy /= np;
+      const int nbin = int((zmax - zmin) / bin) + 1;
+      std::vector<double> rmax(size_t(nbin), 0.0);
+      for (int p = 0; p < np; ++p) {
+        const int k = int((P.x[3 * size_t(p) + 2] - zmin) / bin);
+        const double r = std::hypot(P.x[3 * size_t(p)] - cx, P.x[3 * size_t(p) + 1] - cy);
+        if (k >= 0 && k < nbin && r > rmax[size_t(k)]) rmax[size_t(k)] = r;
+      }
+      js << ",\n  \"profile_z\": [";
+      for (int k = 0; k < nbin; ++k) js << (k ? ", " : "") << num(zmin + (k + 0.5) * bin);
+      js << "],\n  \"profile_r\": [";
+      for (int k = 0; k < nbin; ++k) js << (k ? ", " : "") << num(rmax[size_t(k)]);
+      js << "]";
+    }
+    js << "\n}\n";
+    write_json(prefix + ".json", js.str());
+    if (status == "stopped") {
+      std::cerr << "mpm3d_verify: " << message << "\n";
+      return 3;
+    }
+    return 0;
+  } catch (const std::exception& e) {
+    write_json(prefix + ".json", "{\n  \"status\": \"error\",\n  \"message\": \"" + esc(e.what()) + "\"\n}\n");
+    std::cerr << "mpm3d_verify: " << e.what() << "\n";
+    return 1;
+  }
+}
