@@ -298,6 +298,9 @@ void Simulation::step() {
     contact_nodes = c->ncontact;
   }
   run(ST_G2P);
+  // MUSL: the remapped momenta of the nodes in contact are corrected again before the
+  // strain rates (the stress stage) read them.
+  if (contact && c->scheme == SCHEME_MUSL) run1(ST_RECONTACT, c);
   if (c->scheme != SCHEME_USF) run(ST_STRESS);
   run1(ST_ENERGY, c);
   outside = c->noutside + (contact ? ctx2.noutside : 0);
