@@ -288,6 +288,9 @@ void Simulation::step() {
   if (expansion_) ensure_expansion_buffers();
   run(ST_P2G);
   if (c->scheme == SCHEME_USF) {
+    // The P2G momenta of the nodes in contact at the end of the previous step corrected
+    // again before the strain rates read them (their velocities moved the particles).
+    if (contact) run1(ST_RECONTACT, c);
     run(ST_STRESS);
     run(ST_FORCES);
   }

@@ -75,7 +75,7 @@ void mpm3d_cxx_g2p(StepContext* c);        // v, x from the grid; MUSL: momentum
 void mpm3d_cxx_stress(StepContext* c);     // strain and spin increments, volume, stress
 void mpm3d_cxx_energy(StepContext* c);     // kinetic, internal energy, momentum
 void mpm3d_cxx_contact(StepContext* c);    // multi-velocity contact correction (c->other: comp. 2)
-void mpm3d_cxx_recontact(StepContext* c);  // MUSL: contact again on the remapped momenta
+void mpm3d_cxx_recontact(StepContext* c);  // contact again at the marked nodes (MUSL remap, USF P2G)
 
 // Benchmark alternative to the patch scheme (cxx/update_step_expansion.cpp): per-thread
 // copies of the grid ("array expansion"), reduced node by node in thread order. Correct,

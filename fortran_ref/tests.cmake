@@ -77,7 +77,7 @@ if(TARGET mpm3d AND TARGET mpm3d_ref)
   fref_deck(two_blocks_gimp ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks_gimp.mpm)
   fref_deck(spheres ${CMAKE_SOURCE_DIR}/inputs/contact/spheres.mpm contact recontact)
   fref_deck(sliding_block ${CMAKE_SOURCE_DIR}/inputs/contact/sliding_block.mpm contact recontact)
-  fref_deck(gimp_contact ${_fref_own}/gimp_contact_usf.mpm contact)
+  fref_deck(gimp_contact ${_fref_own}/gimp_contact_usf.mpm contact recontact)
   # GIMP with the adaptive grid (halo patches on the deck's patch lattice).
   fref_adaptive(two_blocks_gimp ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks_gimp.mpm)
   fref_add(fref_quirks_crlf crlf ${_fref_own}/quirks.mpm)

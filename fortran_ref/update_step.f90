@@ -864,8 +864,9 @@ contains
     call contact_correct(c, .false.)
   end subroutine mpm3d_f_contact
 
-  ! MUSL: the remapped momenta of the nodes marked in contact by mpm3d_f_contact corrected
-  ! again with the kept normals, for either sign of q.n (as mpm3d_cxx_recontact).
+  ! The momenta of the nodes marked in contact by mpm3d_f_contact corrected again with the
+  ! kept normals, for either sign of q.n (as mpm3d_cxx_recontact): MUSL after the remap of
+  ! this step, USF after the P2G of the next step.
   subroutine mpm3d_f_recontact(c) bind(C, name='mpm3d_f_recontact')
     type(step_context), intent(inout), target :: c
     if (.not. c_associated(c%other)) return
@@ -910,7 +911,14 @@ contains
           do j = lo(2), hi(2) - 1
             do i = lo(1), hi(1) - 1
               n = i + c%nn(1) * (j + c%nn(2) * k) + 1
-              if (.not. (m1(n) > c%mass_cutoff) .or. .not. (m2(n) > c%mass_cutoff)) cycle
+              if (.not. (m1(n) > c%mass_cutoff) .or. .not. (m2(n) > c%mass_cutoff)) then
+                if (.not. remap) then
+                  do a = 1, 3
+                    g1(a, n) = 0.0_dp
+                  end do
+                end if
+                cycle
+              end if
               if (remap) then
                 if (g1(1, n) == 0.0_dp .and. g1(2, n) == 0.0_dp .and. g1(3, n) == 0.0_dp) cycle
                 do a = 1, 3
@@ -968,6 +976,18 @@ contains
                 end if
               end do
               ncount = ncount + 1
+            end do
+          end do
+        end do
+      else if (.not. remap .and. c%scheme == SCHEME_USF) then
+        ! USF reads the marks again in the next step: no node outside the loop keeps one.
+        do k = lo(3), hi(3) - 1
+          do j = lo(2), hi(2) - 1
+            do i = lo(1), hi(1) - 1
+              n = i + c%nn(1) * (j + c%nn(2) * k) + 1
+              do a = 1, 3
+                g1(a, n) = 0.0_dp
+              end do
             end do
           end do
         end do
