@@ -126,6 +126,10 @@ void write_checkpoint(const std::string& path, const Simulation& sim, const Outp
       // The adaptive grid's window on the deck's lattice (the whole box without it).
       put(path, s.id, "grid_window_offset", H5T_NATIVE_INT, sim.grid.off, 3);
       put(path, s.id, "grid_window_cells", H5T_NATIVE_INT, sim.grid.nc, 3);
+      // USF with contact: the nodes in contact at the end of the last step (their unit
+      // normals, zero elsewhere), which the next step's recontact stage reads.
+      if (m.contact && m.scheme == SCHEME_USF)
+        put_array(path, s.id, "contact_marks", H5T_NATIVE_DOUBLE, sim.ctx.gnormal, hsize_t(sim.grid.nnode()), 3);
 
       Id g{H5Gcreate2(f.id, "/particles", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose};
       if (g.id < 0) fail(path, "cannot create /particles");
@@ -232,6 +236,17 @@ void read_checkpoint(const std::string& path, Simulation& sim, OutputSchedule& o
   get(path, s.id, "particles_outside_grid", H5T_NATIVE_INT, &outside);
   if (steps < 0 || !(dt > 0.0) || !(h > 0.0)) fail(path, "bad step, dt or cell size");
 
+  const bool marks = m.contact && m.scheme == SCHEME_USF;
+  if (marks != (H5Lexists(s.id, "contact_marks", H5P_DEFAULT) > 0))
+    fail(path, marks ? "no /simulation/contact_marks (the deck's USF contact needs them)"
+                     : "/simulation/contact_marks is not used by this deck");
+  std::vector<double> contact_marks;
+  if (marks) {
+    // The node count of the stored grid window (contact keeps the deck's box).
+    contact_marks.resize(3 * size_t(wnc[0] + 1) * size_t(wnc[1] + 1) * size_t(wnc[2] + 1));
+    get_array(path, s.id, "contact_marks", H5T_NATIVE_DOUBLE, contact_marks.data(), contact_marks.size());
+  }
+
   // Particle arrays: read into copies first, so a bad file leaves the model unchanged.
   Id g{H5Gopen2(f.id, "/particles", H5P_DEFAULT), H5Gclose};
   if (g.id < 0) fail(path, "no /particles group");
@@ -278,6 +293,10 @@ void read_checkpoint(const std::string& path, Simulation& sim, OutputSchedule& o
 
   // Everything read: apply.
   sim.set_grid(origin, h, nc, pc, woff, wnc);
+  if (marks) {
+    if (contact_marks.size() != 3 * size_t(sim.grid.nnode())) fail(path, "contact_marks do not fit the grid");
+    std::copy(contact_marks.begin(), contact_marks.end(), sim.ctx.gnormal);
+  }
   size_t kd = 0, ki = 0;
   for (const ParticleField& fd : fields) {
     if (fd.d) {

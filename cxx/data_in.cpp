@@ -594,7 +594,8 @@ void Reader::finish(int line) {
   if (!(m_.endtime > 0.0)) fail(line, "no end time ('endt')");
   if (m_.contact && m_.nbco != 2) fail(m_.contact_line, "'cont' needs two components ('nbco 2')");
   if (m_.contact && m_.scheme == SCHEME_USL)
-    m_.warnings.push_back("cont with USL: the contact corrections enter the strain rate unsmoothed and runs tend to diverge; MUSL or USF are safer");
+    m_.warnings.push_back("cont with USL: bodies rebounding from a contact vibrate in free flight, and USL "
+                          "(light nodes in the strain rate) tends to diverge there; MUSL or USF are safer");
   if (m_.rpttime <= 0.0) m_.rpttime = m_.outtime;
   // Grid size: whole cells per axis, the node count and the memory of the run.
   double nodes = 1.0;

@@ -288,6 +288,9 @@ void Simulation::step() {
   if (expansion_) ensure_expansion_buffers();
   run(ST_P2G);
   if (c->scheme == SCHEME_USF) {
+    // The P2G momenta of the nodes in contact at the end of the previous step corrected
+    // again before the strain rates read them (their velocities moved the particles).
+    if (contact) run1(ST_RECONTACT, c);
     run(ST_STRESS);
     run(ST_FORCES);
   }
@@ -298,6 +301,9 @@ void Simulation::step() {
     contact_nodes = c->ncontact;
   }
   run(ST_G2P);
+  // MUSL: the remapped momenta of the nodes in contact are corrected again before the
+  // strain rates (the stress stage) read them.
+  if (contact && c->scheme == SCHEME_MUSL) run1(ST_RECONTACT, c);
   if (c->scheme != SCHEME_USF) run(ST_STRESS);
   run1(ST_ENERGY, c);
   outside = c->noutside + (contact ? ctx2.noutside : 0);

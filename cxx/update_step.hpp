@@ -75,6 +75,7 @@ void mpm3d_cxx_g2p(StepContext* c);        // v, x from the grid; MUSL: momentum
 void mpm3d_cxx_stress(StepContext* c);     // strain and spin increments, volume, stress
 void mpm3d_cxx_energy(StepContext* c);     // kinetic, internal energy, momentum
 void mpm3d_cxx_contact(StepContext* c);    // multi-velocity contact correction (c->other: comp. 2)
+void mpm3d_cxx_recontact(StepContext* c);  // contact again at the marked nodes (MUSL remap, USF P2G)
 
 // Benchmark alternative to the patch scheme (cxx/update_step_expansion.cpp): per-thread
 // copies of the grid ("array expansion"), reduced node by node in thread order. Correct,
@@ -92,12 +93,13 @@ void mpm3d_f_g2p(StepContext* c);
 void mpm3d_f_stress(StepContext* c);
 void mpm3d_f_energy(StepContext* c);
 void mpm3d_f_contact(StepContext* c);
+void mpm3d_f_recontact(StepContext* c);
 
 }  // extern "C"
 
 namespace mpm3d {
 
-enum Stage { ST_BIN, ST_P2G, ST_FORCES, ST_INTEGRATE, ST_G2P, ST_STRESS, ST_ENERGY, ST_CONTACT, ST_COUNT };
+enum Stage { ST_BIN, ST_P2G, ST_FORCES, ST_INTEGRATE, ST_G2P, ST_STRESS, ST_ENERGY, ST_CONTACT, ST_RECONTACT, ST_COUNT };
 extern const char* const kStageNames[ST_COUNT];
 constexpr int kReduceFields = 5;
 

@@ -912,8 +912,9 @@ contains
     if (.not. (m%dcell > 0.0_dp)) call ts%fail(line, "no cell size ('dcel')")
     if (.not. (m%endtime > 0.0_dp)) call ts%fail(line, "no end time ('endt')")
     if (m%contact .and. m%nbco /= 2) call ts%fail(m%contact_line, "'cont' needs two components ('nbco 2')")
-    if (m%contact .and. m%scheme == SCHEME_USL) call warn(m, 'cont with USL: the contact corrections enter ' // &
-      'the strain rate unsmoothed and runs tend to diverge; MUSL or USF are safer')
+    if (m%contact .and. m%scheme == SCHEME_USL) call warn(m, &
+      'cont with USL: bodies rebounding from a contact vibrate in free flight, and USL ' // &
+      '(light nodes in the strain rate) tends to diverge there; MUSL or USF are safer')
     if (m%rpttime <= 0.0_dp) m%rpttime = m%outtime
     ! Grid size: whole cells per axis, the node count and the memory of the run.
     nodes = 1.0_dp

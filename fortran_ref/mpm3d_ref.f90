@@ -419,6 +419,7 @@ contains
       call mpm3d_f_p2g(ctx)
       call mpm3d_f_p2g(ctx2)
       if (ctx%scheme == SCHEME_USF) then
+        call mpm3d_f_recontact(ctx)   ! the nodes in contact at the end of the previous step
         call mpm3d_f_stress(ctx)
         call mpm3d_f_stress(ctx2)
         call mpm3d_f_forces(ctx)
@@ -429,6 +430,7 @@ contains
       call mpm3d_f_contact(ctx)
       call mpm3d_f_g2p(ctx)
       call mpm3d_f_g2p(ctx2)
+      if (ctx%scheme == SCHEME_MUSL) call mpm3d_f_recontact(ctx)   ! contact on the remapped momenta
       if (ctx%scheme /= SCHEME_USF) then
         call mpm3d_f_stress(ctx)
         call mpm3d_f_stress(ctx2)

@@ -75,9 +75,9 @@ if(TARGET mpm3d AND TARGET mpm3d_ref)
   fref_add(fref_rising_block_adaptive_mpm3d_ref regrid ${CMAKE_SOURCE_DIR}/tests/decks/rising_block.mpm)
   # GIMP shape functions and multi-velocity contact (issue 5).
   fref_deck(two_blocks_gimp ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks_gimp.mpm)
-  fref_deck(spheres ${CMAKE_SOURCE_DIR}/inputs/contact/spheres.mpm contact)
-  fref_deck(sliding_block ${CMAKE_SOURCE_DIR}/inputs/contact/sliding_block.mpm contact)
-  fref_deck(gimp_contact ${_fref_own}/gimp_contact_usf.mpm contact)
+  fref_deck(spheres ${CMAKE_SOURCE_DIR}/inputs/contact/spheres.mpm contact recontact)
+  fref_deck(sliding_block ${CMAKE_SOURCE_DIR}/inputs/contact/sliding_block.mpm contact recontact)
+  fref_deck(gimp_contact ${_fref_own}/gimp_contact_usf.mpm contact recontact)
   # GIMP with the adaptive grid (halo patches on the deck's patch lattice).
   fref_adaptive(two_blocks_gimp ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks_gimp.mpm)
   fref_add(fref_quirks_crlf crlf ${_fref_own}/quirks.mpm)

@@ -65,7 +65,7 @@ module mpm3d_update_step
   end type step_context
 
   public :: mpm3d_f_bin, mpm3d_f_p2g, mpm3d_f_forces, mpm3d_f_integrate, mpm3d_f_g2p, &
-            mpm3d_f_stress, mpm3d_f_energy, mpm3d_f_contact
+            mpm3d_f_stress, mpm3d_f_energy, mpm3d_f_contact, mpm3d_f_recontact
   public :: mpm3d_f_context_layout
 
 contains
@@ -852,18 +852,36 @@ contains
 
   ! Contact: multi-velocity correction between component 1 (c) and component 2 (c%other),
   ! as mpm3d_cxx_contact (see there for the algorithm): same nodes, same operations, the
-  ! contact force as per-patch partials folded in patch order into result(6:8).
+  ! contact force as per-patch partials folded in patch order into result(6:8), the unit
+  ! normals of the corrected nodes kept in c%gnormal (zero at the other nodes of the loop).
   subroutine mpm3d_f_contact(c) bind(C, name='mpm3d_f_contact')
     type(step_context), intent(inout), target :: c
+    type(step_context), pointer :: c2
+    if (.not. c_associated(c%other)) return
+    call c_f_pointer(c%other, c2)
+    call scatter_mass_gradient(c)
+    call scatter_mass_gradient(c2)
+    call contact_correct(c, .false.)
+  end subroutine mpm3d_f_contact
+
+  ! The momenta of the nodes marked in contact by mpm3d_f_contact corrected again with the
+  ! kept normals, for either sign of q.n (as mpm3d_cxx_recontact): MUSL after the remap of
+  ! this step, USF after the P2G of the next step.
+  subroutine mpm3d_f_recontact(c) bind(C, name='mpm3d_f_recontact')
+    type(step_context), intent(inout), target :: c
+    if (.not. c_associated(c%other)) return
+    call contact_correct(c, .true.)
+  end subroutine mpm3d_f_recontact
+
+  subroutine contact_correct(c, remap)
+    type(step_context), intent(inout), target :: c
+    logical, intent(in) :: remap
     type(step_context), pointer :: c2
     real(dp), pointer :: m1(:), m2(:), p1(:,:), p2(:,:), f1(:,:), f2(:,:), g1(:,:), g2(:,:), cpart(:,:)
     real(dp) :: part(3), nv(3), un(3), qv(3), t(3), len, mt, qn, tl, fr, ft, d, fc, s
     integer :: q, i, j, k, n, a, nb, ncount
     integer :: q3(3), lo(3), hi(3)
-    if (.not. c_associated(c%other)) return
     call c_f_pointer(c%other, c2)
-    call scatter_mass_gradient(c)
-    call scatter_mass_gradient(c2)
     call c_f_pointer(c%gmass, m1, [c%nnode])
     call c_f_pointer(c2%gmass, m2, [c%nnode])
     call c_f_pointer(c%gmom, p1, [3, c%nnode])
@@ -893,32 +911,54 @@ contains
           do j = lo(2), hi(2) - 1
             do i = lo(1), hi(1) - 1
               n = i + c%nn(1) * (j + c%nn(2) * k) + 1
-              if (.not. (m1(n) > c%mass_cutoff) .or. .not. (m2(n) > c%mass_cutoff)) cycle
-              do a = 1, 3
-                if (nb == 1) then
-                  nv(a) = g1(a, n)
-                else if (nb == 2) then
-                  nv(a) = -g2(a, n)
-                else
-                  nv(a) = g1(a, n) - g2(a, n)
+              if (.not. (m1(n) > c%mass_cutoff) .or. .not. (m2(n) > c%mass_cutoff)) then
+                if (.not. remap) then
+                  do a = 1, 3
+                    g1(a, n) = 0.0_dp
+                  end do
                 end if
-              end do
-              len = sqrt(((nv(1) * nv(1)) + (nv(2) * nv(2))) + (nv(3) * nv(3)))
-              if (.not. (len > 0.0_dp)) cycle
-              do a = 1, 3
-                un(a) = nv(a) / len
-              end do
+                cycle
+              end if
+              if (remap) then
+                if (g1(1, n) == 0.0_dp .and. g1(2, n) == 0.0_dp .and. g1(3, n) == 0.0_dp) cycle
+                do a = 1, 3
+                  un(a) = g1(a, n)
+                end do
+              else
+                do a = 1, 3
+                  if (nb == 1) then
+                    nv(a) = g1(a, n)
+                  else if (nb == 2) then
+                    nv(a) = -g2(a, n)
+                  else
+                    nv(a) = g1(a, n) - g2(a, n)
+                  end if
+                end do
+                do a = 1, 3
+                  g1(a, n) = 0.0_dp
+                end do
+                len = sqrt(((nv(1) * nv(1)) + (nv(2) * nv(2))) + (nv(3) * nv(3)))
+                if (.not. (len > 0.0_dp)) cycle
+                do a = 1, 3
+                  un(a) = nv(a) / len
+                end do
+              end if
               mt = m1(n) + m2(n)
               do a = 1, 3
                 qv(a) = ((m2(n) * p1(a, n)) - (m1(n) * p2(a, n))) / mt
               end do
               qn = ((qv(1) * un(1)) + (qv(2) * un(2))) + (qv(3) * un(3))
-              if (.not. (qn > 0.0_dp)) cycle
+              if (.not. remap) then
+                if (.not. (qn > 0.0_dp)) cycle
+                do a = 1, 3
+                  g1(a, n) = un(a)      ! in contact this step
+                end do
+              end if
               do a = 1, 3
                 t(a) = qv(a) - (qn * un(a))
               end do
               tl = sqrt(((t(1) * t(1)) + (t(2) * t(2))) + (t(3) * t(3)))
-              fr = c%contact_mu * qn
+              fr = c%contact_mu * abs(qn)
               if (tl > fr) then
                 ft = fr / tl
               else
@@ -928,20 +968,39 @@ contains
                 d = -((qn * un(a)) + (ft * t(a)))
                 p1(a, n) = p1(a, n) + d
                 p2(a, n) = p2(a, n) - d
-                fc = d / c%dt_int
-                f1(a, n) = f1(a, n) + fc
-                f2(a, n) = f2(a, n) - fc
-                part(a) = part(a) + fc
+                if (.not. remap) then
+                  fc = d / c%dt_int
+                  f1(a, n) = f1(a, n) + fc
+                  f2(a, n) = f2(a, n) - fc
+                  part(a) = part(a) + fc
+                end if
               end do
               ncount = ncount + 1
             end do
           end do
         end do
+      else if (.not. remap .and. c%scheme == SCHEME_USF) then
+        ! USF reads the marks again in the next step: no node outside the loop keeps one.
+        do k = lo(3), hi(3) - 1
+          do j = lo(2), hi(2) - 1
+            do i = lo(1), hi(1) - 1
+              n = i + c%nn(1) * (j + c%nn(2) * k) + 1
+              do a = 1, 3
+                g1(a, n) = 0.0_dp
+              end do
+            end do
+          end do
+        end do
       end if
-      do a = 1, 3
-        cpart(a, q + 1) = part(a)
-      end do
+      if (.not. remap) then
+        do a = 1, 3
+          cpart(a, q + 1) = part(a)
+        end do
+      end if
     end do
+    call apply_bc(c, p1)
+    call apply_bc(c2, p2)
+    if (remap) return
     do a = 1, 3
       s = 0.0_dp
       do q = 1, c%npatch
@@ -950,11 +1009,9 @@ contains
       c%result(5 + a) = s
     end do
     c%ncontact = ncount
-    call apply_bc(c, p1)
     call apply_bc(c, f1)
-    call apply_bc(c2, p2)
     call apply_bc(c2, f2)
-  end subroutine mpm3d_f_contact
+  end subroutine contact_correct
 
   ! Layout of step_context and material_params as this compiler sees them (for the
   ! layout test against the C structs): sizes and a few offsets, in bytes.

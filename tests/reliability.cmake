@@ -14,6 +14,10 @@ mpm3d_restart_test(taylor_coarse ${CMAKE_SOURCE_DIR}/inputs/taylor/taylor_coarse
 # and the adaptive grid's window (regridded every 4 steps, a checkpoint between regrids).
 mpm3d_restart_test(slab_small ${CMAKE_SOURCE_DIR}/inputs/explosives/slab_small.mpm 80 30)
 mpm3d_restart_test(two_blocks_adaptive ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks.mpm 60 26 --regrid-every 4)
+# Multi-velocity contact: MUSL (recontact within the step) and USF with GIMP (the nodes in
+# contact at the checkpoint's step are part of the state: /simulation/contact_marks).
+mpm3d_restart_test(spheres ${CMAKE_SOURCE_DIR}/inputs/contact/spheres.mpm 60 25)
+mpm3d_restart_test(gimp_contact_usf ${CMAKE_SOURCE_DIR}/fortran_ref/testdecks/gimp_contact_usf.mpm 60 25)
 
 foreach(sig TERM INT)
   add_test(NAME restart.signal_${sig}
