@@ -48,7 +48,7 @@ class Simulation {
   double time = 0.0;
   double kinetic = 0.0, internal = 0.0, momentum[3] = {0, 0, 0};
   double initial_total_energy = 0.0;
-  double external_work = 0.0;  // work of gravity and loads so far (health check)
+  double external_work = 0.0;  // bound of the work of gravity and loads so far: sum |f.v| dt (health check)
   int outside = 0;  // particles outside the grid after the last step
   double stage_seconds[ST_COUNT] = {};  // wall time spent in each stage (regrids count as bin)
 

@@ -32,7 +32,7 @@ program mpm3d_ref
   integer :: patch_cells, i, nargs, np, b, rc, regrid_every, halo
   integer :: woff(3), wnc(3)
   real(dp) :: end_time, time, eps, kinetic, internal, rv, initial_total, momentum(3)
-  real(dp) :: external_work    ! work of gravity and loads so far (health check)
+  real(dp) :: external_work    ! bound of the work of gravity and loads: sum |f.v| dt (health check)
   logical :: quiet
   character(len=4096) :: arg
 
@@ -187,11 +187,13 @@ contains
   ! Work of gravity and loads over one step with the end-of-step velocities
   ! (Simulation::dt_work_of_body_forces).
   real(dp) function dt_work_of_body_forces() result(wdt)
-    real(dp) :: w, f, fe
+    real(dp) :: w, f, fe, pw
     integer :: p, a
+    ! A bound of the energy the external forces can have put in: |f . v| per particle.
     w = 0.0_dp
     associate (pp => model%particles)
       do p = 1, np
+        pw = 0.0_dp
         do a = 1, 3
           if (allocated(pp%fext)) then
             fe = pp%fext(a, p)
@@ -199,8 +201,9 @@ contains
             fe = 0.0_dp
           end if
           f = (pp%mass(p) * gravity(a, pp%body(p) + 1)) + fe
-          w = w + (f * pp%v(a, p))
+          pw = pw + (f * pp%v(a, p))
         end do
+        w = w + abs(pw)
       end do
     end associate
     wdt = w * model%dt
