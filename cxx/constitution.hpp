@@ -24,6 +24,33 @@ void stress_update(const MaterialParams& m, const double de[6], const double dw[
                    double mass, double vol_old, double vol_new, StressState s, double burn = 1.0,
                    double q1 = 0.0, double q2 = 0.0, double qlen = 0.0);
 
+// The stress stage's batch of particles of one material, one array per quantity with a
+// lane per particle (the layout the vector code loads directly).
+constexpr int kStressLanes = 4;
+struct StressBlock {
+  double L[9][kStressLanes];  // velocity gradient L[3a+b] = d v_a / d x_b
+  double mass[kStressLanes];
+  double vol[kStressLanes];  // in: volume before the increment; out: after
+  double sig[6][kStressLanes];
+  double epeff[kStressLanes], ie[kStressLanes];
+  double temp[kStressLanes];  // read and written only with has_temp
+  double qv[kStressLanes];    // read and written only with has_q
+  double burn[kStressLanes];  // programmed-burn fraction (1 except hiex)
+};
+struct StressBlockArgs {
+  double dt;
+  bool has_temp, has_q;
+  double q1, q2, qlen;  // bulk viscosity coefficients and length
+};
+// Strain and spin increments dt sym(L), dt skew(L), new volume and stress update of all
+// kStressLanes particles of b (vector code; every lane computes what stress_update
+// computes for its particle, bit for bit), or of lane i alone (stress_block_lane).
+void stress_block(const MaterialParams& m, StressBlock& b, const StressBlockArgs& a);
+void stress_block_lane(const MaterialParams& m, StressBlock& b, int i, const StressBlockArgs& a);
+// True when stress_block runs the AVX2 code (the CPU has it and MPM3D_ISA is not
+// "baseline"); either way the results are the same bits.
+bool stress_block_uses_avx2();
+
 // Programmed burn of hiex: F = min(1, max(0, (time - t_light) D / (1.5 h))), with
 // m.burn_width = 1.5 h. 1 for every other material.
 double burn_fraction(const MaterialParams& m, double t_light, double time);

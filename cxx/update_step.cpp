@@ -1,5 +1,6 @@
 #include "update_step.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -555,72 +556,101 @@ void g2p_gimp(StepContext* c) {
   }
 }
 
-// The particle loop of the stress stage: velocity gradient from the node velocities gvel
-// (trilinear or GIMP stencil), strain and spin increments, volume, stress update.
+// Velocity gradient L[3a+b] = d v_a / d x_b of particle p from the node velocities gvel,
+// summed over the nodes in stencil order (trilinear or GIMP).
+template <bool kGimp>
+inline void velocity_gradient(const StepContext* c, const CellDecoder& dec, int p, const double* gvel,
+                              double L[9]) {
+  const double cutoff = c->mass_cutoff;
+  double l0 = 0, l1 = 0, l2 = 0, l3 = 0, l4 = 0, l5 = 0, l6 = 0, l7 = 0, l8 = 0;
+  auto add = [&](int n, const double* g) {
+    const double vx = gvel[3 * n], vy = gvel[3 * n + 1], vz = gvel[3 * n + 2];
+    const double gx = g[0], gy = g[1], gz = g[2];
+    l0 += vx * gx;
+    l1 += vx * gy;
+    l2 += vx * gz;
+    l3 += vy * gx;
+    l4 += vy * gy;
+    l5 += vy * gz;
+    l6 += vz * gx;
+    l7 += vz * gy;
+    l8 += vz * gz;
+  };
+  if constexpr (kGimp) {
+    GimpStencil st;
+    gimp_stencil(c, dec, p, st);
+    const int base = gimp_corner(c, st);
+    for (int k = 0; k < 27; ++k) {
+      const int n = base + stencil_offset(k, c->nn[0], c->nn[1]);
+      if (c->gmass[n] > cutoff) add(n, st.G + 3 * k);
+    }
+  } else {
+    double N[8], G[24];
+    shape_linear(c->lx + 3 * p, c->inv_h, N, G);
+    const int base = base_node(c, dec, c->cell[p]);
+    for (int k = 0; k < 8; ++k) {
+      const int n = node_of(c, base, k);
+      if (c->gmass[n] > cutoff) add(n, G + 3 * k);
+    }
+  }
+  L[0] = l0, L[1] = l1, L[2] = l2, L[3] = l3, L[4] = l4, L[5] = l5, L[6] = l6, L[7] = l7, L[8] = l8;
+}
+
+// The particle loop of the stress stage: velocity gradients from the node velocities gvel,
+// then strain and spin increments, volume and stress update. Consecutive particles of one
+// material are updated kStressLanes at a time by the vector code (each lane the scalar
+// arithmetic); a batch cut short by a change of material or the end of a chunk is
+// updated lane by lane.
 template <bool kGimp>
 void stress_particles(StepContext* c, const double* gvel) {
-  const double dt = c->dt, cutoff = c->mass_cutoff;
   const bool filter = c->only_comp > 0;
   const CellDecoder dec(c);
-#pragma omp parallel for schedule(dynamic, 256)
-  for (int p = 0; p < c->np; ++p) {
-    const int cell = c->cell[p];
-    if (cell < 0) continue;
-    if (filter && other_component(c, p)) continue;
-    // Velocity gradient L[3a+b] = d v_a / d x_b, summed over the nodes in stencil order.
-    double l0 = 0, l1 = 0, l2 = 0, l3 = 0, l4 = 0, l5 = 0, l6 = 0, l7 = 0, l8 = 0;
-    if constexpr (kGimp) {
-      GimpStencil st;
-      gimp_stencil(c, dec, p, st);
-      const int base = gimp_corner(c, st);
-      for (int k = 0; k < 27; ++k) {
-        const int n = base + stencil_offset(k, c->nn[0], c->nn[1]);
-        if (!(c->gmass[n] > cutoff)) continue;
-        const double vx = gvel[3 * n], vy = gvel[3 * n + 1], vz = gvel[3 * n + 2];
-        const double gx = st.G[3 * k], gy = st.G[3 * k + 1], gz = st.G[3 * k + 2];
-        l0 += vx * gx;
-        l1 += vx * gy;
-        l2 += vx * gz;
-        l3 += vy * gx;
-        l4 += vy * gy;
-        l5 += vy * gz;
-        l6 += vz * gx;
-        l7 += vz * gy;
-        l8 += vz * gz;
+  const StressBlockArgs args{c->dt, c->temp != nullptr, c->qv != nullptr, c->bulk_q1, c->bulk_q2, c->h};
+  constexpr int kChunk = 256;
+  const int nchunk = (c->np + kChunk - 1) / kChunk;
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int ch = 0; ch < nchunk; ++ch) {
+    StressBlock b;
+    int part[kStressLanes];
+    int n = 0, mat = -1;
+    auto flush = [&]() {
+      const MaterialParams& mp = c->mats[mat];
+      if (n == kStressLanes)
+        stress_block(mp, b, args);
+      else
+        for (int i = 0; i < n; ++i) stress_block_lane(mp, b, i, args);
+      for (int i = 0; i < n; ++i) {
+        const int p = part[i];
+        c->vol[p] = b.vol[i];
+        for (int s = 0; s < 6; ++s) c->sig[6 * p + s] = b.sig[s][i];
+        c->epeff[p] = b.epeff[i];
+        c->ie[p] = b.ie[i];
+        if (c->temp) c->temp[p] = b.temp[i];
+        if (c->qv) c->qv[p] = b.qv[i];
       }
-    } else {
-      double N[8], G[24];
-      shape_linear(c->lx + 3 * p, c->inv_h, N, G);
-      const int base = base_node(c, dec, cell);
-      for (int k = 0; k < 8; ++k) {
-        const int n = node_of(c, base, k);
-        if (!(c->gmass[n] > cutoff)) continue;
-        const double vx = gvel[3 * n], vy = gvel[3 * n + 1], vz = gvel[3 * n + 2];
-        const double gx = G[3 * k], gy = G[3 * k + 1], gz = G[3 * k + 2];
-        l0 += vx * gx;
-        l1 += vx * gy;
-        l2 += vx * gz;
-        l3 += vy * gx;
-        l4 += vy * gy;
-        l5 += vy * gz;
-        l6 += vz * gx;
-        l7 += vz * gy;
-        l8 += vz * gz;
-      }
+      n = 0;
+    };
+    const int hi = std::min(c->np, (ch + 1) * kChunk);
+    for (int p = ch * kChunk; p < hi; ++p) {
+      if (c->cell[p] < 0) continue;
+      if (filter && other_component(c, p)) continue;
+      if (n > 0 && c->mat[p] != mat) flush();
+      mat = c->mat[p];
+      double L[9];
+      velocity_gradient<kGimp>(c, dec, p, gvel, L);
+      for (int r = 0; r < 9; ++r) b.L[r][n] = L[r];
+      b.mass[n] = c->mass[p];
+      b.vol[n] = c->vol[p];
+      for (int s = 0; s < 6; ++s) b.sig[s][n] = c->sig[6 * p + s];
+      b.epeff[n] = c->epeff[p];
+      b.ie[n] = c->ie[p];
+      b.temp[n] = c->temp ? c->temp[p] : 0.0;
+      b.qv[n] = c->qv ? c->qv[p] : 0.0;
+      b.burn[n] = c->tlight ? burn_fraction(c->mats[mat], c->tlight[p], c->time) : 1.0;
+      part[n++] = p;
+      if (n == kStressLanes) flush();
     }
-    const double L[9] = {l0, l1, l2, l3, l4, l5, l6, l7, l8};
-    const double de[6] = {L[0] * dt, L[4] * dt, L[8] * dt, (0.5 * (L[5] + L[7])) * dt,
-                          (0.5 * (L[2] + L[6])) * dt, (0.5 * (L[1] + L[3])) * dt};
-    const double dw[3] = {(0.5 * (L[5] - L[7])) * dt, (0.5 * (L[2] - L[6])) * dt,
-                          (0.5 * (L[1] - L[3])) * dt};
-    const double vol_old = c->vol[p];
-    const double vol_new = vol_old * (1.0 + ((de[0] + de[1]) + de[2]));
-    StressState st{c->sig + 6 * p, c->epeff + p, c->ie + p, c->temp ? c->temp + p : nullptr,
-                   c->qv ? c->qv + p : nullptr};
-    const MaterialParams& mp = c->mats[c->mat[p]];
-    const double burn = c->tlight ? burn_fraction(mp, c->tlight[p], c->time) : 1.0;
-    stress_update(mp, de, dw, dt, c->mass[p], vol_old, vol_new, st, burn, c->bulk_q1, c->bulk_q2, c->h);
-    c->vol[p] = vol_new;
+    if (n > 0) flush();
   }
 }
 

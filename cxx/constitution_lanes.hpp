@@ -1,0 +1,323 @@
+// The stress update of constitution.cpp written once for a "lane type" T: T = double
+// updates one particle, T = Lanes<W> (a GCC vector of W doubles) updates W particles of
+// one material at once. Every lane performs exactly the IEEE operations of the scalar
+// update in the same order (DESIGN.md 5: vectorising across particles keeps the bits):
+// branches that depend on the particle become selects that compute both arms, branches
+// that depend on the material stay branches, and the transcendental calls (pow, log, exp)
+// and the Drucker-Prager return run lane by lane through the scalar functions.
+//
+// Everything here has internal linkage: a translation unit compiled for a wider
+// instruction set (stress_lanes_avx2.cpp) gets its own copies, never shared with the
+// baseline units through the linker.
+#pragma once
+#include <immintrin.h>
+
+#include <cmath>
+
+#include "constitution.hpp"
+#include "material.hpp"
+
+// Vector types inside this header never cross a call boundary of another unit.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+namespace mpm3d {
+
+// Scalar helpers of constitution.cpp that the lanes call one lane at a time.
+double dp_return(const MaterialParams& m, double s[6], double* sm, double K, double G);
+void eos_coefficients(const MaterialParams& m, double mu, double* a, double* b);
+void yield_stress(const MaterialParams& m, double epeff, double strain_rate, double temp,
+                  double* sy, double* ep);
+
+namespace {  // internal linkage, see above
+
+template <int W>
+struct LaneTypes {
+  typedef double D __attribute__((vector_size(8 * W)));
+  typedef long M __attribute__((vector_size(8 * W)));
+};
+
+// Lane traits: the scalar one and the W-wide GCC vector.
+struct ScalarLane {
+  static constexpr int W = 1;
+  static double splat(double x) { return x; }
+  static double get(double x, int) { return x; }
+  static void set(double& x, int, double v) { x = v; }
+  static double sqrt(double x) { return std::sqrt(x); }
+  static double select(bool m, double a, double b) { return m ? a : b; }
+  static double load(const double* a) { return *a; }
+  static void store(double* a, double x) { *a = x; }
+};
+
+template <int W_>
+struct VectorLane {
+  typedef typename LaneTypes<W_>::D D;
+  typedef typename LaneTypes<W_>::M M;
+  static constexpr int W = W_;
+  static D splat(double x) { return D{} + x; }
+  static double get(D x, int i) { return x[i]; }
+  static void set(D& x, int i, double v) { x[i] = v; }
+  // Correctly rounded per lane, as std::sqrt; the compiler emits the packed instruction
+  // where the target has one.
+  static D sqrt(D x) {
+#if defined(__AVX512F__)
+    if constexpr (W_ == 8) return (D)_mm512_sqrt_pd((__m512d)x);
+#endif
+#if defined(__AVX__)
+    if constexpr (W_ == 4) return (D)_mm256_sqrt_pd((__m256d)x);
+#endif
+    D r;
+    for (int i = 0; i < W_; i += 2) {
+      __m128d pair = _mm_set_pd(x[i + 1], x[i]);
+      pair = _mm_sqrt_pd(pair);
+      r[i] = _mm_cvtsd_f64(pair);
+      r[i + 1] = _mm_cvtsd_f64(_mm_unpackhi_pd(pair, pair));
+    }
+    return r;
+  }
+  template <class Mask>
+  static D select(Mask m, D a, D b) { return m ? a : b; }
+  static D load(const double* a) {
+    D x;
+    __builtin_memcpy(&x, a, sizeof x);
+    return x;
+  }
+  static void store(double* a, D x) { __builtin_memcpy(a, &x, sizeof x); }
+};
+
+// The operations of the update, generic in the lane type T with lane traits TL.
+template <class T, class TL>
+struct LaneUpdate {
+  // sigma : de with the shear terms counted twice, in a fixed order.
+  static T double_dot(const T* s, const T* d) {
+    return ((s[0] * d[0] + s[1] * d[1]) + s[2] * d[2]) +
+           2.0 * ((s[3] * d[3] + s[4] * d[4]) + s[5] * d[5]);
+  }
+
+  static void jaumann_rotate(T sig[6], const T dw[3]) {
+    const T sxx = sig[0], syy = sig[1], szz = sig[2];
+    const T syz = sig[3], sxz = sig[4], sxy = sig[5];
+    const T wyz = dw[0], wxz = dw[1], wxy = dw[2];
+    sig[0] = sxx + 2.0 * (wxy * sxy + wxz * sxz);
+    sig[1] = syy + 2.0 * (wyz * syz - wxy * sxy);
+    sig[2] = szz - 2.0 * (wxz * sxz + wyz * syz);
+    sig[3] = syz + (wyz * (szz - syy) - (wxy * sxz + wxz * sxy));
+    sig[4] = sxz + (wxz * (szz - sxx) + (wxy * syz - wyz * sxy));
+    sig[5] = sxy + (wxy * (syy - sxx) + (wxz * syz + wyz * sxz));
+  }
+
+  // q = rho l (q1 l d^2 - q2 c d) for d < 0, else 0.
+  static T bulk_viscosity(T rho, double len, double c, T rate, double q1, double q2) {
+    const T q = (rho * len) * ((q1 * len) * (rate * rate) - (q2 * c) * rate);
+    return TL::select(rate < 0.0, q, TL::splat(0.0));
+  }
+
+  static void eos_coefficients(const MaterialParams& m, T mu, T* a, T* b) {
+    const double* c = m.eos;
+    if (m.eos_type == EOS_LINEAR) {
+      const T mu2 = TL::select(mu > 0.0, mu * mu, TL::splat(0.0));
+      *a = ((c[0] + c[1] * mu) + c[2] * mu2) + c[3] * (mu * mu * mu);
+      *b = (c[4] + c[5] * mu) + c[6] * mu2;
+    } else if (m.eos_type == EOS_JWL) {
+      for (int i = 0; i < TL::W; ++i) {
+        double ai, bi;
+        mpm3d::eos_coefficients(m, TL::get(mu, i), &ai, &bi);
+        TL::set(*a, i, ai);
+        TL::set(*b, i, bi);
+      }
+    } else {  // Mie-Gruneisen
+      const double rc2 = m.rho0 * (c[0] * c[0]);
+      const T den = 1.0 - (c[1] - 1.0) * mu;
+      const T compressed = (rc2 * mu) * (1.0 + (1.0 - 0.5 * c[2]) * mu) / (den * den);
+      *a = TL::select(mu > 0.0, compressed, rc2 * mu);
+      *b = TL::splat(c[2]);
+    }
+  }
+
+  static T j2_of(const T s[6]) {
+    return 0.5 * ((s[0] * s[0] + s[1] * s[1]) + s[2] * s[2]) +
+           ((s[3] * s[3] + s[4] * s[4]) + s[5] * s[5]);
+  }
+
+  // Radial return of the deviator s against the yield stress; updates epeff, returns
+  // the plastic strain increment (0 where elastic).
+  static T radial_return(const MaterialParams& m, T s[6], T& epeff, T strain_rate, T temp) {
+    if (m.type == MAT_ELAS) return TL::splat(0.0);
+    const T q = TL::sqrt(3.0 * j2_of(s));
+    T sy, ep;
+    for (int i = 0; i < TL::W; ++i) {
+      double syi, epi;
+      yield_stress(m, TL::get(epeff, i), TL::get(strain_rate, i), TL::get(temp, i), &syi, &epi);
+      TL::set(sy, i, syi);
+      TL::set(ep, i, epi);
+    }
+    const auto yielded = q > sy;
+    const double g3 = 3.0 * m.shear;
+    const T deps = (q - sy) / (g3 + ep);
+    const T ratio = (q - g3 * deps) / q;
+    for (int c = 0; c < 6; ++c) s[c] = TL::select(yielded, s[c] * ratio, s[c]);
+    epeff = TL::select(yielded, epeff + deps, epeff);
+    return TL::select(yielded, deps, TL::splat(0.0));
+  }
+
+  // Drucker-Prager, one lane at a time (its returns branch in four ways).
+  static T dp_return(const MaterialParams& m, T s[6], T& sm, double K, double G) {
+    T deps;
+    for (int i = 0; i < TL::W; ++i) {
+      double si[6], smi = TL::get(sm, i);
+      for (int c = 0; c < 6; ++c) si[c] = TL::get(s[c], i);
+      TL::set(deps, i, mpm3d::dp_return(m, si, &smi, K, G));
+      for (int c = 0; c < 6; ++c) TL::set(s[c], i, si[c]);
+      TL::set(sm, i, smi);
+    }
+    return deps;
+  }
+
+  // Adiabatic heating of thermal Johnson-Cook materials (Taylor-Quinney 0.9).
+  static void adiabatic_heating(const MaterialParams& m, const T s[6], T deps, T mass, T vol_new,
+                                T& temp) {
+    if (!(m.heat_cap > 0.0)) return;
+    const T q_new = TL::sqrt(1.5 * (((s[0] * s[0] + s[1] * s[1]) + s[2] * s[2]) +
+                                    2.0 * ((s[3] * s[3] + s[4] * s[4]) + s[5] * s[5])));
+    const T heated = temp + (0.9 * (q_new * deps)) / ((mass / vol_new) * m.heat_cap);
+    temp = TL::select(deps > 0.0, heated, temp);
+  }
+
+  // The whole update (contract of stress_update in constitution.hpp). temp and q are
+  // read and written only when has_temp / has_q.
+  static void update(const MaterialParams& m, const T de[6], const T dw[3], double dt, T mass,
+                     T vol_old, T vol_new, T sig[6], T& epeff, T& ie, T& temp, bool has_temp,
+                     T& qv, bool has_q, T burn, double q1, double q2, double qlen) {
+    jaumann_rotate(sig, dw);
+    T sig_r[6];
+    for (int c = 0; c < 6; ++c) sig_r[c] = sig[c];
+
+    const T dkk = (de[0] + de[1]) + de[2];
+    const T third = dkk / 3.0;
+    const T dev[6] = {de[0] - third, de[1] - third, de[2] - third, de[3], de[4], de[5]};
+    const double two_g = 2.0 * m.shear;
+    const T vavg = 0.5 * (vol_old + vol_new);
+    // Equivalent deviatoric strain rate, formed only when the Johnson-Cook rate term is on.
+    const T strain_rate = m.jc_c != 0.0 ? TL::sqrt((2.0 / 3.0) * double_dot(dev, dev)) / dt
+                                        : TL::splat(0.0);
+    const T temp_in = has_temp ? temp : TL::splat(0.0);
+    // Bulk viscosity: the stored stress carries the last q in its pressure; q_old is taken
+    // out before the (incremental) elastic update, q_new put in after.
+    T q_old = TL::splat(0.0), q_new = TL::splat(0.0);
+    if (has_q) {
+      q_old = qv;
+      q_new = bulk_viscosity(mass / vol_new, qlen, m.wave_speed, dkk / dt, q1, q2);
+      qv = q_new;
+    }
+
+    const T mean_r = ((sig_r[0] + sig_r[1]) + sig_r[2]) / 3.0;
+    T s[6];
+    if (m.eos_type == EOS_NONE) {
+      // Hypoelastic trial stress, then the return of its deviator (J2) or of the whole
+      // stress (Drucker-Prager).
+      const T lam_dkk = m.lambda * dkk;
+      for (int c = 0; c < 3; ++c) {
+        const T base = has_q ? sig_r[c] + q_old : sig_r[c];
+        sig[c] = base + (lam_dkk + two_g * de[c]);
+      }
+      for (int c = 3; c < 6; ++c) sig[c] = sig_r[c] + two_g * de[c];
+      T mean = ((sig[0] + sig[1]) + sig[2]) / 3.0;
+      for (int c = 0; c < 3; ++c) s[c] = sig[c] - mean;
+      for (int c = 3; c < 6; ++c) s[c] = sig[c];
+      T deps;
+      if (m.type == MAT_DPM) {
+        deps = dp_return(m, s, mean, m.lambda + two_g / 3.0, m.shear);
+        epeff = epeff + deps;
+      } else {
+        deps = radial_return(m, s, epeff, strain_rate, temp_in);
+      }
+      T p_new = -mean;
+      if (m.fail_strain > 0.0) {
+        const auto failed = epeff >= m.fail_strain;
+        for (int c = 0; c < 6; ++c) s[c] = TL::select(failed, TL::splat(0.0), s[c]);
+        p_new = TL::select(failed & (p_new < 0.0), TL::splat(0.0), p_new);
+      }
+      const T p_tot = has_q ? p_new + q_new : p_new;
+      for (int c = 0; c < 3; ++c) sig[c] = s[c] - p_tot;
+      for (int c = 3; c < 6; ++c) sig[c] = s[c];
+      ie = ie + (0.5 * (double_dot(sig_r, de) + double_dot(sig, de))) * vavg;
+      if (has_temp) adiabatic_heating(m, s, deps, mass, vol_new, temp);
+      return;
+    }
+
+    // Deviatoric update plus an equation of state for the pressure. hiex and null carry
+    // no deviatoric stress.
+    T s_r[6];
+    for (int c = 0; c < 3; ++c) s_r[c] = sig_r[c] - mean_r;
+    for (int c = 3; c < 6; ++c) s_r[c] = sig_r[c];
+    T deps = TL::splat(0.0);
+    const bool fluid = m.type == MAT_HIEX || m.type == MAT_NULL;
+    if (fluid) {
+      for (int c = 0; c < 6; ++c) s[c] = TL::splat(0.0);
+    } else {
+      for (int c = 0; c < 6; ++c) s[c] = s_r[c] + two_g * dev[c];
+      deps = radial_return(m, s, epeff, strain_rate, temp_in);
+    }
+    const bool can_fail = m.fail_strain > 0.0;
+    const auto failed = epeff >= m.fail_strain;  // used only when can_fail
+    if (can_fail)
+      for (int c = 0; c < 6; ++c) s[c] = TL::select(failed, TL::splat(0.0), s[c]);
+
+    // Internal energy per unit initial volume, energy equation solved with the new
+    // pressure (the EOS is linear in e): e1 = e* - (p1 + q1) dv / 2, p1 = F (a + b e1),
+    // where e* holds the deviatoric work and the old pressure's (p0 + q0) half of the pdV
+    // work.
+    const T vol0 = mass / m.rho0;
+    const T dv = (vol_new - vol_old) / vol0;
+    const T p_old = -mean_r;
+    const T dwork = (0.5 * (double_dot(s_r, de) + double_dot(s, de))) * vavg;
+    T e_star = (ie + dwork) / vol0 - (0.5 * p_old) * dv;
+    if (has_q) e_star = e_star - (0.5 * q_new) * dv;
+    const T mu = vol0 / vol_new - 1.0;
+    T a, b;
+    eos_coefficients(m, mu, &a, &b);
+    if (m.type == MAT_HIEX) {
+      a = burn * a;
+      b = burn * b;
+    }
+    T p_new = (a + b * e_star) / (1.0 + (0.5 * b) * dv);
+    if (can_fail) p_new = TL::select(failed & (p_new < 0.0), TL::splat(0.0), p_new);
+    const T e_new = e_star - (0.5 * p_new) * dv;
+    ie = e_new * vol0;
+    const T p_tot = has_q ? p_new + q_new : p_new;
+    for (int c = 0; c < 3; ++c) sig[c] = s[c] - p_tot;
+    for (int c = 3; c < 6; ++c) sig[c] = s[c];
+    if (has_temp) adiabatic_heating(m, s, deps, mass, vol_new, temp);
+  }
+};
+
+// The stress stage's update of the particles of a StressBlock (constitution.hpp) from
+// their velocity gradients: TL::W lanes starting at lane `first`.
+template <class TL>
+void stress_block_lanes(const MaterialParams& m, StressBlock& b, int first, const StressBlockArgs& a) {
+  typedef decltype(TL::splat(0.0)) T;
+  typedef LaneUpdate<T, TL> U;
+  const double dt = a.dt;
+  T L[9];
+  for (int r = 0; r < 9; ++r) L[r] = TL::load(b.L[r] + first);
+  const T de[6] = {L[0] * dt, L[4] * dt, L[8] * dt, (0.5 * (L[5] + L[7])) * dt,
+                   (0.5 * (L[2] + L[6])) * dt, (0.5 * (L[1] + L[3])) * dt};
+  const T dw[3] = {(0.5 * (L[5] - L[7])) * dt, (0.5 * (L[2] - L[6])) * dt,
+                   (0.5 * (L[1] - L[3])) * dt};
+  const T vol_old = TL::load(b.vol + first);
+  const T vol_new = vol_old * (1.0 + ((de[0] + de[1]) + de[2]));
+  T sig[6];
+  for (int c = 0; c < 6; ++c) sig[c] = TL::load(b.sig[c] + first);
+  T epeff = TL::load(b.epeff + first), ie = TL::load(b.ie + first);
+  T temp = TL::load(b.temp + first), qv = TL::load(b.qv + first);
+  U::update(m, de, dw, dt, TL::load(b.mass + first), vol_old, vol_new, sig, epeff, ie, temp,
+            a.has_temp, qv, a.has_q, TL::load(b.burn + first), a.q1, a.q2, a.qlen);
+  TL::store(b.vol + first, vol_new);
+  for (int c = 0; c < 6; ++c) TL::store(b.sig[c] + first, sig[c]);
+  TL::store(b.epeff + first, epeff);
+  TL::store(b.ie + first, ie);
+  TL::store(b.temp + first, temp);
+  TL::store(b.qv + first, qv);
+}
+
+}  // namespace
+}  // namespace mpm3d

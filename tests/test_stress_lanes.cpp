@@ -1,0 +1,173 @@
+// The vector stress update (stress_block, kStressLanes particles at once) against the
+// scalar one (stress_update, one particle): the same bits in every lane, for every
+// material, EOS, failure, heating, burn and bulk-viscosity path, with lanes that take
+// different branches (elastic and yielding, compressed and stretched, failed and intact)
+// side by side. A lane must never see its neighbours' branch.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "constitution.hpp"
+#include "material.hpp"
+
+namespace {
+
+struct Case {
+  std::string name;
+  MaterialParams m;
+  bool thermal, bulk;
+  double rate;  // scale of the velocity gradient (1/time)
+};
+
+MaterialParams solid(int type, int eos_type) {
+  MaterialParams m{};
+  m.type = type;
+  m.rho0 = 8.93e-3;
+  m.young = 117.0e3;
+  m.poisson = 0.35;
+  m.yield0 = 90.0;
+  m.hardening = 292.0;
+  m.jc_n = 0.31;
+  m.jc_c = 0.025;
+  m.jc_m = 1.09;
+  m.t_room = 20.0;
+  m.t_melt = 1083.0;
+  m.heat_cap = 385.0e6;
+  m.eps0dot = 1.0e-3;
+  if (type == MAT_SJCF || type == MAT_JCF) m.fail_strain = 0.4;
+  if (type == MAT_PLA1 || type == MAT_PLA2) m.yield0 = 157.0;
+  if (type == MAT_PLA2) m.hardening = 423.5;
+  if (type == MAT_DPM) {
+    m.young = 50.0;
+    m.poisson = 0.3;
+    m.dp_qphi = 0.6;
+    m.dp_kphi = 0.02;
+    m.dp_qpsi = 0.1;
+    m.dp_tension = 0.01;
+  }
+  m.eos_type = eos_type;
+  if (eos_type == EOS_MIE_GRUNEISEN) {
+    m.eos[0] = 3940.0, m.eos[1] = 1.49, m.eos[2] = 1.96;
+  } else if (eos_type == EOS_LINEAR) {
+    const double c[7] = {0.0, 1.4e5, 2.0e5, 3.0e5, 1.5, 0.5, 0.25};
+    for (int i = 0; i < 7; ++i) m.eos[i] = c[i];
+  }
+  EXPECT_EQ(mpm3d::material_derive(m), "");
+  return m;
+}
+
+MaterialParams tnt() {
+  MaterialParams m{};
+  m.type = MAT_HIEX;
+  m.rho0 = 1.63e-3;
+  m.wave_speed = m.det_vel = 6930.0;
+  m.eos_type = EOS_JWL;
+  const double jwl[5] = {3.712e5, 3.21e3, 4.15, 0.95, 0.3};
+  for (int i = 0; i < 5; ++i) m.eos[i] = jwl[i];
+  EXPECT_EQ(mpm3d::material_derive(m), "");
+  m.burn_width = 0.075;
+  return m;
+}
+
+MaterialParams gas() {
+  MaterialParams m{};
+  m.type = MAT_NULL;
+  m.rho0 = 1.0;
+  m.wave_speed = 1.2;
+  m.eos_type = EOS_LINEAR;
+  m.eos[4] = m.eos[5] = 0.4;
+  EXPECT_EQ(mpm3d::material_derive(m), "");
+  return m;
+}
+
+std::vector<Case> cases() {
+  std::vector<Case> v;
+  const int types[] = {MAT_ELAS, MAT_PLA1, MAT_PLA2, MAT_JOHN, MAT_SJC, MAT_SJCF, MAT_JCF};
+  const int eoses[] = {EOS_NONE, EOS_LINEAR, EOS_MIE_GRUNEISEN};
+  for (int t : types)
+    for (int e : eoses)
+      for (int bulk = 0; bulk < 2; ++bulk) {
+        const bool thermal = t == MAT_JOHN || t == MAT_JCF;
+        v.push_back({std::string(mpm3d::material_keyword(t)) + "_eos" + std::to_string(e) +
+                         (bulk ? "_bulk" : ""),
+                     solid(t, e), thermal, bulk == 1, 30.0});
+      }
+  MaterialParams sjc_linear = solid(MAT_SJC, EOS_MIE_GRUNEISEN);  // Taylor.mpm's: n 1, C 0
+  sjc_linear.jc_n = 1.0;
+  sjc_linear.jc_c = 0.0;
+  v.push_back({"sjc_n1_c0", sjc_linear, false, false, 30.0});
+  v.push_back({"dpm", solid(MAT_DPM, EOS_NONE), false, false, 0.5});
+  v.push_back({"dpm_bulk", solid(MAT_DPM, EOS_NONE), false, true, 0.5});
+  v.push_back({"hiex_jwl", tnt(), false, false, 30.0});
+  v.push_back({"hiex_jwl_bulk", tnt(), false, true, 30.0});
+  v.push_back({"null_gas_bulk", gas(), false, true, 2.0});
+  return v;
+}
+
+// A random batch: velocity gradients of either sign (compression and tension, yielding
+// and elastic lanes), prior stresses, plastic strains on both sides of the failure strain.
+mpm3d::StressBlock random_block(std::mt19937_64& rng, const Case& k) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0), pos(0.0, 1.0);
+  mpm3d::StressBlock b{};
+  const double scale = 2.0 * k.m.yield0 + 1.0;
+  for (int i = 0; i < mpm3d::kStressLanes; ++i) {
+    for (int r = 0; r < 9; ++r) b.L[r][i] = k.rate * u(rng);
+    b.mass[i] = k.m.rho0 * (1.0 + 0.1 * u(rng));
+    b.vol[i] = 1.0 + 0.2 * u(rng);
+    for (int c = 0; c < 6; ++c) b.sig[c][i] = scale * u(rng);
+    b.epeff[i] = 0.8 * pos(rng);
+    b.ie[i] = 10.0 * pos(rng);
+    b.temp[i] = k.thermal ? 20.0 + 1500.0 * pos(rng) : 0.0;
+    b.qv[i] = k.bulk ? pos(rng) : 0.0;
+    b.burn[i] = k.m.type == MAT_HIEX ? (i % 2 ? 1.0 : pos(rng)) : 1.0;
+  }
+  return b;
+}
+
+}  // namespace
+
+TEST(StressLanes, EveryLaneEqualsTheScalarUpdateBitForBit) {
+  std::mt19937_64 rng(20261123);
+  const double dt = 1.0e-3;
+  int yielded = 0, elastic = 0;
+  for (const Case& k : cases()) {
+    const mpm3d::StressBlockArgs args{dt, k.thermal, k.bulk, 1.5, 0.06, 0.5};
+    for (int trial = 0; trial < 200; ++trial) {
+      const mpm3d::StressBlock in = random_block(rng, k);
+      mpm3d::StressBlock vec = in, lane = in;
+      mpm3d::stress_block(k.m, vec, args);
+      for (int i = 0; i < mpm3d::kStressLanes; ++i) mpm3d::stress_block_lane(k.m, lane, i, args);
+      // The scalar API, as the stage called it before the vector code.
+      for (int i = 0; i < mpm3d::kStressLanes; ++i) {
+        double L[9];
+        for (int r = 0; r < 9; ++r) L[r] = in.L[r][i];
+        const double de[6] = {L[0] * dt, L[4] * dt, L[8] * dt, (0.5 * (L[5] + L[7])) * dt,
+                              (0.5 * (L[2] + L[6])) * dt, (0.5 * (L[1] + L[3])) * dt};
+        const double dw[3] = {(0.5 * (L[5] - L[7])) * dt, (0.5 * (L[2] - L[6])) * dt,
+                              (0.5 * (L[1] - L[3])) * dt};
+        const double vol_old = in.vol[i];
+        const double vol_new = vol_old * (1.0 + ((de[0] + de[1]) + de[2]));
+        double sig[6], epeff = in.epeff[i], ie = in.ie[i], temp = in.temp[i], qv = in.qv[i];
+        for (int c = 0; c < 6; ++c) sig[c] = in.sig[c][i];
+        mpm3d::StressState st{sig, &epeff, &ie, k.thermal ? &temp : nullptr, k.bulk ? &qv : nullptr};
+        mpm3d::stress_update(k.m, de, dw, dt, in.mass[i], vol_old, vol_new, st, in.burn[i], args.q1,
+                             args.q2, args.qlen);
+        const double got[] = {vec.vol[i], vec.sig[0][i], vec.sig[1][i], vec.sig[2][i], vec.sig[3][i],
+                              vec.sig[4][i], vec.sig[5][i], vec.epeff[i], vec.ie[i], vec.temp[i], vec.qv[i]};
+        const double one[] = {lane.vol[i], lane.sig[0][i], lane.sig[1][i], lane.sig[2][i], lane.sig[3][i],
+                              lane.sig[4][i], lane.sig[5][i], lane.epeff[i], lane.ie[i], lane.temp[i],
+                              lane.qv[i]};
+        const double want[] = {vol_new, sig[0], sig[1], sig[2], sig[3], sig[4], sig[5], epeff, ie, temp, qv};
+        ASSERT_EQ(std::memcmp(got, want, sizeof want), 0) << k.name << " trial " << trial << " lane " << i;
+        ASSERT_EQ(std::memcmp(one, want, sizeof want), 0) << k.name << " trial " << trial << " lane " << i;
+        (epeff > in.epeff[i] ? yielded : elastic)++;
+      }
+    }
+  }
+  // The batches mixed both kinds of lanes (otherwise the selects were not exercised).
+  EXPECT_GT(yielded, 1000);
+  EXPECT_GT(elastic, 1000);
+}
