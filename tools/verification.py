@@ -47,6 +47,19 @@ def deck(title, nbmp, nmat, box, dcell, dtsc, endt, materials, parts, *, scheme=
     return "\n".join(lines) + "\n"
 
 
+def lateral(shape, h):
+    """Cross-section of the 1D decks (bar, waves, Sod): (box width in y and z, particles per
+    axis across it) at 2 particles per cell and axis. Linear: one cell thick, 2 x 2 particles
+    per x-slice. GIMP needs at least two cells along each axis (a 3-node stencil), so its
+    decks are two cells thick with 4 x 4 particles per x-slice; the lateral faces keep their
+    symmetry (or fixed) conditions, so the state is the same in every particle of a slice and
+    the 1D answer does not change. `part bloc` orders particles x outermost, z fastest: the
+    particles of x-slice i are i * m^2 + 1 ... (i + 1) * m^2 (1-based), m per axis."""
+    if shape == "gimp":
+        return 2 * h, 4
+    return h, 2
+
+
 def sphere_count(nr):
     """Particles of 'part sphe' with radius nr spacings (the reader's own test)."""
     r2 = float(nr * nr)
@@ -145,7 +158,8 @@ def fit_order(h, err):
 
 # ------------------------------------------------------------------ 1. vibrating bar
 # Bar 0 <= x <= L = 1, fixed at x = 0, free at x = L, nu = 0 (uniaxial stress), rho = 1,
-# E = 100 (c = 10), one cell thick with symmetry faces in y and z. First mode:
+# E = 100 (c = 10), one cell thick (GIMP: two, see lateral()) with symmetry faces in y and
+# z. First mode:
 #   v(x, t) = v0 sin(beta x) cos(omega t), beta = pi / (2 L), omega = beta c,
 #   centre-of-mass velocity v_cm(t) = (2 v0 / pi) cos(omega t); period 4 L / c = 0.4.
 
@@ -160,14 +174,15 @@ def bar_deck(n, scheme="musl", shape="linear", periods=1.0, E=None, dtsc=0.9):
     c = math.sqrt(E / rho)
     T = 4 * L / c
     nx = 2 * n
+    w, m = lateral(shape, h)
     velo = []
     for i in range(nx):
         x = (i + 0.5) * dp
         v = v0 * math.sin(PI * x / (2 * L))
-        for j in range(4):
-            velo.append(f"node {i * 4 + j + 1} {v!r} 0 0")
-    return deck(f"vibrating bar, {n} cells, {scheme}", nx * 4, 1, (0.0, L + 2 * h, 0.0, h, 0.0, h), h, dtsc,
-                periods * T, [f"elas {rho!r} {E!r} 0.0"], [f"part bloc 1 1 {rho!r} {dp!r} 0 0 0 {nx} 2 2"],
+        for j in range(m * m):
+            velo.append(f"node {i * m * m + j + 1} {v!r} 0 0")
+    return deck(f"vibrating bar, {n} cells, {scheme}", nx * m * m, 1, (0.0, L + 2 * h, 0.0, w, 0.0, w), h, dtsc,
+                periods * T, [f"elas {rho!r} {E!r} 0.0"], [f"part bloc 1 1 {rho!r} {dp!r} 0 0 0 {nx} {m} {m}"],
                 scheme=scheme, fix=(1, 0, 2, 2, 2, 2), velo=velo, shape=shape)
 
 
@@ -237,10 +252,11 @@ def mms_analyse(r, A=None):
 
 
 # ------------------------------------------------------------------ 3. wave speeds
-# A bar 0 <= X <= 2 in uniaxial strain (symmetry faces in y, z) moving at -v0 against the
-# wall x = 0. Elastic: the front moves at c_L = sqrt((lambda + 2G)/rho) in X. Elastic-
-# perfectly plastic (pla1): a precursor at c_L carrying the Hugoniot elastic limit
-# sigma_HEL = sigma_y (1 - nu) / (1 - 2 nu), then the plastic wave at c_B = sqrt(K / rho).
+# A bar 0 <= X <= 2 in uniaxial strain (symmetry faces in y, z; one cell thick, GIMP two,
+# see lateral()) moving at -v0 against the wall x = 0. Elastic: the front moves at
+# c_L = sqrt((lambda + 2G)/rho) in X. Elastic-perfectly plastic (pla1): a precursor at c_L
+# carrying the Hugoniot elastic limit sigma_HEL = sigma_y (1 - nu) / (1 - 2 nu), then the
+# plastic wave at c_B = sqrt(K / rho).
 
 WAVE = dict(E=100.0, nu=0.3, rho=1.0, v0=0.002, sy=0.1, v0p=0.05, Lbar=2.0)
 
@@ -268,9 +284,10 @@ def wave_deck(n, plastic=False, shape="linear"):
     mat = (f"pla1 {w['rho']!r} {w['E']!r} {w['nu']!r} {w['sy']!r}" if plastic
            else f"elas {w['rho']!r} {w['E']!r} {w['nu']!r}")
     tend = 0.85 * Lb / k["cl"]
-    return deck(f"{'elastic-plastic' if plastic else 'elastic'} wave, {n} cells per unit", nx * 4, 1,
-                (0.0, Lb + 2 * h, 0.0, h, 0.0, h), h, 0.9, tend, [mat],
-                [f"part bloc 1 1 {w['rho']!r} {dp!r} 0 0 0 {nx} 2 2"], fix=(2, 0, 2, 2, 2, 2),
+    wl, m = lateral(shape, h)
+    return deck(f"{'elastic-plastic' if plastic else 'elastic'} wave, {n} cells per unit", nx * m * m, 1,
+                (0.0, Lb + 2 * h, 0.0, wl, 0.0, wl), h, 0.9, tend, [mat],
+                [f"part bloc 1 1 {w['rho']!r} {dp!r} 0 0 0 {nx} {m} {m}"], fix=(2, 0, 2, 2, 2, 2),
                 velo=[f"body 1 {-v0!r} 0 0"], shape=shape)
 
 
@@ -280,10 +297,17 @@ def wave_snap_times():
     return (0.35 * Lb / k["cl"], 0.8 * Lb / k["cl"])
 
 
+def slice_mean(X, f):
+    """Profile of a 1D deck: the distinct reference positions X of its x-slices (sorted)
+    and the mean of f over the particles of each slice (2 x 2 or, for GIMP, 4 x 4 of them),
+    so the answer does not depend on the cross-section."""
+    Xs, inv = np.unique(X, return_inverse=True)
+    return Xs, np.bincount(inv, weights=f) / np.bincount(inv)
+
+
 def _front(X, v, level):
-    """Largest X where v (sorted by X) crosses `level` going from above to below."""
-    order = np.argsort(X)
-    X, v = X[order], v[order]
+    """Largest X where the slice-mean v crosses `level` going from above to below."""
+    X, v = slice_mean(X, v)
     idx = np.where((v[:-1] >= level) & (v[1:] < level))[0]
     if len(idx) == 0:
         return float("nan")
@@ -371,10 +395,11 @@ def sod_deck(n, shape="linear"):
     nx = n  # particles per half (2 per cell)
     eL, eR = SOD["pL"] / (g - 1), SOD["pR"] / (g - 1)
     cL = math.sqrt(g * SOD["pL"] / SOD["rhoL"])
-    return deck(f"Sod shock tube, {n} cells", 2 * nx * 4, 2, (0.0, 1.0, 0.0, h, 0.0, h), h, 0.3, SOD["T"],
+    w, m = lateral(shape, h)
+    return deck(f"Sod shock tube, {n} cells", 2 * nx * m * m, 2, (0.0, 1.0, 0.0, w, 0.0, w), h, 0.3, SOD["T"],
                 [f"null {SOD['rhoL']!r} {cL!r}", f"null {SOD['rhoR']!r} {cL!r}"],
-                [f"part bloc 1 1 {SOD['rhoL']!r} {dp!r} 0 0 0 {nx} 2 2",
-                 f"part bloc 1 2 {SOD['rhoR']!r} {dp!r} 0.5 0 0 {nx} 2 2"],
+                [f"part bloc 1 1 {SOD['rhoL']!r} {dp!r} 0 0 0 {nx} {m} {m}",
+                 f"part bloc 1 2 {SOD['rhoR']!r} {dp!r} 0.5 0 0 {nx} {m} {m}"],
                 fix=(2, 2, 2, 2, 2, 2), shape=shape, extra=["bulk 1.5 0.06"],
                 seos=[f"seos 1 1 0 0 0 0 {g - 1!r} {g - 1!r} 0 {eL!r}",
                       f"seos 2 1 0 0 0 0 {g - 1!r} {g - 1!r} 0 {eR!r}"])
