@@ -2,9 +2,14 @@
 """make report: runs the verification and stability suite and rewrites docs/VERIFICATION.md,
 docs/STABILITY.md, the CSV files and PNG plots in docs/verification/ and docs/stability/.
 
-usage: tools/report.py BUILD_DIR [--threads N] [--quick] [--no-fine]
-  --quick    smaller resolutions and no medium/fine Taylor models (a few minutes)
-  --no-fine  everything but the fine Taylor model (1.16 M particles, the longest run)
+usage: tools/report.py BUILD_DIR [--threads N] [--quick] [--no-fine] [--docs-only | --only CASES]
+  --quick      smaller resolutions and no medium/fine Taylor models (a few minutes)
+  --no-fine    everything but the fine Taylor model (1.16 M particles, the longest run)
+  --docs-only  rewrite the docs from the results of the last run (BUILD_DIR/report/results.pkl)
+  --only CASES rerun only these convergence cases (comma-separated: bar, mms, wave, spheres,
+               sod) and take everything else from the last run's results.pkl, e.g.
+               `--only bar,wave,sod` after a change to the 1D decks (minutes instead of the
+               whole report); needs a full run first, uses its resolutions (--quick or not)
 Idempotent: every run starts from the decks (tools/verification.py) and rewrites the docs.
 """
 import argparse
@@ -33,6 +38,25 @@ import verification as V  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SHAPES = ("linear", "gimp")
+# The convergence cases in the order the report runs them: (--only name, Suite method,
+# prefixes of their case names in Suite.conv and Suite.skipped).
+GROUPS = (("bar", "bar", ("vibrating bar",)),
+          ("mms", "mms", ("manufactured solution",)),
+          ("wave", "waves", ("elastic wave speed", "elastic-plastic wave")),
+          ("spheres", "spheres", ("colliding spheres",)),
+          ("sod", "sod", ("Sod shock tube",)))
+
+
+def group_of(case):
+    """Index in GROUPS of a case name; len(GROUPS) for the others (stability, Taylor)."""
+    for i, (_, _, prefixes) in enumerate(GROUPS):
+        if case.startswith(prefixes):
+            return i
+    return len(GROUPS)
+
+
+def utc_now():
+    return datetime.datetime.utcnow().strftime("%Y-%m-%d %H:%M UTC")
 
 
 def loadavg():
@@ -99,6 +123,18 @@ class Suite:
         self.skipped.append((f"{case} ({shape})", short(r.message)))
 
     # ---------------------------------------------------------------- convergence cases
+    def rerun(self, names):
+        """Run the convergence cases `names` (GROUPS) again in place of their results from the
+        last run; the rows of the others, their order and the skipped list stay as they were."""
+        for i, (name, method, _) in enumerate(GROUPS):
+            if name not in names:
+                continue
+            self.conv = [r for r in self.conv if group_of(r["case"]) != i]
+            self.skipped = [(c, w) for c, w in self.skipped if group_of(c) != i]
+            getattr(self, method)()
+        self.conv.sort(key=lambda r: group_of(r["case"]))  # stable: the full run's order
+        self.skipped.sort(key=lambda cw: group_of(cw[0]))
+
     def add_conv(self, case, shape, n, h, r, err, norm, extra=None):
         row = dict(case=case, shape=shape, n=n, h=h, particles=r.info["particles"], steps=r.info["steps"],
                    wall_seconds=r.wall, error=err, norm=norm, status=r.status, threads=r.info["threads"])
@@ -182,7 +218,7 @@ class Suite:
     def waves(self):
         self.wave_rows = []
         ns = (25, 50, 100) if self.quick else (25, 50, 100, 200)
-        self.wave_profile = None
+        self.wave_profile = self.wave_profile_gimp = None
         for plastic in (False, True):
             label = "elastic-plastic wave (HEL)" if plastic else "elastic wave speed"
             for shape in SHAPES:
@@ -203,6 +239,8 @@ class Suite:
                     self.wave_rows.append(row)
                     if plastic and shape == "linear":
                         self.wave_profile = (n, a["profile"])
+                    elif plastic:
+                        self.wave_profile_gimp = (n, a["profile"])
         write_csv(os.path.join(self.vdir, "waves.csv"), self.wave_rows,
                   ["case", "shape", "n", "particles", "steps", "wall_seconds", "error", "cl", "cl_exact", "cb",
                    "cb_exact", "cb_error", "hel", "hel_exact"])
@@ -460,7 +498,11 @@ class Suite:
                 n, (X, s) = self.wave_profile
                 k = V.wave_consts()
                 o = np.argsort(X)
-                ax[0].plot(X[o], s[o], lw=1, label=f"MPM, {n} cells per unit")
+                ax[0].plot(X[o], s[o], lw=1, label=f"MPM linear, {n} cells per unit")
+                if getattr(self, "wave_profile_gimp", None):  # absent in results of older runs
+                    ng, (X, s) = self.wave_profile_gimp
+                    Xs, sm = V.slice_mean(X, s)
+                    ax[0].plot(Xs, sm, "--", lw=1, label=f"MPM GIMP, {ng} cells per unit")
                 ax[0].axhline(k["hel"], color="k", ls="--", lw=1, label="sigma_HEL exact")
                 ax[0].set(xlabel="X", ylabel="-sigma_xx", title="elastic-plastic wave at t2")
                 ax[0].legend()
@@ -478,7 +520,7 @@ class Suite:
             plt.close(fig)
 
     def write_docs(self, load_start, load_end):
-        when = datetime.datetime.utcnow().strftime("%Y-%m-%d %H:%M UTC")
+        when = getattr(self, "run_date", None) or utc_now()  # that of the full run
         machine = f"{platform.machine()}, {os.cpu_count()} cores"
         total = time.time() - self.t0
         head = (f"Generated by `make report` (`tools/report.py`) on {when}, {machine}, "
@@ -489,8 +531,103 @@ class Suite:
                 f"the time loop (set-up and file output excluded).")
         if self.quick:
             head += " This was a `--quick` run (reduced resolutions)."
+        for p in getattr(self, "partial_runs", []):
+            head += (f" The {', '.join(p['cases'])} cases were then rerun alone (`--only "
+                     f"{','.join(p['cases'])}`"
+                     + (f", `--threads {p['threads']}` for the 3D ones" if p.get("threads") else "")
+                     + f") on {p['when']} ({p['minutes']:.1f} minutes, load {p['load_start']} at the start, "
+                     f"{p['load_end']} at the end); their rows and plots are from that rerun, the rest from the "
+                     "full run.")
         self.write_verification(head)
         self.write_stability(head)
+
+    def findings(self):
+        """The 'Reading the table' paragraph, from the numbers: for each shape function which
+        cases converge (order p >= 1), converge slowly (0.25 <= p < 1) or stop falling (p < 0.25)
+        or rise at the finest resolutions, and GIMP's errors against linear ones at the finest
+        resolution run with both."""
+        def runs(case, shape):
+            return [x for x in self.conv if x["case"] == case and x["shape"] == shape and x["status"] == "ok"]
+
+        def rising(r):
+            e = [x["error"] for x in runs(r["case"], r["shape"])]
+            return len(e) > 1 and e[-1] > 1.05 * min(e)
+
+        def last_order(r):
+            x = runs(r["case"], r["shape"])
+            return V.fit_order([x[-2]["h"], x[-1]["h"]], [x[-2]["error"], x[-1]["error"]]) if len(x) > 2 else None
+
+        def kind(shape):
+            rows = [r for r in self.order_rows if r["shape"] == shape and r["points"] > 1]
+            poor = [r for r in rows if rising(r) or not r["order"] >= 0.25]
+            good = [r for r in rows if r not in poor and r["order"] >= 1.0]
+            slow = [r for r in rows if r not in poor and r not in good]
+            return good, slow, poor
+
+        def orders(rows):
+            return ", ".join(f"{r['case']} (p = {fmt(r['order'], 2)})" for r in rows)
+
+        def converging(good, slow, sod_note=False):
+            parts = []
+            if good:
+                parts.append(orders(good) + " converge")
+                drop = [(r, last_order(r)) for r in good]
+                drop = [(r, q) for r, q in drop if q is not None and q < 0.6 * r["order"]]
+                if drop:
+                    parts[-1] += (" (" + ", ".join(f"{r['case']} at order {fmt(q, 2)} between its two finest "
+                                                  "resolutions" for r, q in drop) + ")")
+            if slow:
+                parts.append(orders(slow) + " converge slowly")
+                if sod_note and any(r["case"].startswith("Sod") for r in slow):
+                    parts[-1] += (" (an L1 error of a solution with a shock and a contact discontinuity falls "
+                                  "at most at first order: both are smeared over a few cells)")
+            return "; ".join(parts)
+
+        text = "Reading the table: "
+        good, slow, poor = kind("linear")
+        if good or slow:
+            text += "with linear shape functions, " + converging(good, slow) + ". "
+        if poor:
+            text += ("Where the error stops falling or rises at the finest resolutions, " + ", ".join(
+                f"{r['case']} (errors {r['errors']})" for r in poor) + ", the finest runs are those in which "
+                "particles move across cell boundaries (the largest displacement reaches a sizeable part of a "
+                "cell or more: large-amplitude bar at 64 cells, manufactured solution with A = 0.01 from 32 "
+                "cells, the plastic bar at 200 cells where the material behind the plastic front has moved "
+                "1.4 cells, the spheres at 40 cells where they travel 10 cells, the Sod gas, whose contact "
+                "moves 0.19, 9 cells at 50 cells and 37 at 200): with linear shape functions the gradient "
+                "jumps when a particle crosses a cell boundary, and that cell-crossing error grows as h falls. "
+                "This is the known limitation of linear MPM that GIMP is designed to reduce; the same cases "
+                "with small displacements (small-amplitude bar, manufactured solution with A = 0.001) "
+                "converge. ")
+        good, slow, poor = kind("gimp")
+        if good or slow:
+            text += "With GIMP, " + converging(good, slow, sod_note=True) + ". "
+        if poor:
+            text += ("With GIMP the error stops falling or rises at the finest resolutions in " + ", ".join(
+                f"{r['case']} (errors {r['errors']})" for r in poor) + ". ")
+        wave = [sh for sh in ("linear", "gimp") if any(r["case"] == "elastic wave speed" for r in kind(sh)[1])]
+        if wave:
+            text += (f"The elastic wave-speed error falls slowly ({' and '.join(wave).replace('gimp', 'GIMP')}) "
+                     "because the front is measured at half amplitude and the dispersive ringing behind it "
+                     "shrinks only slowly. ")
+        # GIMP against linear at the finest resolution run with both.
+        lower, same, higher = [], [], []
+        for r in self.order_rows:
+            if r["shape"] != "gimp":
+                continue
+            lin = {x["n"]: x["error"] for x in runs(r["case"], "linear")}
+            both = [x for x in runs(r["case"], "gimp") if x["n"] in lin]
+            if not both:
+                continue
+            g = both[-1]
+            item = f"{r['case']} ({fmt(g['error'])} against {fmt(lin[g['n']])} at {g['n']} cells)"
+            ratio = g["error"] / lin[g["n"]] if lin[g["n"]] > 0 else float("inf")
+            (lower if ratio < 0.9 else same if ratio <= 1.1 else higher).append(item)
+        if lower or same or higher:
+            text += "At the finest resolution run with both, GIMP's error is " + "; ".join(
+                f"{what} in " + ", ".join(items) for what, items in
+                (("below the linear one", lower), ("within 10 % of it", same), ("above it", higher)) if items) + "."
+        return text.strip()
 
     def write_verification(self, head):
         L = ["# Verification", "",
@@ -509,26 +646,7 @@ class Suite:
         for r in self.order_rows:
             L.append(f"| {r['case']} | {r['shape']} | {r['ns']} | {r['errors']} | {fmt(r['order'], 2)} | "
                      f"{fmt(r['runtime_exponent'], 2)} | {r['norm']} |")
-        def rising(r):
-            e = [x["error"] for x in self.conv if x["case"] == r["case"] and x["shape"] == r["shape"]
-                 and x["status"] == "ok"]
-            return len(e) > 1 and e[-1] > 1.05 * min(e)
-        poor = [r for r in self.order_rows if r["shape"] == "linear" and rising(r)]
-        good = [r for r in self.order_rows if r["shape"] == "linear" and r["order"] >= 1.0 and not rising(r)]
-        L += ["", "Reading the table: " + (", ".join(f"{r['case']} (p = {fmt(r['order'], 2)})" for r in good)
-              + " converge. " if good else "")
-              + ("Where the error stops falling or rises at the finest resolutions, " + ", ".join(
-                  f"{r['case']} (errors {r['errors']})" for r in poor) + ", the finest runs are those in which "
-                 "particles move across cell boundaries (the largest displacement reaches a sizeable part of a "
-                 "cell or more: large-amplitude bar at 64 cells, manufactured solution with A = 0.01 from 32 "
-                 "cells, the plastic bar at 200 cells where the material behind the plastic front has moved "
-                 "1.4 cells, the spheres at 40 cells where they travel 10 cells): with linear shape functions "
-                 "the gradient jumps when a particle crosses a cell boundary, and that cell-crossing error grows "
-                 "as h falls. This is the known limitation of linear MPM that GIMP is designed to reduce; the same cases with "
-                 "small displacements (small-amplitude bar, manufactured solution with A = 0.001) converge at "
-                 "order 1.4-2. The elastic wave-speed error falls slowly (order 0.65) because the front is "
-                 "measured at half amplitude and the dispersive ringing behind it shrinks only slowly." if poor
-                 else ""), "",
+        L += ["", self.findings(), "",
               "![error against h and against run time](verification/error_vs_runtime.png)", ""]
         if self.skipped:
             L += ["### Cases skipped in this run", "",
@@ -544,7 +662,9 @@ class Suite:
         # Vibrating bar
         L += ["## 1D vibrating bar", "",
               "Bar 0 <= x <= 1, fixed at x = 0, free at x = 1, E = 100, rho = 1, nu = 0 (uniaxial stress; "
-              "one cell thick with symmetry faces), first mode v = v0 sin(pi x / 2) cos(omega t), "
+              "one cell thick with symmetry faces, 2 x 2 particles per x-slice; the GIMP decks are two cells "
+              "thick with 4 x 4, since GIMP's 3-node stencil needs two cells along each axis), first mode "
+              "v = v0 sin(pi x / 2) cos(omega t), "
               "omega = pi c / 2, c = 10: period 0.4. Exact centre-of-mass velocity (2 v0 / pi) cos(omega t); the "
               "error norm is the RMS over all steps of the difference, divided by 2 v0 / pi (leap-frog: the "
               "velocity after step k belongs to t_k - dt/2). 2 particles per cell and direction, dtscale 0.5, "
@@ -605,10 +725,12 @@ class Suite:
         k = V.wave_consts()
         w = V.WAVE
         L += ["## Wave speeds and the Hugoniot elastic limit", "",
-              f"A bar 0 <= X <= {w['Lbar']} in uniaxial strain (symmetry faces in y and z), E = {w['E']}, "
+              f"A bar 0 <= X <= {w['Lbar']} in uniaxial strain (symmetry faces in y and z; one cell thick, "
+              f"GIMP two cells with 4 x 4 particles per x-slice), E = {w['E']}, "
               f"nu = {w['nu']}, rho = {w['rho']}, moving at -v0 against the wall x = 0. Elastic (v0 = {w['v0']}): "
               f"the front travels at c_L = sqrt((lambda + 2G)/rho) = {k['cl']:.4f}; measured from the front "
-              f"(where v = -v0/2, interpolated in the reference coordinate X) at two times, so the start-up "
+              f"(where the mean v of an x-slice is -v0/2, interpolated in the reference coordinate X) at two "
+              f"times, so the start-up "
               f"offset cancels. Elastic-perfectly plastic `pla1` (sigma_y = {w['sy']}, v0 = {w['v0p']}): a "
               f"precursor at c_L carrying sigma_HEL = sigma_y (1 - nu)/(1 - 2 nu) = {k['hel']:.4f}, then the "
               f"plastic wave at c_B = sqrt(K/rho) = {k['cb']:.4f}. The error norm of the plastic case is that of "
@@ -649,7 +771,8 @@ class Suite:
         L += ["## Sod shock tube (ideal gas)", "",
               "gamma = 1.4 as the `null` material with the linear polynomial EOS (`seos mid 1 0 0 0 0 0.4 0.4 0 "
               "E0`, i.e. p = 0.4 (1 + mu) E = (gamma - 1) rho e), left rho 1, p 1, right rho 0.125, p 0.1, "
-              "interface at x = 0.5, t = 0.2, bulk viscosity 1.5 / 0.06, 2 particles per cell, equal spacing in "
+              "interface at x = 0.5, t = 0.2, bulk viscosity 1.5 / 0.06, 2 particles per cell, one cell thick with "
+              "symmetry faces (GIMP: two cells, 4 x 4 particles per x-slice), equal spacing in "
               "both gases (so the particle masses jump 8:1 at the contact). Error: mean over the particles of "
               "|rho_p - rho_exact(x_p)| (rho_p = m_p / V_p), exact Riemann solution as in Toro (2009), ch. 4.",
               ""]
@@ -816,27 +939,81 @@ class Suite:
             f.write("\n".join(L))
 
 
+def load_results(s):
+    """The results of the last run (saved by a full run, updated by --only)."""
+    path = os.path.join(s.work, "results.pkl")
+    if not os.path.exists(path):
+        sys.exit(f"report: no results of an earlier run in {path}: run the whole report first "
+                 "(make report, or tools/report.py BUILD_DIR --threads 2)")
+    with open(path, "rb") as f:
+        return pickle.load(f)
+
+
+def save_results(s, load0, load1, elapsed):
+    keep = {k: v for k, v in vars(s).items() if k not in ("t0",)}
+    keep["elapsed"] = elapsed
+    with open(os.path.join(s.work, "results.pkl"), "wb") as f:
+        pickle.dump((keep, load0, load1), f)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("build")
-    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--threads", type=int, default=None,
+                    help="threads of the 3D cases (default 2; with --only that of the last run; the 1D cases use 1)")
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--no-fine", action="store_true")
     ap.add_argument("--docs-only", action="store_true",
                     help="rewrite the docs from the results of the last run (BUILD/report/results.pkl)")
+    ap.add_argument("--only", metavar="CASES",
+                    help="rerun only these convergence cases, comma-separated (" + ", ".join(g[0] for g in GROUPS)
+                         + "), and take the others from the last run (BUILD/report/results.pkl)")
     a = ap.parse_args()
+    if a.docs_only and a.only:
+        ap.error("--docs-only and --only exclude each other")
+    only = []
+    if a.only:
+        only = [c.strip() for c in a.only.split(",") if c.strip()]
+        unknown = [c for c in only if c not in [g[0] for g in GROUPS]]
+        if unknown or not only:
+            ap.error(f"--only: unknown case(s) {', '.join(unknown)} (known: {', '.join(g[0] for g in GROUPS)})")
     os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
-    s = Suite(a.build, a.threads, a.quick, not a.no_fine)
+    s = Suite(a.build, a.threads or 2, a.quick, not a.no_fine)
     if a.docs_only:
-        with open(os.path.join(s.work, "results.pkl"), "rb") as f:
-            keep, load0, load1 = pickle.load(f)
+        keep, load0, load1 = load_results(s)
         vars(s).update(keep)
         s.t0 = time.time() - keep["elapsed"]
         s.orders()
         s.write_docs(load0, load1)
         s.log("rewrote docs/VERIFICATION.md and docs/STABILITY.md from the last run")
         return
+    if only:
+        keep, load0, load1 = load_results(s)
+        here = {k: getattr(s, k) for k in ("driver", "work", "vdir", "sdir")}
+        vars(s).update(keep)
+        vars(s).update(here)
+        s.threads = a.threads or keep["threads"]  # for rerun 3D cases; the 1D ones run on 1 thread
+        if a.quick != keep["quick"] or a.no_fine == keep["fine"]:
+            s.log("--quick/--no-fine are those of the last run with --only (its resolutions are kept)")
+        s.run_date = keep.get("run_date") or "an earlier date (not recorded in its results)"
+        start, s.t0 = loadavg(), time.time()
+        s.log(f"load {start}; driver {s.driver}; rerunning {', '.join(only)}, the rest from {s.work}/results.pkl")
+        s.rerun(only)
+        earlier = [p for p in keep.get("partial_runs", []) if not set(p["cases"]) <= set(only)]
+        s.partial_runs = earlier + [
+            dict(cases=[g[0] for g in GROUPS if g[0] in only], when=utc_now(), minutes=(time.time() - s.t0) / 60,
+                 load_start=start, load_end=loadavg(),
+                 threads=s.threads if any(c in ("mms", "spheres") for c in only) else None)]
+        s.threads = keep["threads"]  # that of the full run, which the docs' head names
+        s.orders()
+        save_results(s, load0, load1, keep["elapsed"])
+        s.log(f"reran {', '.join(only)}; rewriting docs/VERIFICATION.md, docs/STABILITY.md and their files")
+        s.t0 = time.time() - keep["elapsed"]  # the docs' head gives the full run's duration
+        s.write_docs(load0, load1)
+        return
     load0 = loadavg()
+    s.run_date = utc_now()
+    s.partial_runs = []
     s.log(f"load {load0}; driver {s.driver}; work in {s.work}")
     for folder, name, text in V.example_decks():
         os.makedirs(os.path.join(ROOT, "inputs", folder), exist_ok=True)
@@ -851,10 +1028,7 @@ def main():
     s.taylor()
     s.orders()
     load1 = loadavg()
-    keep = {k: v for k, v in vars(s).items() if k not in ("t0",)}
-    keep["elapsed"] = time.time() - s.t0
-    with open(os.path.join(s.work, "results.pkl"), "wb") as f:
-        pickle.dump((keep, load0, load1), f)
+    save_results(s, load0, load1, time.time() - s.t0)
     s.write_docs(load0, load1)
     s.log("wrote docs/VERIFICATION.md, docs/STABILITY.md, docs/verification/, docs/stability/")
 
