@@ -32,6 +32,9 @@ if(MPM3D_PYTHON3)
   mpm3d_verification_test(mms_gimp)
   # Elastic wave speed within 2 %, Hugoniot elastic limit and plastic wave speed.
   mpm3d_verification_test(wave)
+  # The GIMP variants of the 1D decks (bar, waves, Sod; two cells thick): they run and
+  # give the 1D answers.
+  mpm3d_verification_test(gimp_1d)
   # Stability: no NaN/Inf, exact mass, momentum, or a clean stop naming step/particle/cause.
   mpm3d_verification_test(stability)
 endif()
