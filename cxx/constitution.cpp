@@ -138,7 +138,7 @@ void stress_update(const MaterialParams& m, const double de[6], const double dw[
 // constitution_avx2.cpp: the same lanes in AVX2 registers.
 void stress_block_avx2(const MaterialParams& m, StressBlock& b, const StressBlockArgs& a);
 
-bool stress_block_uses_avx2() {
+bool lanes_use_avx2() {
   // MPM3D_ISA=baseline keeps the SSE2 code (the tests compare both builds' bits).
   static const bool avx2 = [] {
     const char* isa = std::getenv("MPM3D_ISA");
@@ -150,7 +150,7 @@ bool stress_block_uses_avx2() {
 }
 
 void stress_block(const MaterialParams& m, StressBlock& b, const StressBlockArgs& a) {
-  if (stress_block_uses_avx2())
+  if (lanes_use_avx2())
     stress_block_avx2(m, b, a);
   else
     stress_block_lanes<VectorLane<kStressLanes>>(m, b, 0, a);

@@ -47,9 +47,10 @@ struct StressBlockArgs {
 // computes for its particle, bit for bit), or of lane i alone (stress_block_lane).
 void stress_block(const MaterialParams& m, StressBlock& b, const StressBlockArgs& a);
 void stress_block_lane(const MaterialParams& m, StressBlock& b, int i, const StressBlockArgs& a);
-// True when stress_block runs the AVX2 code (the CPU has it and MPM3D_ISA is not
-// "baseline"); either way the results are the same bits.
-bool stress_block_uses_avx2();
+// True when stress_block and the lane kernels of the step stages (transfer_lanes.hpp) run
+// their AVX2 code (the CPU has it and MPM3D_ISA is not "baseline"); either way the
+// results are the same bits.
+bool lanes_use_avx2();
 
 // Programmed burn of hiex: F = min(1, max(0, (time - t_light) D / (1.5 h))), with
 // m.burn_width = 1.5 h. 1 for every other material.

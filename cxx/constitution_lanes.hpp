@@ -1,24 +1,18 @@
 // The stress update of constitution.cpp written once for a "lane type" T: T = double
-// updates one particle, T = Lanes<W> (a GCC vector of W doubles) updates W particles of
+// updates one particle, T = a GCC vector of W doubles (lanes.hpp) updates W particles of
 // one material at once. Every lane performs exactly the IEEE operations of the scalar
 // update in the same order (DESIGN.md 5: vectorising across particles keeps the bits):
 // branches that depend on the particle become selects that compute both arms, branches
 // that depend on the material stay branches, and the transcendental calls (pow, log, exp)
 // and the Drucker-Prager return run lane by lane through the scalar functions.
-//
-// Everything here has internal linkage: a translation unit compiled for a wider
-// instruction set (stress_lanes_avx2.cpp) gets its own copies, never shared with the
-// baseline units through the linker.
+// Internal linkage throughout (see lanes.hpp): constitution_avx2.cpp compiles its own
+// copy for AVX2.
 #pragma once
-#include <immintrin.h>
-
 #include <cmath>
 
 #include "constitution.hpp"
+#include "lanes.hpp"
 #include "material.hpp"
-
-// Vector types inside this header never cross a call boundary of another unit.
-#pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace mpm3d {
 
@@ -29,60 +23,6 @@ void yield_stress(const MaterialParams& m, double epeff, double strain_rate, dou
                   double* sy, double* ep);
 
 namespace {  // internal linkage, see above
-
-template <int W>
-struct LaneTypes {
-  typedef double D __attribute__((vector_size(8 * W)));
-  typedef long M __attribute__((vector_size(8 * W)));
-};
-
-// Lane traits: the scalar one and the W-wide GCC vector.
-struct ScalarLane {
-  static constexpr int W = 1;
-  static double splat(double x) { return x; }
-  static double get(double x, int) { return x; }
-  static void set(double& x, int, double v) { x = v; }
-  static double sqrt(double x) { return std::sqrt(x); }
-  static double select(bool m, double a, double b) { return m ? a : b; }
-  static double load(const double* a) { return *a; }
-  static void store(double* a, double x) { *a = x; }
-};
-
-template <int W_>
-struct VectorLane {
-  typedef typename LaneTypes<W_>::D D;
-  typedef typename LaneTypes<W_>::M M;
-  static constexpr int W = W_;
-  static D splat(double x) { return D{} + x; }
-  static double get(D x, int i) { return x[i]; }
-  static void set(D& x, int i, double v) { x[i] = v; }
-  // Correctly rounded per lane, as std::sqrt; the compiler emits the packed instruction
-  // where the target has one.
-  static D sqrt(D x) {
-#if defined(__AVX512F__)
-    if constexpr (W_ == 8) return (D)_mm512_sqrt_pd((__m512d)x);
-#endif
-#if defined(__AVX__)
-    if constexpr (W_ == 4) return (D)_mm256_sqrt_pd((__m256d)x);
-#endif
-    D r;
-    for (int i = 0; i < W_; i += 2) {
-      __m128d pair = _mm_set_pd(x[i + 1], x[i]);
-      pair = _mm_sqrt_pd(pair);
-      r[i] = _mm_cvtsd_f64(pair);
-      r[i + 1] = _mm_cvtsd_f64(_mm_unpackhi_pd(pair, pair));
-    }
-    return r;
-  }
-  template <class Mask>
-  static D select(Mask m, D a, D b) { return m ? a : b; }
-  static D load(const double* a) {
-    D x;
-    __builtin_memcpy(&x, a, sizeof x);
-    return x;
-  }
-  static void store(double* a, D x) { __builtin_memcpy(a, &x, sizeof x); }
-};
 
 // The operations of the update, generic in the lane type T with lane traits TL.
 template <class T, class TL>

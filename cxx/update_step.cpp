@@ -14,8 +14,15 @@
 
 #include "constitution.hpp"
 #include "grid.hpp"
+#include "transfer_lanes.hpp"
+#include "update_step_detail.hpp"
 
 namespace mpm3d {
+
+// update_step_avx2.cpp: the lane kernels of transfer_lanes.hpp compiled for AVX2.
+void p2g_patch_avx2(const StepContext* c, int q, bool with_mass_mom, bool with_forces);
+void g2p_patch_avx2(StepContext* c, int q, bool remap);
+void stress_chunk_avx2(StepContext* c, int lo, int hi, const double* gvel, const StressBlockArgs& args);
 
 const char* const kStageNames[ST_COUNT] = {"bin", "p2g", "forces", "integrate",
                                            "g2p", "stress", "energy", "contact", "recontact"};
@@ -72,72 +79,6 @@ void select_stages(StageTable& t, const std::string& spec, bool per_stage) {
 
 namespace {
 
-// Exact division of a non-negative 32-bit integer by a fixed divisor with one 128-bit
-// multiply (Lemire, Kaser & Kurz 2019): the integer index decoding of the hot loops.
-// The multiplier ceil(2^64 / d) does not fit 64 bits for d = 1 (it wrapped to 0, so a grid
-// with one cell along y decoded every cell to k = 0): d = 1 is the identity.
-struct FastDiv {
-  uint64_t m;
-  bool one;
-  explicit FastDiv(uint32_t d) : m(d == 1 ? 0 : UINT64_C(0xFFFFFFFFFFFFFFFF) / d + 1), one(d == 1) {}
-  uint32_t operator()(uint32_t n) const { return one ? n : uint32_t((__uint128_t(m) * n) >> 64); }
-};
-
-// Cell index -> (i, j, k).
-struct CellDecoder {
-  FastDiv div0, div1;
-  int nc0, nc1;
-  explicit CellDecoder(const StepContext* c)
-      : div0(uint32_t(c->nc[0])), div1(uint32_t(c->nc[1])), nc0(c->nc[0]), nc1(c->nc[1]) {}
-  void operator()(int cell, int& i, int& j, int& k) const {
-    const int r = int(div0(uint32_t(cell)));
-    i = cell - r * nc0;
-    k = int(div1(uint32_t(r)));
-    j = r - k * nc1;
-  }
-};
-
-// Global node index of the base node of a cell.
-inline int base_node(const StepContext* c, const CellDecoder& dec, int cell) {
-  int i, j, k;
-  dec(cell, i, j, k);
-  return i + c->nn[0] * (j + c->nn[1] * k);
-}
-
-// Global node index of local node k (offsets a, b, c) relative to a base node.
-inline int node_of(const StepContext* c, int base, int k) {
-  return base + (k & 1) + c->nn[0] * (((k >> 1) & 1) + c->nn[1] * ((k >> 2) & 1));
-}
-
-// Nodes in one patch buffer: (patch_cells + 1 + 2 halo)^3.
-inline int patch_nodes(const StepContext* c) {
-  const int Q = c->patch_cells + 1 + 2 * c->patch_halo;
-  return Q * Q * Q;
-}
-
-inline double* patch_buffer(const StepContext* c, int slot) {
-  return c->patch_buf + size_t(slot) * size_t(patch_nodes(c)) * kNodeFields;
-}
-
-// Local node index, in the buffer of patch (qx, qy, qz), of the base node of a cell.
-inline int patch_base(const StepContext* c, const CellDecoder& dec, const int q3[3], int cell) {
-  const int P = c->patch_cells, Q = P + 1;
-  int i, j, k;
-  dec(cell, i, j, k);
-  return (i - q3[0] * P) + Q * ((j - q3[1] * P) + Q * (k - q3[2] * P));
-}
-
-inline void patch_coords(const StepContext* c, int q, int q3[3]) {
-  q3[0] = q % c->npd[0];
-  q3[1] = (q / c->npd[0]) % c->npd[1];
-  q3[2] = q / (c->npd[0] * c->npd[1]);
-}
-
-inline int patch_local(int P, int k) {
-  const int Q = P + 1;
-  return (k & 1) + Q * (((k >> 1) & 1) + Q * ((k >> 2) & 1));
-}
-
 // Nodes owned by patch q: [lo, hi) per axis; the last patch of an axis also owns the
 // grid's last node layer. A patch is active when it or one of its seven lower neighbours
 // holds particles (GIMP, halo 1: one of its 26 neighbours); nodes of inactive patches are
@@ -176,12 +117,9 @@ inline OwnedNodes owned_nodes(const StepContext* c, int q) {
 void assemble_wide(const StepContext* c, int first, int count, double* dst_mass, double* dst_mom,
                    double* dst_force);
 
-void assemble(const StepContext* c, int first, int count, double* dst_mass, double* dst_mom,
-              double* dst_force) {
-  if (c->patch_halo > 0) {
-    assemble_wide(c, first, count, dst_mass, dst_mom, dst_force);
-    return;
-  }
+// The field range is a compile-time constant, so the per-node loops unroll.
+template <int first, int count>
+void assemble_fields(const StepContext* c, double* dst_mass, double* dst_mom, double* dst_force) {
   const int P = c->patch_cells, Q = P + 1;
   const int npd0 = c->npd[0], npd1 = c->npd[1], npd2 = c->npd[2];
   const int pn = Q * Q * Q;
@@ -245,6 +183,22 @@ void assemble(const StepContext* c, int first, int count, double* dst_mass, doub
         }
       }
   }
+}
+
+void assemble(const StepContext* c, int first, int count, double* dst_mass, double* dst_mom,
+              double* dst_force) {
+  if (c->patch_halo > 0)
+    assemble_wide(c, first, count, dst_mass, dst_mom, dst_force);
+  else if (first == 0 && count == 7)
+    assemble_fields<0, 7>(c, dst_mass, dst_mom, dst_force);
+  else if (first == 0 && count == 4)
+    assemble_fields<0, 4>(c, dst_mass, dst_mom, dst_force);
+  else if (first == 1 && count == 3)
+    assemble_fields<1, 3>(c, dst_mass, dst_mom, dst_force);
+  else if (first == 4 && count == 3)
+    assemble_fields<4, 3>(c, dst_mass, dst_mom, dst_force);
+  else
+    throw std::logic_error("assemble: unexpected field range");
 }
 
 // Patches whose buffers (halo H) hold node n along one axis: [lo, hi].
@@ -332,11 +286,6 @@ inline int stencil_offset(int k, int r0, int r1) {
   return a + r0 * (b + r1 * cc);
 }
 
-// True when particle p belongs to another component than the context's (contact).
-inline bool other_component(const StepContext* c, int p) {
-  return c->only_comp > 0 && c->body_comp[c->body[p]] != c->only_comp;
-}
-
 // Boundary conditions of the box faces on a nodal vector field (3,nnode):
 // 1 fixed (all components zero), 2 symmetry (normal component zero).
 void apply_bc(const StepContext* c, double* a) {
@@ -372,61 +321,14 @@ void scatter_p2g(StepContext* c, bool with_mass_mom, bool with_forces) {
     scatter_p2g_gimp(c, with_mass_mom, with_forces);
     return;
   }
-  const int P = c->patch_cells;
-  const int pn = (P + 1) * (P + 1) * (P + 1);
-  const CellDecoder dec(c);
+  const bool avx2 = lanes_use_avx2();
 #pragma omp parallel for schedule(dynamic, 1)
   for (int q = 0; q < c->npatch; ++q) {
-    const int slot = c->patch_slot[q];
-    if (slot < 0) continue;
-    int q3[3];
-    patch_coords(c, q, q3);
-    double* buf = patch_buffer(c, slot);
-    std::memset(buf, 0, sizeof(double) * size_t(pn) * kNodeFields);
-    for (int idx = c->patch_start[q]; idx < c->patch_start[q + 1]; ++idx) {
-      const int p = c->patch_part[idx];
-      double N[8], G[24];
-      shape_linear(c->lx + 3 * p, c->inv_h, N, G);
-      const int base = patch_base(c, dec, q3, c->cell[p]);
-      const double mp = c->mass[p];
-      const double* vp = c->v + 3 * p;
-      double vs[6] = {0, 0, 0, 0, 0, 0}, fb[3] = {0, 0, 0};
-      if (with_forces) {
-        const double volp = c->vol[p];
-        for (int s = 0; s < 6; ++s) vs[s] = c->sig[6 * p + s] * volp;
-        if (c->has_body_force) {
-          const double* g = c->gravity + 3 * c->body[p];
-          for (int a = 0; a < 3; ++a) {
-            fb[a] = mp * g[a];
-            if (c->fext) fb[a] = fb[a] + c->fext[3 * p + a];
-          }
-        }
-      }
-      for (int k = 0; k < 8; ++k) {
-        double* b = buf + size_t(base + patch_local(P, k)) * kNodeFields;
-        if (with_mass_mom) {
-          const double mn = mp * N[k];
-          b[0] += mn;
-          b[1] += mn * vp[0];
-          b[2] += mn * vp[1];
-          b[3] += mn * vp[2];
-        }
-        if (with_forces) {
-          const double gx = G[3 * k], gy = G[3 * k + 1], gz = G[3 * k + 2];
-          double fx = -((vs[0] * gx + vs[5] * gy) + vs[4] * gz);
-          double fy = -((vs[5] * gx + vs[1] * gy) + vs[3] * gz);
-          double fz = -((vs[4] * gx + vs[3] * gy) + vs[2] * gz);
-          if (c->has_body_force) {
-            fx = N[k] * fb[0] + fx;
-            fy = N[k] * fb[1] + fy;
-            fz = N[k] * fb[2] + fz;
-          }
-          b[4] += fx;
-          b[5] += fy;
-          b[6] += fz;
-        }
-      }
-    }
+    if (c->patch_slot[q] < 0) continue;
+    if (avx2)
+      p2g_patch_avx2(c, q, with_mass_mom, with_forces);
+    else
+      p2g_patch<VectorLane<kLanes>>(c, CellDecoder(c), q, with_mass_mom, with_forces);
   }
 }
 
@@ -608,8 +510,17 @@ void stress_particles(StepContext* c, const double* gvel) {
   const StressBlockArgs args{c->dt, c->temp != nullptr, c->qv != nullptr, c->bulk_q1, c->bulk_q2, c->h};
   constexpr int kChunk = 256;
   const int nchunk = (c->np + kChunk - 1) / kChunk;
+  const bool avx2 = lanes_use_avx2();
 #pragma omp parallel for schedule(dynamic, 1)
   for (int ch = 0; ch < nchunk; ++ch) {
+    if constexpr (!kGimp) {  // trilinear: gradients in lanes too (transfer_lanes.hpp)
+      const int lo = ch * kChunk, hi = std::min(c->np, lo + kChunk);
+      if (avx2)
+        stress_chunk_avx2(c, lo, hi, gvel, args);
+      else
+        stress_chunk<VectorLane<kLanes>>(c, dec, lo, hi, gvel, args);
+      continue;
+    }
     StressBlock b;
     int part[kStressLanes];
     int n = 0, mat = -1;
@@ -711,6 +622,7 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
   int* patch_of = c->pscratch;  // patch of each particle, -1 outside
   int outside = 0;
   const bool filter = c->only_comp > 0;  // contact: this context's component only
+  const FastDiv divP{uint32_t(P)};  // cell -> patch (exact, cheaper than idiv)
 #pragma omp parallel for schedule(static) reduction(+ : outside)
   for (int p = 0; p < np; ++p) {
     if (filter && other_component(c, p)) {
@@ -738,7 +650,8 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
       continue;
     }
     c->cell[p] = idx[0] + c->nc[0] * (idx[1] + c->nc[1] * idx[2]);
-    patch_of[p] = idx[0] / P + c->npd[0] * (idx[1] / P + c->npd[1] * (idx[2] / P));
+    patch_of[p] = int(divP(uint32_t(idx[0]))) +
+                  c->npd[0] * (int(divP(uint32_t(idx[1]))) + c->npd[1] * int(divP(uint32_t(idx[2]))));
   }
   // Stable counting sort of the particles by patch: ascending particle index within each
   // patch whatever the number of chunks, so the lists do not depend on the thread count.
@@ -817,60 +730,14 @@ extern "C" void mpm3d_cxx_g2p(StepContext* c) {
     return;
   }
   const bool remap = c->scheme == SCHEME_MUSL;
-  const int P = c->patch_cells;
-  const int pn = (P + 1) * (P + 1) * (P + 1);
-  const double cutoff = c->mass_cutoff, dt = c->dt, dt_int = c->dt_int;
-  const CellDecoder dec(c);
+  const bool avx2 = lanes_use_avx2();
 #pragma omp parallel for schedule(dynamic, 1)
   for (int q = 0; q < c->npatch; ++q) {
-    const int slot = c->patch_slot[q];
-    if (slot < 0) continue;
-    int q3[3];
-    patch_coords(c, q, q3);
-    double* buf = patch_buffer(c, slot);
-    if (remap)
-      for (int ln = 0; ln < pn; ++ln)
-        for (int f = 1; f <= 3; ++f) buf[size_t(ln) * kNodeFields + f] = 0.0;
-    for (int idx = c->patch_start[q]; idx < c->patch_start[q + 1]; ++idx) {
-      const int p = c->patch_part[idx];
-      double N[8], G[24];
-      shape_linear(c->lx + 3 * p, c->inv_h, N, G);
-      const int base = base_node(c, dec, c->cell[p]);
-      double ax = 0.0, ay = 0.0, az = 0.0, ux = 0.0, uy = 0.0, uz = 0.0;
-      for (int k = 0; k < 8; ++k) {
-        const int n = node_of(c, base, k);
-        const double m = c->gmass[n];
-        if (!(m > cutoff)) continue;
-        const double r = N[k] / m;
-        const double* f = c->gforce + 3 * n;
-        const double* pm = c->gmom + 3 * n;
-        ax += f[0] * r;
-        ay += f[1] * r;
-        az += f[2] * r;
-        ux += pm[0] * r;
-        uy += pm[1] * r;
-        uz += pm[2] * r;
-      }
-      double* vp = c->v + 3 * p;
-      double* xp = c->x + 3 * p;
-      vp[0] = vp[0] + ax * dt_int;
-      vp[1] = vp[1] + ay * dt_int;
-      vp[2] = vp[2] + az * dt_int;
-      xp[0] = xp[0] + ux * dt;
-      xp[1] = xp[1] + uy * dt;
-      xp[2] = xp[2] + uz * dt;
-      if (remap) {
-        const int pbase = patch_base(c, dec, q3, c->cell[p]);
-        const double mp = c->mass[p];
-        for (int k = 0; k < 8; ++k) {
-          double* b = buf + size_t(pbase + patch_local(P, k)) * kNodeFields;
-          const double mn = mp * N[k];
-          b[1] += mn * vp[0];
-          b[2] += mn * vp[1];
-          b[3] += mn * vp[2];
-        }
-      }
-    }
+    if (c->patch_slot[q] < 0) continue;
+    if (avx2)
+      g2p_patch_avx2(c, q, remap);
+    else
+      g2p_patch<VectorLane<kLanes>>(c, CellDecoder(c), q, remap);
   }
   if (remap) {
     assemble(c, 1, 3, c->gmass, c->gmom, c->gforce);

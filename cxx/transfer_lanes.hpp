@@ -1,0 +1,284 @@
+// The trilinear particle loops of P2G, G2P and the stress stage. G2P and the stress stage
+// are written once for a lane type (lanes.hpp): runs of kLanes consecutive particles of a
+// patch list (or of a chunk, for the stress stage) go through the vector code, the rest
+// one at a time through the same code with T = double. (P2G stays one particle at a time:
+// its cost is the read-modify-write of 56 buffer values per particle, which must stay in
+// particle order; staging its values in lanes measured slower.) A lane performs its particle's scalar operations in the
+// scalar order, so the results are the scalar kernels' bits:
+// - sums over the 8 nodes skip a light node by adding +0.0 in its place (a sum that
+//   starts at +0.0 never holds -0.0 under round-to-nearest, so x + 0.0 == x);
+// - scatters into the patch buffers stay one particle after the other, in list order,
+//   so every node sums its contributions in the canonical order.
+// update_step.cpp instantiates these for the baseline instruction set,
+// update_step_avx2.cpp for AVX2; both have their own copies (internal linkage).
+#pragma once
+#include "constitution.hpp"
+#include "constitution_lanes.hpp"
+#include "lanes.hpp"
+#include "update_step_detail.hpp"
+
+namespace mpm3d {
+namespace {
+
+constexpr int kLanes = kStressLanes;
+
+// Trilinear weights N_k and gradients G_k (k = a + 2 b + 4 c) at local coordinates lx,
+// the operations of shape_linear (grid.hpp).
+template <class T>
+inline void shape_linear_lanes(const T lx[3], double inv_h, T N[8], T G[24]) {
+  const T wx[2] = {1.0 - lx[0], lx[0]};
+  const T wy[2] = {1.0 - lx[1], lx[1]};
+  const T wz[2] = {1.0 - lx[2], lx[2]};
+  const double g[2] = {-inv_h, inv_h};
+  for (int k = 0; k < 8; ++k) {
+    const int a = k & 1, b = (k >> 1) & 1, c = (k >> 2) & 1;
+    N[k] = (wx[a] * wy[b]) * wz[c];
+    G[3 * k + 0] = (g[a] * wy[b]) * wz[c];
+    G[3 * k + 1] = (wx[a] * g[b]) * wz[c];
+    G[3 * k + 2] = (wx[a] * wy[b]) * g[c];
+  }
+}
+
+// Offset of local node k from the base node in the global node array.
+inline int node_offset(const StepContext* c, int k) {
+  return (k & 1) + c->nn[0] * (((k >> 1) & 1) + c->nn[1] * ((k >> 2) & 1));
+}
+
+template <class TL>
+inline void load_lx(const StepContext* c, const int* part, decltype(TL::splat(0.0)) lx[3]) {
+  int i3[kLanes];
+  for (int i = 0; i < TL::W; ++i) i3[i] = 3 * part[i];
+  for (int d = 0; d < 3; ++d) lx[d] = TL::gather(c->lx + d, i3);
+}
+
+// P2G of patch q into its buffer (zeroed here): mass and momentum and/or forces, one
+// particle after the other in list order (the canonical order of every node's sum). The
+// cases are compile-time flags so the 8-node loop unrolls with nothing left to test.
+template <bool kMassMom, bool kForces, bool kBody>
+void p2g_patch_fields(const StepContext* c, const CellDecoder& dec, int q) {
+  const int P = c->patch_cells;
+  const int pn = (P + 1) * (P + 1) * (P + 1);
+  int q3[3];
+  patch_coords(c, q, q3);
+  double* buf = patch_buffer(c, c->patch_slot[q]);
+  for (size_t i = 0; i < size_t(pn) * kNodeFields; ++i) buf[i] = 0.0;
+  int local[8];
+  for (int k = 0; k < 8; ++k) local[k] = patch_local(P, k) * kNodeFields;
+  for (int idx = c->patch_start[q]; idx < c->patch_start[q + 1]; ++idx) {
+    const int p = c->patch_part[idx];
+    double N[8], G[24];
+    shape_linear_lanes<double>(c->lx + 3 * p, c->inv_h, N, G);
+    double* pb = buf + size_t(patch_base(c, dec, q3, c->cell[p])) * kNodeFields;
+    const double mp = c->mass[p];
+    const double* vp = c->v + 3 * p;
+    double vs[6] = {0, 0, 0, 0, 0, 0}, fb[3] = {0, 0, 0};
+    if (kForces) {
+      const double volp = c->vol[p];
+      for (int s = 0; s < 6; ++s) vs[s] = c->sig[6 * p + s] * volp;
+      if (kBody) {
+        const double* g = c->gravity + 3 * c->body[p];
+        for (int a = 0; a < 3; ++a) {
+          fb[a] = mp * g[a];
+          if (c->fext) fb[a] = fb[a] + c->fext[3 * p + a];
+        }
+      }
+    }
+    for (int k = 0; k < 8; ++k) {
+      double* b = pb + local[k];
+      if (kMassMom) {
+        const double mn = mp * N[k];
+        b[0] += mn;
+        b[1] += mn * vp[0];
+        b[2] += mn * vp[1];
+        b[3] += mn * vp[2];
+      }
+      if (kForces) {
+        const double gx = G[3 * k], gy = G[3 * k + 1], gz = G[3 * k + 2];
+        double fx = -((vs[0] * gx + vs[5] * gy) + vs[4] * gz);
+        double fy = -((vs[5] * gx + vs[1] * gy) + vs[3] * gz);
+        double fz = -((vs[4] * gx + vs[3] * gy) + vs[2] * gz);
+        if (kBody) {
+          fx = N[k] * fb[0] + fx;
+          fy = N[k] * fb[1] + fy;
+          fz = N[k] * fb[2] + fz;
+        }
+        b[4] += fx;
+        b[5] += fy;
+        b[6] += fz;
+      }
+    }
+  }
+}
+
+template <class VL>
+void p2g_patch(const StepContext* c, const CellDecoder& dec, int q, bool with_mass_mom, bool with_forces) {
+  const bool body = c->has_body_force != 0;
+  if (with_mass_mom && with_forces)
+    body ? p2g_patch_fields<true, true, true>(c, dec, q) : p2g_patch_fields<true, true, false>(c, dec, q);
+  else if (with_mass_mom)
+    p2g_patch_fields<true, false, false>(c, dec, q);
+  else
+    body ? p2g_patch_fields<false, true, true>(c, dec, q) : p2g_patch_fields<false, true, false>(c, dec, q);
+}
+
+// G2P of TL::W particles: v += a dt_int, x += u dt from the grid (a = f/m, u = p/m summed
+// with the weights); with the MUSL remap their momenta m_p N_k v_p per node into rm.
+template <class TL>
+void g2p_values(StepContext* c, const CellDecoder& dec, const int* part, bool remap,
+                double rm[3][8][kLanes], int first) {
+  typedef decltype(TL::splat(0.0)) T;
+  T lx[3], N[8], G[24];
+  load_lx<TL>(c, part, lx);
+  shape_linear_lanes(lx, c->inv_h, N, G);
+  int base[kLanes], i3[kLanes], n1[kLanes], n3[kLanes];
+  for (int i = 0; i < TL::W; ++i) base[i] = base_node(c, dec, c->cell[part[i]]), i3[i] = 3 * part[i];
+  const double cutoff = c->mass_cutoff;
+  const T zero = TL::splat(0.0);
+  T ax = zero, ay = zero, az = zero, ux = zero, uy = zero, uz = zero;
+  for (int k = 0; k < 8; ++k) {
+    const int off = node_offset(c, k);
+    for (int i = 0; i < TL::W; ++i) n1[i] = base[i] + off, n3[i] = 3 * n1[i];
+    const T m = TL::gather(c->gmass, n1);
+    const auto heavy = m > cutoff;
+    const T r = N[k] / m;
+    ax = ax + TL::select(heavy, TL::gather(c->gforce, n3) * r, zero);
+    ay = ay + TL::select(heavy, TL::gather(c->gforce + 1, n3) * r, zero);
+    az = az + TL::select(heavy, TL::gather(c->gforce + 2, n3) * r, zero);
+    ux = ux + TL::select(heavy, TL::gather(c->gmom, n3) * r, zero);
+    uy = uy + TL::select(heavy, TL::gather(c->gmom + 1, n3) * r, zero);
+    uz = uz + TL::select(heavy, TL::gather(c->gmom + 2, n3) * r, zero);
+  }
+  const double dt = c->dt, dt_int = c->dt_int;
+  const T v[3] = {TL::gather(c->v, i3) + ax * dt_int, TL::gather(c->v + 1, i3) + ay * dt_int,
+                  TL::gather(c->v + 2, i3) + az * dt_int};
+  const T x[3] = {TL::gather(c->x, i3) + ux * dt, TL::gather(c->x + 1, i3) + uy * dt,
+                  TL::gather(c->x + 2, i3) + uz * dt};
+  for (int i = 0; i < TL::W; ++i)
+    for (int d = 0; d < 3; ++d) {
+      c->v[i3[i] + d] = TL::get(v[d], i);
+      c->x[i3[i] + d] = TL::get(x[d], i);
+    }
+  if (!remap) return;
+  const T mp = TL::gather(c->mass, part);
+  for (int k = 0; k < 8; ++k) {
+    const T mn = mp * N[k];
+    for (int d = 0; d < 3; ++d) TL::store(rm[d][k] + first, mn * v[d]);
+  }
+}
+
+// G2P of the particles of patch q; MUSL: their remapped momenta into the patch buffer.
+template <class VL>
+void g2p_patch(StepContext* c, const CellDecoder& dec, int q, bool remap) {
+  const int P = c->patch_cells;
+  const int pn = (P + 1) * (P + 1) * (P + 1);
+  int q3[3];
+  patch_coords(c, q, q3);
+  double* buf = patch_buffer(c, c->patch_slot[q]);
+  if (remap)
+    for (int ln = 0; ln < pn; ++ln)
+      for (int f = 1; f <= 3; ++f) buf[size_t(ln) * kNodeFields + f] = 0.0;
+  int local[8];
+  for (int k = 0; k < 8; ++k) local[k] = patch_local(P, k);
+  double rm[3][8][kLanes];
+  const int* list = c->patch_part;
+  for (int idx = c->patch_start[q]; idx < c->patch_start[q + 1];) {
+    const int n = c->patch_start[q + 1] - idx >= kLanes ? kLanes : 1;
+    if (n == kLanes)
+      g2p_values<VL>(c, dec, list + idx, remap, rm, 0);
+    else
+      g2p_values<ScalarLane>(c, dec, list + idx, remap, rm, 0);
+    if (remap)
+      for (int i = 0; i < n; ++i) {
+        const int base = patch_base(c, dec, q3, c->cell[list[idx + i]]);
+        for (int k = 0; k < 8; ++k) {
+          double* b = buf + size_t(base + local[k]) * kNodeFields;
+          b[1] += rm[0][k][i];
+          b[2] += rm[1][k][i];
+          b[3] += rm[2][k][i];
+        }
+      }
+    idx += n;
+  }
+}
+
+// Velocity gradients L[3a+b] = d v_a / d x_b of TL::W particles from the node velocities
+// gvel, into b.L[.][first + i].
+template <class TL>
+void gradient_values(const StepContext* c, const CellDecoder& dec, const int* part, const double* gvel,
+                     StressBlock& blk, int first) {
+  typedef decltype(TL::splat(0.0)) T;
+  T lx[3], N[8], G[24];
+  load_lx<TL>(c, part, lx);
+  shape_linear_lanes(lx, c->inv_h, N, G);
+  int base[kLanes], n1[kLanes], n3[kLanes];
+  for (int i = 0; i < TL::W; ++i) base[i] = base_node(c, dec, c->cell[part[i]]);
+  const double cutoff = c->mass_cutoff;
+  const T zero = TL::splat(0.0);
+  T l[9];
+  for (int r = 0; r < 9; ++r) l[r] = zero;
+  for (int k = 0; k < 8; ++k) {
+    const int off = node_offset(c, k);
+    for (int i = 0; i < TL::W; ++i) n1[i] = base[i] + off, n3[i] = 3 * n1[i];
+    const auto heavy = TL::gather(c->gmass, n1) > cutoff;
+    const T v[3] = {TL::gather(gvel, n3), TL::gather(gvel + 1, n3), TL::gather(gvel + 2, n3)};
+    for (int a = 0; a < 3; ++a)
+      for (int d = 0; d < 3; ++d) l[3 * a + d] = l[3 * a + d] + TL::select(heavy, v[a] * G[3 * k + d], zero);
+  }
+  for (int r = 0; r < 9; ++r) TL::store(blk.L[r] + first, l[r]);
+}
+
+// The stress stage of the particles [lo, hi) (trilinear): velocity gradients and the
+// stress update, kLanes consecutive active particles of one material at a time.
+template <class VL>
+void stress_chunk(StepContext* c, const CellDecoder& dec, int lo, int hi, const double* gvel,
+                  const StressBlockArgs& args) {
+  const bool filter = c->only_comp > 0;
+  StressBlock b;
+  int part[kLanes];
+  int n = 0, mat = -1;
+  auto flush = [&]() {
+    const MaterialParams& mp = c->mats[mat];
+    if (n == kLanes) {
+      gradient_values<VL>(c, dec, part, gvel, b, 0);
+    } else {
+      for (int i = 0; i < n; ++i) gradient_values<ScalarLane>(c, dec, part + i, gvel, b, i);
+    }
+    for (int i = 0; i < n; ++i) {
+      const int p = part[i];
+      b.mass[i] = c->mass[p];
+      b.vol[i] = c->vol[p];
+      for (int s = 0; s < 6; ++s) b.sig[s][i] = c->sig[6 * p + s];
+      b.epeff[i] = c->epeff[p];
+      b.ie[i] = c->ie[p];
+      b.temp[i] = c->temp ? c->temp[p] : 0.0;
+      b.qv[i] = c->qv ? c->qv[p] : 0.0;
+      b.burn[i] = c->tlight ? burn_fraction(mp, c->tlight[p], c->time) : 1.0;
+    }
+    if (n == kLanes)
+      stress_block_lanes<VL>(mp, b, 0, args);
+    else
+      for (int i = 0; i < n; ++i) stress_block_lanes<ScalarLane>(mp, b, i, args);
+    for (int i = 0; i < n; ++i) {
+      const int p = part[i];
+      c->vol[p] = b.vol[i];
+      for (int s = 0; s < 6; ++s) c->sig[6 * p + s] = b.sig[s][i];
+      c->epeff[p] = b.epeff[i];
+      c->ie[p] = b.ie[i];
+      if (c->temp) c->temp[p] = b.temp[i];
+      if (c->qv) c->qv[p] = b.qv[i];
+    }
+    n = 0;
+  };
+  for (int p = lo; p < hi; ++p) {
+    if (c->cell[p] < 0) continue;
+    if (filter && other_component(c, p)) continue;
+    if (n > 0 && c->mat[p] != mat) flush();
+    mat = c->mat[p];
+    part[n++] = p;
+    if (n == kLanes) flush();
+  }
+  if (n > 0) flush();
+}
+
+}  // namespace
+}  // namespace mpm3d

@@ -1,0 +1,21 @@
+// The lane kernels of the step stages (transfer_lanes.hpp) compiled for AVX2
+// (cxx/CMakeLists.txt adds -mavx2 to this file alone; no FMA, -ffp-contract=off as
+// everywhere): the same bits as the baseline build. update_step.cpp calls these only
+// where lanes_use_avx2() (constitution.cpp) says the CPU has AVX2.
+#include "transfer_lanes.hpp"
+
+namespace mpm3d {
+
+void p2g_patch_avx2(const StepContext* c, int q, bool with_mass_mom, bool with_forces) {
+  p2g_patch<VectorLane<kLanes>>(c, CellDecoder(c), q, with_mass_mom, with_forces);
+}
+
+void g2p_patch_avx2(StepContext* c, int q, bool remap) {
+  g2p_patch<VectorLane<kLanes>>(c, CellDecoder(c), q, remap);
+}
+
+void stress_chunk_avx2(StepContext* c, int lo, int hi, const double* gvel, const StressBlockArgs& args) {
+  stress_chunk<VectorLane<kLanes>>(c, CellDecoder(c), lo, hi, gvel, args);
+}
+
+}  // namespace mpm3d

@@ -1,0 +1,86 @@
+// Index helpers of the step stages (update_step.cpp and the lane kernels of
+// transfer_lanes.hpp): cell decoding, node and patch-buffer indices. Internal linkage, so
+// the AVX2 unit (update_step_avx2.cpp) compiles its own copies (see lanes.hpp).
+#pragma once
+#include <cstddef>
+#include <cstdint>
+
+#include "grid.hpp"
+#include "update_step.hpp"
+
+namespace mpm3d {
+namespace {
+
+// Exact division of a non-negative 32-bit integer by a fixed divisor with one 128-bit
+// multiply (Lemire, Kaser & Kurz 2019): the integer index decoding of the hot loops.
+// The multiplier ceil(2^64 / d) does not fit 64 bits for d = 1 (it wrapped to 0, so a grid
+// with one cell along y decoded every cell to k = 0): d = 1 is the identity.
+struct FastDiv {
+  uint64_t m;
+  bool one;
+  explicit FastDiv(uint32_t d) : m(d == 1 ? 0 : UINT64_C(0xFFFFFFFFFFFFFFFF) / d + 1), one(d == 1) {}
+  uint32_t operator()(uint32_t n) const { return one ? n : uint32_t((__uint128_t(m) * n) >> 64); }
+};
+
+// Cell index -> (i, j, k).
+struct CellDecoder {
+  FastDiv div0, div1;
+  int nc0, nc1;
+  explicit CellDecoder(const StepContext* c)
+      : div0(uint32_t(c->nc[0])), div1(uint32_t(c->nc[1])), nc0(c->nc[0]), nc1(c->nc[1]) {}
+  void operator()(int cell, int& i, int& j, int& k) const {
+    const int r = int(div0(uint32_t(cell)));
+    i = cell - r * nc0;
+    k = int(div1(uint32_t(r)));
+    j = r - k * nc1;
+  }
+};
+
+// Global node index of the base node of a cell.
+inline int base_node(const StepContext* c, const CellDecoder& dec, int cell) {
+  int i, j, k;
+  dec(cell, i, j, k);
+  return i + c->nn[0] * (j + c->nn[1] * k);
+}
+
+// Global node index of local node k (offsets a, b, c) relative to a base node.
+inline int node_of(const StepContext* c, int base, int k) {
+  return base + (k & 1) + c->nn[0] * (((k >> 1) & 1) + c->nn[1] * ((k >> 2) & 1));
+}
+
+// Nodes in one patch buffer: (patch_cells + 1 + 2 halo)^3.
+inline int patch_nodes(const StepContext* c) {
+  const int Q = c->patch_cells + 1 + 2 * c->patch_halo;
+  return Q * Q * Q;
+}
+
+inline double* patch_buffer(const StepContext* c, int slot) {
+  return c->patch_buf + size_t(slot) * size_t(patch_nodes(c)) * kNodeFields;
+}
+
+// Local node index, in the buffer of patch (qx, qy, qz), of the base node of a cell.
+inline int patch_base(const StepContext* c, const CellDecoder& dec, const int q3[3], int cell) {
+  const int P = c->patch_cells, Q = P + 1;
+  int i, j, k;
+  dec(cell, i, j, k);
+  return (i - q3[0] * P) + Q * ((j - q3[1] * P) + Q * (k - q3[2] * P));
+}
+
+inline void patch_coords(const StepContext* c, int q, int q3[3]) {
+  q3[0] = q % c->npd[0];
+  q3[1] = (q / c->npd[0]) % c->npd[1];
+  q3[2] = q / (c->npd[0] * c->npd[1]);
+}
+
+inline int patch_local(int P, int k) {
+  const int Q = P + 1;
+  return (k & 1) + Q * (((k >> 1) & 1) + Q * ((k >> 2) & 1));
+}
+
+// True when particle p belongs to another component than the context's (contact).
+inline bool other_component(const StepContext* c, int p) {
+  return c->only_comp > 0 && c->body_comp[c->body[p]] != c->only_comp;
+}
+
+}  // namespace
+}  // namespace mpm3d
