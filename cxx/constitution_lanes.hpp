@@ -78,18 +78,37 @@ struct LaneUpdate {
            ((s[3] * s[3] + s[4] * s[4]) + s[5] * s[5]);
   }
 
+  // Yield stress and plastic modulus (yield_stress in constitution.cpp). The hardening
+  // laws without pow, log or temperature are done here, as yield_stress does them
+  // (pow(e, 1) == e, factor 1); the others call it lane by lane.
+  static void yield(const MaterialParams& m, T epeff, T strain_rate, T temp, T& sy, T& ep) {
+    const bool jc_plain = (m.type == MAT_SJC || m.type == MAT_SJCF) && m.jc_n == 1.0 && m.jc_c == 0.0;
+    if (m.type == MAT_PLA1) {
+      sy = TL::splat(m.yield0);
+      ep = TL::splat(0.0);
+    } else if (m.type == MAT_PLA2) {
+      sy = m.yield0 + m.hardening * epeff;
+      ep = TL::splat(m.hardening);
+    } else if (jc_plain) {
+      sy = TL::select(epeff > 0.0, m.yield0 + m.hardening * epeff, TL::splat(m.yield0));
+      ep = TL::splat(m.hardening);
+    } else {
+      for (int i = 0; i < TL::W; ++i) {
+        double syi, epi;
+        yield_stress(m, TL::get(epeff, i), TL::get(strain_rate, i), TL::get(temp, i), &syi, &epi);
+        TL::set(sy, i, syi);
+        TL::set(ep, i, epi);
+      }
+    }
+  }
+
   // Radial return of the deviator s against the yield stress; updates epeff, returns
   // the plastic strain increment (0 where elastic).
   static T radial_return(const MaterialParams& m, T s[6], T& epeff, T strain_rate, T temp) {
     if (m.type == MAT_ELAS) return TL::splat(0.0);
     const T q = TL::sqrt(3.0 * j2_of(s));
     T sy, ep;
-    for (int i = 0; i < TL::W; ++i) {
-      double syi, epi;
-      yield_stress(m, TL::get(epeff, i), TL::get(strain_rate, i), TL::get(temp, i), &syi, &epi);
-      TL::set(sy, i, syi);
-      TL::set(ep, i, epi);
-    }
+    yield(m, epeff, strain_rate, temp, sy, ep);
     const auto yielded = q > sy;
     const double g3 = 3.0 * m.shear;
     const T deps = (q - sy) / (g3 + ep);

@@ -227,11 +227,11 @@ void gradient_values(const StepContext* c, const CellDecoder& dec, const int* pa
   for (int r = 0; r < 9; ++r) TL::store(blk.L[r] + first, l[r]);
 }
 
-// The stress stage of the particles [lo, hi) (trilinear): velocity gradients and the
+// The stress stage of the particles list[0..count) (trilinear): velocity gradients and the
 // stress update, kLanes consecutive active particles of one material at a time.
 template <class VL>
-void stress_chunk(StepContext* c, const CellDecoder& dec, int lo, int hi, const double* gvel,
-                  const StressBlockArgs& args) {
+void stress_list(StepContext* c, const CellDecoder& dec, const int* list, int count, const double* gvel,
+                 const StressBlockArgs& args) {
   const bool filter = c->only_comp > 0;
   StressBlock b;
   int part[kLanes];
@@ -269,7 +269,8 @@ void stress_chunk(StepContext* c, const CellDecoder& dec, int lo, int hi, const 
     }
     n = 0;
   };
-  for (int p = lo; p < hi; ++p) {
+  for (int j = 0; j < count; ++j) {
+    const int p = list[j];
     if (c->cell[p] < 0) continue;
     if (filter && other_component(c, p)) continue;
     if (n > 0 && c->mat[p] != mat) flush();

@@ -22,7 +22,8 @@ namespace mpm3d {
 // update_step_avx2.cpp: the lane kernels of transfer_lanes.hpp compiled for AVX2.
 void p2g_patch_avx2(const StepContext* c, int q, bool with_mass_mom, bool with_forces);
 void g2p_patch_avx2(StepContext* c, int q, bool remap);
-void stress_chunk_avx2(StepContext* c, int lo, int hi, const double* gvel, const StressBlockArgs& args);
+void stress_list_avx2(StepContext* c, const int* list, int count, const double* gvel,
+                      const StressBlockArgs& args);
 
 const char* const kStageNames[ST_COUNT] = {"bin", "p2g", "forces", "integrate",
                                            "g2p", "stress", "energy", "contact", "recontact"};
@@ -123,8 +124,7 @@ void assemble_fields(const StepContext* c, double* dst_mass, double* dst_mom, do
   const int P = c->patch_cells, Q = P + 1;
   const int npd0 = c->npd[0], npd1 = c->npd[1], npd2 = c->npd[2];
   const int pn = Q * Q * Q;
-#pragma omp parallel for schedule(dynamic, 1)
-  for (int q = 0; q < c->npatch; ++q) {
+  for_thread_patches(c, [&](int q) {
     const int qx = q % npd0, qy = (q / npd0) % npd1, qz = q / (npd0 * npd1);
     // Slots of the patch and its lower neighbours: nb[cz][cy][cx], c = 0 lower, 1 self.
     const double* nb[2][2][2];
@@ -141,7 +141,7 @@ void assemble_fields(const StepContext* c, double* dst_mass, double* dst_mom, do
           nb[cz][cy][cx] = b;
           any = any || b;
         }
-    if (!any) continue;  // inactive: no stage reads these nodes
+    if (!any) return;  // inactive: no stage reads these nodes
     const int i0 = qx * P, j0 = qy * P, k0 = qz * P;
     const int i1 = qx == npd0 - 1 ? c->nn[0] : i0 + P;
     const int j1 = qy == npd1 - 1 ? c->nn[1] : j0 + P;
@@ -182,7 +182,7 @@ void assemble_fields(const StepContext* c, double* dst_mass, double* dst_mom, do
           }
         }
       }
-  }
+  });
 }
 
 void assemble(const StepContext* c, int first, int count, double* dst_mass, double* dst_mom,
@@ -322,14 +322,13 @@ void scatter_p2g(StepContext* c, bool with_mass_mom, bool with_forces) {
     return;
   }
   const bool avx2 = lanes_use_avx2();
-#pragma omp parallel for schedule(dynamic, 1)
-  for (int q = 0; q < c->npatch; ++q) {
-    if (c->patch_slot[q] < 0) continue;
+  for_thread_patches(c, [&](int q) {
+    if (c->patch_slot[q] < 0) return;
     if (avx2)
       p2g_patch_avx2(c, q, with_mass_mom, with_forces);
     else
       p2g_patch<VectorLane<kLanes>>(c, CellDecoder(c), q, with_mass_mom, with_forces);
-  }
+  });
 }
 
 // The same with the 27-node GIMP stencils (buffers with a halo of one node layer).
@@ -510,17 +509,21 @@ void stress_particles(StepContext* c, const double* gvel) {
   const StressBlockArgs args{c->dt, c->temp != nullptr, c->qv != nullptr, c->bulk_q1, c->bulk_q2, c->h};
   constexpr int kChunk = 256;
   const int nchunk = (c->np + kChunk - 1) / kChunk;
-  const bool avx2 = lanes_use_avx2();
+  if constexpr (!kGimp) {  // trilinear: gradients in lanes too (transfer_lanes.hpp)
+    const bool avx2 = lanes_use_avx2();
+    for_thread_patches(c, [&](int q) {
+      const int* list = c->patch_part + c->patch_start[q];
+      const int count = c->patch_start[q + 1] - c->patch_start[q];
+      if (count == 0) return;
+      if (avx2)
+        stress_list_avx2(c, list, count, gvel, args);
+      else
+        stress_list<VectorLane<kLanes>>(c, dec, list, count, gvel, args);
+    });
+    return;
+  }
 #pragma omp parallel for schedule(dynamic, 1)
   for (int ch = 0; ch < nchunk; ++ch) {
-    if constexpr (!kGimp) {  // trilinear: gradients in lanes too (transfer_lanes.hpp)
-      const int lo = ch * kChunk, hi = std::min(c->np, lo + kChunk);
-      if (avx2)
-        stress_chunk_avx2(c, lo, hi, gvel, args);
-      else
-        stress_chunk<VectorLane<kLanes>>(c, dec, lo, hi, gvel, args);
-      continue;
-    }
     StressBlock b;
     int part[kStressLanes];
     int n = 0, mat = -1;
@@ -710,16 +713,15 @@ extern "C" void mpm3d_cxx_integrate(StepContext* c) {
   const double dt = c->dt_int;
   double* mom = c->gmom;
   const double* f = c->gforce;
-#pragma omp parallel for schedule(dynamic, 1)
-  for (int q = 0; q < c->npatch; ++q) {
+  for_thread_patches(c, [&](int q) {
     const OwnedNodes o = owned_nodes(c, q);
-    if (!o.active) continue;
+    if (!o.active) return;
     for (int k = o.lo[2]; k < o.hi[2]; ++k)
       for (int j = o.lo[1]; j < o.hi[1]; ++j) {
         const int row = 3 * (c->nn[0] * (j + c->nn[1] * k));
         for (int i = row + 3 * o.lo[0]; i < row + 3 * o.hi[0]; ++i) mom[i] = mom[i] + f[i] * dt;
       }
-  }
+  });
   apply_bc(c, c->gmom);
   apply_bc(c, c->gforce);
 }
@@ -731,14 +733,13 @@ extern "C" void mpm3d_cxx_g2p(StepContext* c) {
   }
   const bool remap = c->scheme == SCHEME_MUSL;
   const bool avx2 = lanes_use_avx2();
-#pragma omp parallel for schedule(dynamic, 1)
-  for (int q = 0; q < c->npatch; ++q) {
-    if (c->patch_slot[q] < 0) continue;
+  for_thread_patches(c, [&](int q) {
+    if (c->patch_slot[q] < 0) return;
     if (avx2)
       g2p_patch_avx2(c, q, remap);
     else
       g2p_patch<VectorLane<kLanes>>(c, CellDecoder(c), q, remap);
-  }
+  });
   if (remap) {
     assemble(c, 1, 3, c->gmass, c->gmom, c->gforce);
     apply_bc(c, c->gmom);
@@ -751,10 +752,9 @@ extern "C" void mpm3d_cxx_stress(StepContext* c) {
   // They are kept in the force array, which no stage reads again before the next p2g or
   // forces stage overwrites it (USF: stress runs before forces).
   double* gvel = c->gforce;
-#pragma omp parallel for schedule(dynamic, 1)
-  for (int q = 0; q < c->npatch; ++q) {
+  for_thread_patches(c, [&](int q) {
     const OwnedNodes o = owned_nodes(c, q);
-    if (!o.active) continue;
+    if (!o.active) return;
     for (int k = o.lo[2]; k < o.hi[2]; ++k)
       for (int j = o.lo[1]; j < o.hi[1]; ++j)
         for (int i = o.lo[0]; i < o.hi[0]; ++i) {
@@ -763,7 +763,7 @@ extern "C" void mpm3d_cxx_stress(StepContext* c) {
           if (!(m > cutoff)) continue;
           for (int a = 0; a < 3; ++a) gvel[3 * n + a] = c->gmom[3 * n + a] / m;
         }
-  }
+  });
   if (c->shape == 1)
     stress_particles<true>(c, gvel);
   else

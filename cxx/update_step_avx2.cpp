@@ -14,8 +14,9 @@ void g2p_patch_avx2(StepContext* c, int q, bool remap) {
   g2p_patch<VectorLane<kLanes>>(c, CellDecoder(c), q, remap);
 }
 
-void stress_chunk_avx2(StepContext* c, int lo, int hi, const double* gvel, const StressBlockArgs& args) {
-  stress_chunk<VectorLane<kLanes>>(c, CellDecoder(c), lo, hi, gvel, args);
+void stress_list_avx2(StepContext* c, const int* list, int count, const double* gvel,
+                      const StressBlockArgs& args) {
+  stress_list<VectorLane<kLanes>>(c, CellDecoder(c), list, count, gvel, args);
 }
 
 }  // namespace mpm3d
