@@ -35,6 +35,7 @@ struct ScalarLane {
   static double load(const double* a) { return *a; }
   static void store(double* a, double x) { *a = x; }
   static double gather(const double* a, const int* idx) { return a[idx[0]]; }
+  static double floor(double x) { return std::floor(x); }
 };
 
 template <int W_>
@@ -71,6 +72,15 @@ struct VectorLane {
     return x;
   }
   static void store(double* a, D x) { __builtin_memcpy(a, &x, sizeof x); }
+  // Exact (rounding to an integer is), as std::floor.
+  static D floor(D x) {
+#if defined(__AVX__)
+    if constexpr (W_ == 4) return (D)_mm256_round_pd((__m256d)x, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+#endif
+    D r;
+    for (int i = 0; i < W_; ++i) r[i] = std::floor(x[i]);
+    return r;
+  }
   // Lane i from a[idx[i]].
   static D gather(const double* a, const int* idx) {
     D x;

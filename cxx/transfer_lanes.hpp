@@ -39,6 +39,65 @@ inline void shape_linear_lanes(const T lx[3], double inv_h, T N[8], T G[24]) {
   }
 }
 
+// Binning of the particles [lo, hi): cell on the deck's lattice, then in the window (the
+// same bits for any window), local coordinates, patch (patch_of, -1 outside or of the
+// other contact component). Returns the number outside the window. The divisions and
+// floors in lanes; the rest one lane after the other, with the scalar code's side effects
+// (an outside particle keeps the local coordinates of the axes tested before the one it
+// fails on).
+template <class VL>
+int bin_range(const StepContext* c, int lo, int hi, int* patch_of) {
+  typedef decltype(VL::splat(0.0)) T;
+  const bool filter = c->only_comp > 0;
+  const FastDiv divP{uint32_t(c->patch_cells)};
+  int outside = 0;
+  auto finish = [&](int p, const double* t, const double* fl) {
+    if (filter && other_component(c, p)) {
+      patch_of[p] = -1;
+      return;
+    }
+    int idx[3];
+    for (int a = 0; a < 3; ++a) {
+      const double f0 = double(c->cell_off[a]);
+      if (!(fl[a] >= f0 && fl[a] < f0 + double(c->nc[a]))) {  // also catches NaN
+        c->cell[p] = -1;
+        patch_of[p] = -1;
+        ++outside;
+        return;
+      }
+      idx[a] = int(fl[a]) - c->cell_off[a];
+      c->lx[3 * p + a] = t[a] - fl[a];
+    }
+    c->cell[p] = idx[0] + c->nc[0] * (idx[1] + c->nc[1] * idx[2]);
+    patch_of[p] = int(divP(uint32_t(idx[0]))) +
+                  c->npd[0] * (int(divP(uint32_t(idx[1]))) + c->npd[1] * int(divP(uint32_t(idx[2]))));
+  };
+  int p = lo;
+  for (; p + kLanes <= hi; p += kLanes) {
+    int i3[kLanes];
+    for (int i = 0; i < kLanes; ++i) i3[i] = 3 * (p + i);
+    double t[3][kLanes], fl[3][kLanes];
+    for (int a = 0; a < 3; ++a) {
+      const T ta = (VL::gather(c->x + a, i3) - c->origin[a]) / c->h;
+      VL::store(t[a], ta);
+      VL::store(fl[a], VL::floor(ta));
+    }
+    for (int i = 0; i < kLanes; ++i) {
+      const double ti[3] = {t[0][i], t[1][i], t[2][i]}, fi[3] = {fl[0][i], fl[1][i], fl[2][i]};
+      finish(p + i, ti, fi);
+    }
+  }
+  for (; p < hi; ++p) {
+    double ti[3], fi[3];
+    for (int a = 0; a < 3; ++a) {
+      ti[a] = (c->x[3 * p + a] - c->origin[a]) / c->h;
+      fi[a] = std::floor(ti[a]);
+    }
+    finish(p, ti, fi);
+  }
+  return outside;
+}
+
 // Offset of local node k from the base node in the global node array.
 inline int node_offset(const StepContext* c, int k) {
   return (k & 1) + c->nn[0] * (((k >> 1) & 1) + c->nn[1] * ((k >> 2) & 1));

@@ -22,6 +22,7 @@ namespace mpm3d {
 // update_step_avx2.cpp: the lane kernels of transfer_lanes.hpp compiled for AVX2.
 void p2g_patch_avx2(const StepContext* c, int q, bool with_mass_mom, bool with_forces);
 void g2p_patch_avx2(StepContext* c, int q, bool remap);
+int bin_range_avx2(const StepContext* c, int lo, int hi, int* patch_of);
 void stress_list_avx2(StepContext* c, const int* list, int count, const double* gvel,
                       const StressBlockArgs& args);
 
@@ -620,41 +621,17 @@ void scatter_mass_gradient(StepContext* c) {
 using namespace mpm3d;
 
 extern "C" void mpm3d_cxx_bin(StepContext* c) {
-  const int P = c->patch_cells;
   const int np = c->np, npatch = c->npatch;
   int* patch_of = c->pscratch;  // patch of each particle, -1 outside
   int outside = 0;
-  const bool filter = c->only_comp > 0;  // contact: this context's component only
-  const FastDiv divP{uint32_t(P)};  // cell -> patch (exact, cheaper than idiv)
+  // Cells, local coordinates, patches (transfer_lanes.hpp), in fixed chunks.
+  constexpr int kChunk = 2048;
+  const int nbinchunk = (np + kChunk - 1) / kChunk;
+  const bool avx2 = lanes_use_avx2();
 #pragma omp parallel for schedule(static) reduction(+ : outside)
-  for (int p = 0; p < np; ++p) {
-    if (filter && other_component(c, p)) {
-      patch_of[p] = -1;
-      continue;
-    }
-    int idx[3];
-    bool in = true;
-    for (int a = 0; a < 3; ++a) {
-      // Cell on the deck's lattice, then in the window (the same bits for any window).
-      const double t = (c->x[3 * p + a] - c->origin[a]) / c->h;
-      const double fl = std::floor(t);
-      const double f0 = double(c->cell_off[a]);
-      if (!(fl >= f0 && fl < f0 + double(c->nc[a]))) {  // also catches NaN
-        in = false;
-        break;
-      }
-      idx[a] = int(fl) - c->cell_off[a];
-      c->lx[3 * p + a] = t - fl;
-    }
-    if (!in) {
-      c->cell[p] = -1;
-      patch_of[p] = -1;
-      ++outside;
-      continue;
-    }
-    c->cell[p] = idx[0] + c->nc[0] * (idx[1] + c->nc[1] * idx[2]);
-    patch_of[p] = int(divP(uint32_t(idx[0]))) +
-                  c->npd[0] * (int(divP(uint32_t(idx[1]))) + c->npd[1] * int(divP(uint32_t(idx[2]))));
+  for (int ch = 0; ch < nbinchunk; ++ch) {
+    const int lo = ch * kChunk, hi = std::min(np, lo + kChunk);
+    outside += avx2 ? bin_range_avx2(c, lo, hi, patch_of) : bin_range<VectorLane<kLanes>>(c, lo, hi, patch_of);
   }
   // Stable counting sort of the particles by patch: ascending particle index within each
   // patch whatever the number of chunks, so the lists do not depend on the thread count.

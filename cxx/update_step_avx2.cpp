@@ -10,6 +10,10 @@ void p2g_patch_avx2(const StepContext* c, int q, bool with_mass_mom, bool with_f
   p2g_patch<VectorLane<kLanes>>(c, CellDecoder(c), q, with_mass_mom, with_forces);
 }
 
+int bin_range_avx2(const StepContext* c, int lo, int hi, int* patch_of) {
+  return bin_range<VectorLane<kLanes>>(c, lo, hi, patch_of);
+}
+
 void g2p_patch_avx2(StepContext* c, int q, bool remap) {
   g2p_patch<VectorLane<kLanes>>(c, CellDecoder(c), q, remap);
 }
