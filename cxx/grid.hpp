@@ -74,10 +74,14 @@ PatchStats patch_stats(const Grid& g, const int* patch_start);
 // Trilinear shape functions of the 8 nodes of a cell at local coordinates lx in [0,1)^3.
 // Local node k = a + 2 b + 4 c has offset (a, b, c). Explicit operation order (bit-for-bit
 // with fortran_ref/grid.f90): N = (wx * wy) * wz, dN/dx = (gx * wy) * wz, ...
-inline void shape_linear(const double* lx, double inv_h, double* N, double* G) {
-  const double wx[2] = {1.0 - lx[0], lx[0]};
-  const double wy[2] = {1.0 - lx[1], lx[1]};
-  const double wz[2] = {1.0 - lx[2], lx[2]};
+// Written for a lane type T (lanes.hpp): double, or a vector of particles; internal
+// linkage, so units built for another instruction set keep their own copy.
+namespace {
+template <class T>
+inline void shape_linear_lanes(const T lx[3], double inv_h, T N[8], T G[24]) {
+  const T wx[2] = {1.0 - lx[0], lx[0]};
+  const T wy[2] = {1.0 - lx[1], lx[1]};
+  const T wz[2] = {1.0 - lx[2], lx[2]};
   const double g[2] = {-inv_h, inv_h};
   for (int k = 0; k < 8; ++k) {
     const int a = k & 1, b = (k >> 1) & 1, c = (k >> 2) & 1;
@@ -86,6 +90,11 @@ inline void shape_linear(const double* lx, double inv_h, double* N, double* G) {
     G[3 * k + 1] = (wx[a] * g[b]) * wz[c];
     G[3 * k + 2] = (wx[a] * wy[b]) * g[c];
   }
+}
+}  // namespace
+
+inline void shape_linear(const double* lx, double inv_h, double* N, double* G) {
+  shape_linear_lanes<double>(lx, inv_h, N, G);
 }
 
 // uGIMP (uniform generalized interpolation material point, Bardenhagen & Kober 2004) weights

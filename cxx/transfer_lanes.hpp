@@ -22,23 +22,6 @@ namespace {
 
 constexpr int kLanes = kStressLanes;
 
-// Trilinear weights N_k and gradients G_k (k = a + 2 b + 4 c) at local coordinates lx,
-// the operations of shape_linear (grid.hpp).
-template <class T>
-inline void shape_linear_lanes(const T lx[3], double inv_h, T N[8], T G[24]) {
-  const T wx[2] = {1.0 - lx[0], lx[0]};
-  const T wy[2] = {1.0 - lx[1], lx[1]};
-  const T wz[2] = {1.0 - lx[2], lx[2]};
-  const double g[2] = {-inv_h, inv_h};
-  for (int k = 0; k < 8; ++k) {
-    const int a = k & 1, b = (k >> 1) & 1, c = (k >> 2) & 1;
-    N[k] = (wx[a] * wy[b]) * wz[c];
-    G[3 * k + 0] = (g[a] * wy[b]) * wz[c];
-    G[3 * k + 1] = (wx[a] * g[b]) * wz[c];
-    G[3 * k + 2] = (wx[a] * wy[b]) * g[c];
-  }
-}
-
 // Binning of the particles [lo, hi): cell on the deck's lattice, then in the window (the
 // same bits for any window), local coordinates, patch (patch_of, -1 outside or of the
 // other contact component). Returns the number outside the window. The divisions and
@@ -286,6 +269,27 @@ void gradient_values(const StepContext* c, const CellDecoder& dec, const int* pa
   for (int r = 0; r < 9; ++r) TL::store(blk.L[r] + first, l[r]);
 }
 
+// Particle p's state into lane i of a stress batch, and back.
+inline void stress_block_load(const StepContext* c, const MaterialParams& mp, int p, int i, StressBlock& b) {
+  b.mass[i] = c->mass[p];
+  b.vol[i] = c->vol[p];
+  for (int s = 0; s < 6; ++s) b.sig[s][i] = c->sig[6 * p + s];
+  b.epeff[i] = c->epeff[p];
+  b.ie[i] = c->ie[p];
+  b.temp[i] = c->temp ? c->temp[p] : 0.0;
+  b.qv[i] = c->qv ? c->qv[p] : 0.0;
+  b.burn[i] = c->tlight ? burn_fraction(mp, c->tlight[p], c->time) : 1.0;
+}
+
+inline void stress_block_store(StepContext* c, int p, int i, const StressBlock& b) {
+  c->vol[p] = b.vol[i];
+  for (int s = 0; s < 6; ++s) c->sig[6 * p + s] = b.sig[s][i];
+  c->epeff[p] = b.epeff[i];
+  c->ie[p] = b.ie[i];
+  if (c->temp) c->temp[p] = b.temp[i];
+  if (c->qv) c->qv[p] = b.qv[i];
+}
+
 // The stress stage of the particles list[0..count) (trilinear): velocity gradients and the
 // stress update, kLanes consecutive active particles of one material at a time.
 template <class VL>
@@ -302,30 +306,12 @@ void stress_list(StepContext* c, const CellDecoder& dec, const int* list, int co
     } else {
       for (int i = 0; i < n; ++i) gradient_values<ScalarLane>(c, dec, part + i, gvel, b, i);
     }
-    for (int i = 0; i < n; ++i) {
-      const int p = part[i];
-      b.mass[i] = c->mass[p];
-      b.vol[i] = c->vol[p];
-      for (int s = 0; s < 6; ++s) b.sig[s][i] = c->sig[6 * p + s];
-      b.epeff[i] = c->epeff[p];
-      b.ie[i] = c->ie[p];
-      b.temp[i] = c->temp ? c->temp[p] : 0.0;
-      b.qv[i] = c->qv ? c->qv[p] : 0.0;
-      b.burn[i] = c->tlight ? burn_fraction(mp, c->tlight[p], c->time) : 1.0;
-    }
+    for (int i = 0; i < n; ++i) stress_block_load(c, mp, part[i], i, b);
     if (n == kLanes)
       stress_block_lanes<VL>(mp, b, 0, args);
     else
       for (int i = 0; i < n; ++i) stress_block_lanes<ScalarLane>(mp, b, i, args);
-    for (int i = 0; i < n; ++i) {
-      const int p = part[i];
-      c->vol[p] = b.vol[i];
-      for (int s = 0; s < 6; ++s) c->sig[6 * p + s] = b.sig[s][i];
-      c->epeff[p] = b.epeff[i];
-      c->ie[p] = b.ie[i];
-      if (c->temp) c->temp[p] = b.temp[i];
-      if (c->qv) c->qv[p] = b.qv[i];
-    }
+    for (int i = 0; i < n; ++i) stress_block_store(c, part[i], i, b);
     n = 0;
   };
   for (int j = 0; j < count; ++j) {

@@ -459,15 +459,19 @@ void g2p_gimp(StepContext* c) {
 }
 
 // Velocity gradient L[3a+b] = d v_a / d x_b of particle p from the node velocities gvel,
-// summed over the nodes in stencil order (trilinear or GIMP).
-template <bool kGimp>
-inline void velocity_gradient(const StepContext* c, const CellDecoder& dec, int p, const double* gvel,
-                              double L[9]) {
-  const double cutoff = c->mass_cutoff;
+// summed over the 27 GIMP stencil nodes in stencil order (the trilinear one:
+// gradient_values in transfer_lanes.hpp).
+inline void velocity_gradient_gimp(const StepContext* c, const CellDecoder& dec, int p, const double* gvel,
+                                   double L[9]) {
   double l0 = 0, l1 = 0, l2 = 0, l3 = 0, l4 = 0, l5 = 0, l6 = 0, l7 = 0, l8 = 0;
-  auto add = [&](int n, const double* g) {
+  GimpStencil st;
+  gimp_stencil(c, dec, p, st);
+  const int base = gimp_corner(c, st);
+  for (int k = 0; k < 27; ++k) {
+    const int n = base + stencil_offset(k, c->nn[0], c->nn[1]);
+    if (!(c->gmass[n] > c->mass_cutoff)) continue;
     const double vx = gvel[3 * n], vy = gvel[3 * n + 1], vz = gvel[3 * n + 2];
-    const double gx = g[0], gy = g[1], gz = g[2];
+    const double gx = st.G[3 * k], gy = st.G[3 * k + 1], gz = st.G[3 * k + 2];
     l0 += vx * gx;
     l1 += vx * gy;
     l2 += vx * gz;
@@ -477,40 +481,19 @@ inline void velocity_gradient(const StepContext* c, const CellDecoder& dec, int 
     l6 += vz * gx;
     l7 += vz * gy;
     l8 += vz * gz;
-  };
-  if constexpr (kGimp) {
-    GimpStencil st;
-    gimp_stencil(c, dec, p, st);
-    const int base = gimp_corner(c, st);
-    for (int k = 0; k < 27; ++k) {
-      const int n = base + stencil_offset(k, c->nn[0], c->nn[1]);
-      if (c->gmass[n] > cutoff) add(n, st.G + 3 * k);
-    }
-  } else {
-    double N[8], G[24];
-    shape_linear(c->lx + 3 * p, c->inv_h, N, G);
-    const int base = base_node(c, dec, c->cell[p]);
-    for (int k = 0; k < 8; ++k) {
-      const int n = node_of(c, base, k);
-      if (c->gmass[n] > cutoff) add(n, G + 3 * k);
-    }
   }
   L[0] = l0, L[1] = l1, L[2] = l2, L[3] = l3, L[4] = l4, L[5] = l5, L[6] = l6, L[7] = l7, L[8] = l8;
 }
 
-// The particle loop of the stress stage: velocity gradients from the node velocities gvel,
-// then strain and spin increments, volume and stress update. Consecutive particles of one
-// material are updated kStressLanes at a time by the vector code (each lane the scalar
-// arithmetic); a batch cut short by a change of material or the end of a chunk is
-// updated lane by lane.
-template <bool kGimp>
+// The particle loop of the stress stage: velocity gradients from the node velocities
+// gvel, then strain and spin increments, volume and stress update, consecutive particles
+// of one material kStressLanes at a time (stress_block; a shorter run lane by lane).
+// Trilinear: per patch list, gradients in lanes too (stress_list, transfer_lanes.hpp);
+// GIMP: in fixed particle chunks.
 void stress_particles(StepContext* c, const double* gvel) {
-  const bool filter = c->only_comp > 0;
   const CellDecoder dec(c);
   const StressBlockArgs args{c->dt, c->temp != nullptr, c->qv != nullptr, c->bulk_q1, c->bulk_q2, c->h};
-  constexpr int kChunk = 256;
-  const int nchunk = (c->np + kChunk - 1) / kChunk;
-  if constexpr (!kGimp) {  // trilinear: gradients in lanes too (transfer_lanes.hpp)
+  if (c->shape != 1) {
     const bool avx2 = lanes_use_avx2();
     for_thread_patches(c, [&](int q) {
       const int* list = c->patch_part + c->patch_start[q];
@@ -523,6 +506,9 @@ void stress_particles(StepContext* c, const double* gvel) {
     });
     return;
   }
+  const bool filter = c->only_comp > 0;
+  constexpr int kChunk = 256;
+  const int nchunk = (c->np + kChunk - 1) / kChunk;
 #pragma omp parallel for schedule(dynamic, 1)
   for (int ch = 0; ch < nchunk; ++ch) {
     StressBlock b;
@@ -534,15 +520,7 @@ void stress_particles(StepContext* c, const double* gvel) {
         stress_block(mp, b, args);
       else
         for (int i = 0; i < n; ++i) stress_block_lane(mp, b, i, args);
-      for (int i = 0; i < n; ++i) {
-        const int p = part[i];
-        c->vol[p] = b.vol[i];
-        for (int s = 0; s < 6; ++s) c->sig[6 * p + s] = b.sig[s][i];
-        c->epeff[p] = b.epeff[i];
-        c->ie[p] = b.ie[i];
-        if (c->temp) c->temp[p] = b.temp[i];
-        if (c->qv) c->qv[p] = b.qv[i];
-      }
+      for (int i = 0; i < n; ++i) stress_block_store(c, part[i], i, b);
       n = 0;
     };
     const int hi = std::min(c->np, (ch + 1) * kChunk);
@@ -552,16 +530,9 @@ void stress_particles(StepContext* c, const double* gvel) {
       if (n > 0 && c->mat[p] != mat) flush();
       mat = c->mat[p];
       double L[9];
-      velocity_gradient<kGimp>(c, dec, p, gvel, L);
+      velocity_gradient_gimp(c, dec, p, gvel, L);
       for (int r = 0; r < 9; ++r) b.L[r][n] = L[r];
-      b.mass[n] = c->mass[p];
-      b.vol[n] = c->vol[p];
-      for (int s = 0; s < 6; ++s) b.sig[s][n] = c->sig[6 * p + s];
-      b.epeff[n] = c->epeff[p];
-      b.ie[n] = c->ie[p];
-      b.temp[n] = c->temp ? c->temp[p] : 0.0;
-      b.qv[n] = c->qv ? c->qv[p] : 0.0;
-      b.burn[n] = c->tlight ? burn_fraction(c->mats[mat], c->tlight[p], c->time) : 1.0;
+      stress_block_load(c, c->mats[mat], p, n, b);
       part[n++] = p;
       if (n == kStressLanes) flush();
     }
@@ -741,10 +712,7 @@ extern "C" void mpm3d_cxx_stress(StepContext* c) {
           for (int a = 0; a < 3; ++a) gvel[3 * n + a] = c->gmom[3 * n + a] / m;
         }
   });
-  if (c->shape == 1)
-    stress_particles<true>(c, gvel);
-  else
-    stress_particles<false>(c, gvel);
+  stress_particles(c, gvel);
 }
 
 extern "C" void mpm3d_cxx_energy(StepContext* c) {
