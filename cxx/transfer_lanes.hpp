@@ -111,44 +111,7 @@ void p2g_patch_fields(const StepContext* c, const CellDecoder& dec, int q) {
     double N[8], G[24];
     shape_linear_lanes<double>(c->lx + 3 * p, c->inv_h, N, G);
     double* pb = buf + size_t(patch_base(c, dec, q3, c->cell[p])) * kNodeFields;
-    const double mp = c->mass[p];
-    const double* vp = c->v + 3 * p;
-    double vs[6] = {0, 0, 0, 0, 0, 0}, fb[3] = {0, 0, 0};
-    if (kForces) {
-      const double volp = c->vol[p];
-      for (int s = 0; s < 6; ++s) vs[s] = c->sig[6 * p + s] * volp;
-      if (kBody) {
-        const double* g = c->gravity + 3 * c->body[p];
-        for (int a = 0; a < 3; ++a) {
-          fb[a] = mp * g[a];
-          if (c->fext) fb[a] = fb[a] + c->fext[3 * p + a];
-        }
-      }
-    }
-    for (int k = 0; k < 8; ++k) {
-      double* b = pb + local[k];
-      if (kMassMom) {
-        const double mn = mp * N[k];
-        b[0] += mn;
-        b[1] += mn * vp[0];
-        b[2] += mn * vp[1];
-        b[3] += mn * vp[2];
-      }
-      if (kForces) {
-        const double gx = G[3 * k], gy = G[3 * k + 1], gz = G[3 * k + 2];
-        double fx = -((vs[0] * gx + vs[5] * gy) + vs[4] * gz);
-        double fy = -((vs[5] * gx + vs[1] * gy) + vs[3] * gz);
-        double fz = -((vs[4] * gx + vs[3] * gy) + vs[2] * gz);
-        if (kBody) {
-          fx = N[k] * fb[0] + fx;
-          fy = N[k] * fb[1] + fy;
-          fz = N[k] * fb[2] + fz;
-        }
-        b[4] += fx;
-        b[5] += fy;
-        b[6] += fz;
-      }
-    }
+    p2g_particle(c, p, N, G, kMassMom, kForces, kBody, [&](int k) { return pb + local[k]; });
   }
 }
 

@@ -87,6 +87,54 @@ inline bool other_component(const StepContext* c, int p) {
   return c->only_comp > 0 && c->body_comp[c->body[p]] != c->only_comp;
 }
 
+// P2G contributions of particle p (weights N, gradients G) added to its 8 nodes,
+// node(k) the 7 fields of local node k: mass and momentum (with_mass_mom) and the force
+// -V sigma G + N (m g + f_ext) (with_forces; body forces with has_body_force). Used by the
+// patch scatter (constant flags, so the loop unrolls) and the array-expansion scatter.
+template <class NodeOf>
+__attribute__((always_inline)) inline void p2g_particle(const StepContext* c, int p, const double* N,
+                                                        const double* G, bool with_mass_mom, bool with_forces,
+                                                        bool with_body, NodeOf node) {
+  const double mp = c->mass[p];
+  const double* vp = c->v + 3 * p;
+  double vs[6] = {0, 0, 0, 0, 0, 0}, fb[3] = {0, 0, 0};
+  if (with_forces) {
+    const double volp = c->vol[p];
+    for (int s = 0; s < 6; ++s) vs[s] = c->sig[6 * p + s] * volp;
+    if (with_body) {
+      const double* g = c->gravity + 3 * c->body[p];
+      for (int a = 0; a < 3; ++a) {
+        fb[a] = mp * g[a];
+        if (c->fext) fb[a] = fb[a] + c->fext[3 * p + a];
+      }
+    }
+  }
+  for (int k = 0; k < 8; ++k) {
+    double* b = node(k);
+    if (with_mass_mom) {
+      const double mn = mp * N[k];
+      b[0] += mn;
+      b[1] += mn * vp[0];
+      b[2] += mn * vp[1];
+      b[3] += mn * vp[2];
+    }
+    if (with_forces) {
+      const double gx = G[3 * k], gy = G[3 * k + 1], gz = G[3 * k + 2];
+      double fx = -((vs[0] * gx + vs[5] * gy) + vs[4] * gz);
+      double fy = -((vs[5] * gx + vs[1] * gy) + vs[3] * gz);
+      double fz = -((vs[4] * gx + vs[3] * gy) + vs[2] * gz);
+      if (with_body) {
+        fx = N[k] * fb[0] + fx;
+        fy = N[k] * fb[1] + fy;
+        fz = N[k] * fb[2] + fz;
+      }
+      b[4] += fx;
+      b[5] += fy;
+      b[6] += fz;
+    }
+  }
+}
+
 // Patches [lo, hi) of thread t of T: contiguous ranges of the patch index holding about
 // 1/T of the binned particles each (patch_start is the prefix sum of the lists). The
 // trilinear patch stages (P2G, assembly, integration, G2P, node velocities, stress) all use

@@ -20,6 +20,7 @@
 
 #include "grid.hpp"
 #include "update_step.hpp"
+#include "update_step_detail.hpp"
 
 namespace mpm3d {
 namespace {
@@ -31,10 +32,6 @@ inline int base_node_of_cell(const StepContext* c, int cell) {
   const int j = r % c->nc[1];
   const int k = r / c->nc[1];
   return i + c->nn[0] * (j + c->nn[1] * k);
-}
-
-inline int node_of(const StepContext* c, int base, int k) {
-  return base + (k & 1) + c->nn[0] * (((k >> 1) & 1) + c->nn[1] * ((k >> 2) & 1));
 }
 
 // Boundary conditions of the box faces (as apply_bc in update_step.cpp).
@@ -119,44 +116,8 @@ int scatter(StepContext* c, bool with_mass_mom, bool with_forces) {
       double N[8], G[24];
       shape_linear(c->lx + 3 * p, c->inv_h, N, G);
       const int base = base_node_of_cell(c, c->cell[p]);
-      const double mp = c->mass[p];
-      const double* vp = c->v + 3 * p;
-      double vs[6] = {0, 0, 0, 0, 0, 0}, fb[3] = {0, 0, 0};
-      if (with_forces) {
-        const double volp = c->vol[p];
-        for (int s = 0; s < 6; ++s) vs[s] = c->sig[6 * p + s] * volp;
-        if (c->has_body_force) {
-          const double* gr = c->gravity + 3 * c->body[p];
-          for (int a = 0; a < 3; ++a) {
-            fb[a] = mp * gr[a];
-            if (c->fext) fb[a] = fb[a] + c->fext[3 * p + a];
-          }
-        }
-      }
-      for (int k = 0; k < 8; ++k) {
-        double* b = g + size_t(node_of(c, base, k)) * kNodeFields;
-        if (with_mass_mom) {
-          const double mn = mp * N[k];
-          b[0] += mn;
-          b[1] += mn * vp[0];
-          b[2] += mn * vp[1];
-          b[3] += mn * vp[2];
-        }
-        if (with_forces) {
-          const double gx = G[3 * k], gy = G[3 * k + 1], gz = G[3 * k + 2];
-          double fx = -((vs[0] * gx + vs[5] * gy) + vs[4] * gz);
-          double fy = -((vs[5] * gx + vs[1] * gy) + vs[3] * gz);
-          double fz = -((vs[4] * gx + vs[3] * gy) + vs[2] * gz);
-          if (c->has_body_force) {
-            fx = N[k] * fb[0] + fx;
-            fy = N[k] * fb[1] + fy;
-            fz = N[k] * fb[2] + fz;
-          }
-          b[4] += fx;
-          b[5] += fy;
-          b[6] += fz;
-        }
-      }
+      p2g_particle(c, p, N, G, with_mass_mom, with_forces, c->has_body_force != 0,
+                   [&](int k) { return g + size_t(node_of(c, base, k)) * kNodeFields; });
     }
   }
   return used;
