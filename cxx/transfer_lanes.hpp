@@ -111,7 +111,7 @@ void p2g_patch_fields(const StepContext* c, const CellDecoder& dec, int q) {
     double N[8], G[24];
     shape_linear_lanes<double>(c->lx + 3 * p, c->inv_h, N, G);
     double* pb = buf + size_t(patch_base(c, dec, q3, c->cell[p])) * kNodeFields;
-    p2g_particle(c, p, N, G, kMassMom, kForces, kBody, [&](int k) { return pb + local[k]; });
+    p2g_particle<8>(c, p, N, G, kMassMom, kForces, kBody, [&](int k) { return pb + local[k]; });
   }
 }
 

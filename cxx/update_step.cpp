@@ -350,45 +350,8 @@ void scatter_p2g_gimp(StepContext* c, bool with_mass_mom, bool with_forces) {
       GimpStencil st;
       gimp_stencil(c, dec, p, st);
       const int base = gimp_patch_corner(c, q3, st);
-      const double mp = c->mass[p];
-      const double* vp = c->v + 3 * p;
-      double vs[6] = {0, 0, 0, 0, 0, 0}, fb[3] = {0, 0, 0};
-      if (with_forces) {
-        const double volp = c->vol[p];
-        for (int s = 0; s < 6; ++s) vs[s] = c->sig[6 * p + s] * volp;
-        if (c->has_body_force) {
-          const double* g = c->gravity + 3 * c->body[p];
-          for (int a = 0; a < 3; ++a) {
-            fb[a] = mp * g[a];
-            if (c->fext) fb[a] = fb[a] + c->fext[3 * p + a];
-          }
-        }
-      }
-      for (int k = 0; k < 27; ++k) {
-        double* b = buf + size_t(base + stencil_offset(k, Q, Q)) * kNodeFields;
-        const double Nk = st.N[k];
-        if (with_mass_mom) {
-          const double mn = mp * Nk;
-          b[0] += mn;
-          b[1] += mn * vp[0];
-          b[2] += mn * vp[1];
-          b[3] += mn * vp[2];
-        }
-        if (with_forces) {
-          const double gx = st.G[3 * k], gy = st.G[3 * k + 1], gz = st.G[3 * k + 2];
-          double fx = -((vs[0] * gx + vs[5] * gy) + vs[4] * gz);
-          double fy = -((vs[5] * gx + vs[1] * gy) + vs[3] * gz);
-          double fz = -((vs[4] * gx + vs[3] * gy) + vs[2] * gz);
-          if (c->has_body_force) {
-            fx = Nk * fb[0] + fx;
-            fy = Nk * fb[1] + fy;
-            fz = Nk * fb[2] + fz;
-          }
-          b[4] += fx;
-          b[5] += fy;
-          b[6] += fz;
-        }
-      }
+      p2g_particle<27>(c, p, st.N, st.G, with_mass_mom, with_forces, c->has_body_force != 0,
+                       [&](int k) { return buf + size_t(base + stencil_offset(k, Q, Q)) * kNodeFields; });
     }
   }
 }

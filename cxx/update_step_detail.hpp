@@ -87,11 +87,12 @@ inline bool other_component(const StepContext* c, int p) {
   return c->only_comp > 0 && c->body_comp[c->body[p]] != c->only_comp;
 }
 
-// P2G contributions of particle p (weights N, gradients G) added to its 8 nodes,
-// node(k) the 7 fields of local node k: mass and momentum (with_mass_mom) and the force
+// P2G contributions of particle p (weights N, gradients G) added to its kNodes nodes (8
+// trilinear, 27 GIMP), node(k) the 7 fields of stencil node k: mass and momentum (with_mass_mom) and the force
 // -V sigma G + N (m g + f_ext) (with_forces; body forces with has_body_force). Used by the
-// patch scatter (constant flags, so the loop unrolls) and the array-expansion scatter.
-template <class NodeOf>
+// trilinear patch scatter (constant flags, so the loop unrolls), the GIMP scatter and the
+// array-expansion scatter.
+template <int kNodes, class NodeOf>
 __attribute__((always_inline)) inline void p2g_particle(const StepContext* c, int p, const double* N,
                                                         const double* G, bool with_mass_mom, bool with_forces,
                                                         bool with_body, NodeOf node) {
@@ -109,7 +110,7 @@ __attribute__((always_inline)) inline void p2g_particle(const StepContext* c, in
       }
     }
   }
-  for (int k = 0; k < 8; ++k) {
+  for (int k = 0; k < kNodes; ++k) {
     double* b = node(k);
     if (with_mass_mom) {
       const double mn = mp * N[k];

@@ -116,7 +116,7 @@ int scatter(StepContext* c, bool with_mass_mom, bool with_forces) {
       double N[8], G[24];
       shape_linear(c->lx + 3 * p, c->inv_h, N, G);
       const int base = base_node_of_cell(c, c->cell[p]);
-      p2g_particle(c, p, N, G, with_mass_mom, with_forces, c->has_body_force != 0,
+      p2g_particle<8>(c, p, N, G, with_mass_mom, with_forces, c->has_body_force != 0,
                    [&](int k) { return g + size_t(node_of(c, base, k)) * kNodeFields; });
     }
   }
