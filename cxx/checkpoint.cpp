@@ -268,6 +268,23 @@ void read_checkpoint(const std::string& path, Simulation& sim, OutputSchedule& o
     }
   }
 
+  {
+    // The storage order must be a permutation of the deck's particles: the outputs write
+    // through it.
+    size_t k = 0;
+    for (const ParticleField& fd : fields) {
+      if (fd.d) continue;
+      if (std::string(fd.name) == "deck_id" && !ibuf[k].empty()) {
+        std::vector<char> seen(size_t(np), 0);
+        for (int32_t v : ibuf[k]) {
+          if (v < 0 || hsize_t(v) >= np || seen[size_t(v)]) fail(path, "particle array 'deck_id' is not a permutation of the particles");
+          seen[size_t(v)] = 1;
+        }
+      }
+      ++k;
+    }
+  }
+
   OutputSchedule o;
   Id og{H5Gopen2(f.id, "/output", H5P_DEFAULT), H5Gclose};
   if (og.id < 0) fail(path, "no /output group");

@@ -109,6 +109,16 @@ void check(herr_t s, const char* what) {
   if (s < 0) throw std::runtime_error(std::string("HDF5: cannot write ") + what);
 }
 
+// A per-particle array (ncomp values each) in deck order: the order of every output file,
+// whatever the solver's storage order (Particles::id; at = stored_index).
+template <class T>
+std::vector<T> deck_ordered(const std::vector<T>& a, int ncomp, const std::vector<int>& at) {
+  std::vector<T> out(a.size());
+  for (size_t i = 0; i < at.size(); ++i)
+    for (int c = 0; c < ncomp; ++c) out[size_t(ncomp) * i + size_t(c)] = a[size_t(ncomp) * size_t(at[i]) + size_t(c)];
+  return out;
+}
+
 void write_dataset(hid_t group, const char* name, hid_t type, const void* data, hsize_t rows, hsize_t cols) {
   hsize_t dims[2] = {rows, cols};
   hid_t space = H5Screate_simple(cols ? 2 : 1, dims, nullptr);
@@ -140,21 +150,26 @@ void write_state_h5(const std::string& path, const Model& m, double time, long s
     if (g < 0) throw std::runtime_error("cannot create /particles in " + path);
     const Particles& P = m.particles;
     const hsize_t n = hsize_t(P.np);
+    const std::vector<int> at = stored_index(P);
     std::vector<double> rho(P.np);
-    for (int p = 0; p < P.np; ++p) rho[size_t(p)] = P.mass[size_t(p)] / P.vol[size_t(p)];
-    std::vector<int> mat(P.mat.begin(), P.mat.end()), body(P.body.begin(), P.body.end());
-    for (int& v : mat) v += 1;
-    for (int& v : body) v += 1;
+    std::vector<int> mat(P.np), body(P.np);
+    for (int i = 0; i < P.np; ++i) {
+      const size_t p = size_t(at[size_t(i)]);
+      rho[size_t(i)] = P.mass[p] / P.vol[p];
+      mat[size_t(i)] = P.mat[p] + 1;
+      body[size_t(i)] = P.body[p] + 1;
+    }
     try {
-      write_dataset(g, "position", H5T_NATIVE_DOUBLE, P.x.data(), n, 3);
-      write_dataset(g, "velocity", H5T_NATIVE_DOUBLE, P.v.data(), n, 3);
-      write_dataset(g, "stress", H5T_NATIVE_DOUBLE, P.sig.data(), n, 6);
-      write_dataset(g, "mass", H5T_NATIVE_DOUBLE, P.mass.data(), n, 0);
-      write_dataset(g, "volume", H5T_NATIVE_DOUBLE, P.vol.data(), n, 0);
+      write_dataset(g, "position", H5T_NATIVE_DOUBLE, deck_ordered(P.x, 3, at).data(), n, 3);
+      write_dataset(g, "velocity", H5T_NATIVE_DOUBLE, deck_ordered(P.v, 3, at).data(), n, 3);
+      write_dataset(g, "stress", H5T_NATIVE_DOUBLE, deck_ordered(P.sig, 6, at).data(), n, 6);
+      write_dataset(g, "mass", H5T_NATIVE_DOUBLE, deck_ordered(P.mass, 1, at).data(), n, 0);
+      write_dataset(g, "volume", H5T_NATIVE_DOUBLE, deck_ordered(P.vol, 1, at).data(), n, 0);
       write_dataset(g, "density", H5T_NATIVE_DOUBLE, rho.data(), n, 0);
-      write_dataset(g, "epeff", H5T_NATIVE_DOUBLE, P.epeff.data(), n, 0);
-      write_dataset(g, "internal_energy", H5T_NATIVE_DOUBLE, P.ie.data(), n, 0);
-      if (!P.temp.empty()) write_dataset(g, "temperature", H5T_NATIVE_DOUBLE, P.temp.data(), n, 0);
+      write_dataset(g, "epeff", H5T_NATIVE_DOUBLE, deck_ordered(P.epeff, 1, at).data(), n, 0);
+      write_dataset(g, "internal_energy", H5T_NATIVE_DOUBLE, deck_ordered(P.ie, 1, at).data(), n, 0);
+      if (!P.temp.empty())
+        write_dataset(g, "temperature", H5T_NATIVE_DOUBLE, deck_ordered(P.temp, 1, at).data(), n, 0);
       write_dataset(g, "material", H5T_NATIVE_INT, mat.data(), n, 0);
       write_dataset(g, "body", H5T_NATIVE_INT, body.data(), n, 0);
       write_attr(g, "time", H5T_NATIVE_DOUBLE, &time);
@@ -264,11 +279,12 @@ void H5Series::frame(const Model& m, double time, long step) {
     try {
       const Particles& P = m.particles;
       const hsize_t n = hsize_t(P.np);
-      write_dataset(g, "position", H5T_NATIVE_DOUBLE, P.x.data(), n, 3);
+      const std::vector<int> at = stored_index(P);
+      write_dataset(g, "position", H5T_NATIVE_DOUBLE, deck_ordered(P.x, 3, at).data(), n, 3);
       std::vector<double> buf(size_t(P.np));
       for (const auto& v : vars_) {
         const ParticleVarFn fn = output_variable(v);
-        for (int p = 0; p < P.np; ++p) buf[size_t(p)] = fn(m, p);
+        for (int i = 0; i < P.np; ++i) buf[size_t(i)] = fn(m, at[size_t(i)]);
         write_dataset(g, v.c_str(), H5T_NATIVE_DOUBLE, buf.data(), n, 0);
       }
       write_attr(g, "time", H5T_NATIVE_DOUBLE, &time);
@@ -407,8 +423,15 @@ void LegacyOutput::step(const Model& m, double time, double ke, double ie, const
   std::fprintf(momentum_, "%s%s%s%s\n", t.c_str(), fortran_e12_4(mom[0]).c_str(), fortran_e12_4(mom[1]).c_str(),
                fortran_e12_4(mom[2]).c_str());
   std::fprintf(curv_, "%s%s%s", t.c_str(), fortran_e12_4(ke).c_str(), fortran_e12_4(ie).c_str());
-  for (size_t c = 0; c < m.curves.size(); ++c)
-    std::fprintf(curv_, "%s", fortran_e12_4(curve_fn_[c](m, m.curves[c].particle)).c_str());
+  // Stored index of each curve's particle (deck number m.curves[c].particle), found again
+  // whenever the storage order is not the one it was found in (a restart).
+  const Particles& P = m.particles;
+  if (curve_at_.size() != m.curves.size()) curve_at_.assign(m.curves.size(), -1);
+  for (size_t c = 0; c < m.curves.size(); ++c) {
+    int& p = curve_at_[c];
+    if (p < 0 || p >= P.np || P.deck_number(p) != m.curves[c].particle) p = stored_index(P)[size_t(m.curves[c].particle)];
+    std::fprintf(curv_, "%s", fortran_e12_4(curve_fn_[c](m, p)).c_str());
+  }
   std::fprintf(curv_, "\n");
 }
 
@@ -423,13 +446,15 @@ void LegacyOutput::contact(double time, const double force[3]) {
 void LegacyOutput::frame(const Model& m, double time, long step) {
   const Particles& P = m.particles;
   const size_t nv = m.anim_vars.size();
+  const std::vector<int> at = stored_index(P);  // the files list the particles in deck order
   if (tec_) {
-    const bool all = m.tec_skip.empty();
+    const bool all = m.tec_skip.empty();  // indexed by deck number
     int n = 0;
-    for (int p = 0; p < P.np; ++p) n += all || !m.tec_skip[size_t(p)];
+    for (int i = 0; i < P.np; ++i) n += all || !m.tec_skip[size_t(i)];
     std::fprintf(tec_, "ZONE T=\"%.6E\" I=%d F=POINT\n", time, n);
-    for (int p = 0; p < P.np; ++p) {
-      if (!all && m.tec_skip[size_t(p)]) continue;
+    for (int i = 0; i < P.np; ++i) {
+      if (!all && m.tec_skip[size_t(i)]) continue;
+      const int p = at[size_t(i)];
       const double* x = &P.x[3 * size_t(p)];
       std::fprintf(tec_, "%.6E %.6E %.6E", x[0], x[1], x[2]);
       for (size_t v = 0; v < nv; ++v) std::fprintf(tec_, " %.6E", anim_fn_[v](m, p));
@@ -443,8 +468,10 @@ void LegacyOutput::frame(const Model& m, double time, long step) {
     std::fprintf(f, "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
                     "<UnstructuredGrid>\n<Piece NumberOfPoints=\"%d\" NumberOfCells=\"%d\">\n<Points>\n"
                     "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n", P.np, P.np);
-    for (int p = 0; p < P.np; ++p)
-      std::fprintf(f, "%.9E %.9E %.9E\n", P.x[3 * size_t(p)], P.x[3 * size_t(p) + 1], P.x[3 * size_t(p) + 2]);
+    for (int i = 0; i < P.np; ++i) {
+      const size_t p = size_t(at[size_t(i)]);
+      std::fprintf(f, "%.9E %.9E %.9E\n", P.x[3 * p], P.x[3 * p + 1], P.x[3 * p + 2]);
+    }
     std::fprintf(f, "</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n");
     for (int p = 0; p < P.np; ++p) std::fprintf(f, "%d\n", p);
     std::fprintf(f, "</DataArray>\n<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">\n");
@@ -454,7 +481,7 @@ void LegacyOutput::frame(const Model& m, double time, long step) {
     std::fprintf(f, "</DataArray>\n</Cells>\n<PointData>\n");
     for (size_t v = 0; v < nv; ++v) {
       std::fprintf(f, "<DataArray type=\"Float64\" Name=\"%s\" format=\"ascii\">\n", m.anim_vars[v].c_str());
-      for (int p = 0; p < P.np; ++p) std::fprintf(f, "%.9E\n", anim_fn_[v](m, p));
+      for (int i = 0; i < P.np; ++i) std::fprintf(f, "%.9E\n", anim_fn_[v](m, at[size_t(i)]));
       std::fprintf(f, "</DataArray>\n");
     }
     std::fprintf(f, "</PointData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");

@@ -91,6 +91,7 @@ class LegacyOutput {
   std::vector<double> frame_times_;
   H5Series series_;
   std::vector<ParticleVarFn> anim_fn_, curve_fn_;
+  std::vector<int> curve_at_;  // stored index of each curve's particle
   FILE* create(const std::string& name, const OutputSchedule* resume, bool& appended);
 };
 

@@ -25,7 +25,7 @@ struct Grid {
 
   // Patch decomposition (DESIGN.md section 4): cubes of patch_cells^3 cells; it depends
   // on the grid only, never on the number of threads.
-  int patch_cells = 8;
+  int patch_cells = 4;
   int npd[3] = {0, 0, 0};  // patches per axis
   int npatch = 0;
   int patch_halo = 0;      // node layers a buffer holds beyond its cells' nodes, each side:

@@ -22,7 +22,7 @@
 
 namespace mpm3d {
 
-Simulation::Simulation(Model m, int patch_cells) : model(std::move(m)), stages_(cxx_stages()) {
+Simulation::Simulation(Model m, int patch_cells, ParticleOrder order) : model(std::move(m)), stages_(cxx_stages()) {
   if (patch_cells < 1) throw std::invalid_argument("patch size must be at least one cell");
   // A GIMP stencil reaches one node beyond its patch's cells; the node loops find every
   // node a patch's particles touch among its own and its neighbours' nodes only when a
@@ -35,6 +35,12 @@ Simulation::Simulation(Model m, int patch_cells) : model(std::move(m)), stages_(
   for (int f = 0; f < 6; ++f) grid.fix[f] = model.fix[f];
   grid.mass_cutoff = model.mass_cutoff;
   const size_t np = size_t(model.particles.np);
+  if (order == ParticleOrder::blocks) {
+    order_by_blocks(model.particles, model.box_lo, model.dcell, grid.deck_nc, patch_cells);
+  } else {
+    model.particles.id.resize(np);  // deck order, recorded too (the checkpoint stores it)
+    for (size_t p = 0; p < np; ++p) model.particles.id[p] = int32_t(p);
+  }
   regrid_every = model.regrid_every;
   if (model.contact && regrid_every > 0) {
     // The two contact grids share one node numbering; the adaptive window is not applied.
@@ -92,6 +98,10 @@ void Simulation::bind() {
   c.cell = cell_.data();
   pscratch_.assign(size_t(P.np), 0);
   c.pscratch = pscratch_.data();
+  balance_.assign(2 * size_t(kMaxBalancedThreads), 0.0);
+  c.thread_share = balance_.data();
+  c.thread_busy = balance_.data() + kMaxBalancedThreads;
+  c.nshare = 0;  // the first binning sets equal shares
   std::vector<double>& grav = gravity_;
   grav.assign(3 * model.bodies.size(), 0.0);
   for (size_t b = 0; b < model.bodies.size(); ++b)
@@ -150,6 +160,9 @@ void Simulation::bind() {
     ctx2.patch_part = grid2.patch_part.data();
     ctx2.patch_slot = grid2.patch_slot.data();
     ctx2.patch_buf = grid2.patch_buf.data();
+    balance2_.assign(2 * size_t(kMaxBalancedThreads), 0.0);
+    ctx2.thread_share = balance2_.data();
+    ctx2.thread_busy = balance2_.data() + kMaxBalancedThreads;
   }
 }
 
@@ -237,6 +250,9 @@ void Simulation::ensure_patch_buffers() {
     if (grid2.patch_buf.size() < need2) {
       grid2.patch_buf.resize(need2 + need2 / 4);
       ctx2.patch_buf = grid2.patch_buf.data();
+    balance2_.assign(2 * size_t(kMaxBalancedThreads), 0.0);
+    ctx2.thread_share = balance2_.data();
+    ctx2.thread_busy = balance2_.data() + kMaxBalancedThreads;
     }
   }
 }
@@ -343,13 +359,15 @@ void Simulation::measure() {
 
 // After every step: non-finite values (when an energy sum is not finite), then one pass
 // over the particles for a non-positive volume or a density outside
-// [kDensityRatioMin, kDensityRatioMax] rho0 (parallel, the lowest such particle index is
+// [kDensityRatioMin, kDensityRatioMax] rho0 (parallel, the lowest such deck number is
 // reported, whatever the thread count), then runaway energy. The pass reads two doubles and
 // one int per particle: about 1% of a step.
 void Simulation::health_check() {
   const Particles& P = model.particles;
   if (!(std::isfinite(kinetic) && std::isfinite(internal))) {
-    for (int p = 0; p < P.np; ++p) {
+    const std::vector<int> at = stored_index(P);
+    for (int i = 0; i < P.np; ++i) {
+      const int p = at[size_t(i)];
       const char* what = nullptr;
       for (int a = 0; a < 3 && !what; ++a) {
         if (!std::isfinite(P.x[3 * size_t(p) + a])) what = "position";
@@ -361,7 +379,7 @@ void Simulation::health_check() {
       if (!what && !std::isfinite(P.vol[p])) what = "volume";
       if (what) {
         std::ostringstream os;
-        os << "numerical breakdown at step " << steps << " (t = " << time << "): particle " << p + 1 << " (body "
+        os << "numerical breakdown at step " << steps << " (t = " << time << "): particle " << i + 1 << " (body "
            << P.body[p] + 1 << ") has a non-finite " << what;
         throw HealthError(os.str());
       }
@@ -373,17 +391,17 @@ void Simulation::health_check() {
     const int* mat = P.mat.data();
     const MaterialParams* mats = model.mats.data();
     const int np = P.np;
-    int bad = np;
+    int bad = np;  // the lowest deck number of a particle out of bounds
 #pragma omp parallel for schedule(static) reduction(min : bad)
     for (int p = 0; p < np; ++p) {
       const double r0v = mats[mat[p]].rho0 * vol[p];
       const bool ok = vol[p] > 0.0 && mass[p] >= kDensityRatioMin * r0v && mass[p] <= kDensityRatioMax * r0v;
-      if (!ok && p < bad) bad = p;
+      if (!ok && P.deck_number(p) < bad) bad = P.deck_number(p);
     }
     if (bad < np) {
-      const int p = bad;
+      const int p = stored_index(P)[size_t(bad)];
       std::ostringstream os;
-      os << "numerical breakdown at step " << steps << " (t = " << time << "): particle " << p + 1 << " (body "
+      os << "numerical breakdown at step " << steps << " (t = " << time << "): particle " << bad + 1 << " (body "
          << P.body[p] + 1 << ") has ";
       const double rho0 = mats[mat[p]].rho0;
       if (!(vol[p] > 0.0))
@@ -406,7 +424,7 @@ void Simulation::health_check() {
     for (int p = 0; p < P.np; ++p) {
       const double* v = &P.v[3 * size_t(p)];
       const double s = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-      if (s > vmax) {
+      if (s > vmax || (s == vmax && P.deck_number(p) < P.deck_number(worst))) {
         vmax = s;
         worst = p;
       }
@@ -414,7 +432,7 @@ void Simulation::health_check() {
     std::ostringstream os;
     os << "numerical instability at step " << steps << " (t = " << time << "): total energy " << total
        << " exceeds twice the initial energy " << initial_total_energy << " plus the external work "
-       << external_work << "; fastest particle " << worst + 1 << " (body " << P.body[worst] + 1 << ") at speed "
+       << external_work << "; fastest particle " << P.deck_number(worst) + 1 << " (body " << P.body[worst] + 1 << ") at speed "
        << std::sqrt(vmax) << " (reduce dtscale, or use MUSL)";
     throw HealthError(os.str());
   }
@@ -436,9 +454,12 @@ const char* kUsage =
     "  --no-output        no animation, curve or log files\n"
     "  --summary F.json   write a summary of the run\n"
     "  --state F.h5       write the final particle state (HDF5)\n"
-    "  --patch-cells N    cells per patch edge of the grid decomposition (default 8)\n"
+    "  --patch-cells N    cells per patch edge of the grid decomposition (default 4)\n"
     "  --regrid-every N   adaptive background grid: redefine the grid from the particles'\n"
     "                     extent every N steps (0: off; default: the deck's 'adgr', else off)\n"
+    "  --particle-order blocks|deck  storage order of the particles (default blocks: sorted by\n"
+    "                     patch-sized blocks of cells, so each thread's patches hold a run of\n"
+    "                     memory; deck: as read). Outputs are in deck order either way\n"
     "  --scatter patches|expansion  grid scatter scheme (default patches: bit-identical for\n"
     "                     any thread count; expansion: per-thread grid copies, a benchmark)\n"
     "  --hdf5             write the animation as an HDF5 + XDMF series (name_anim.h5/.xdmf)\n"
@@ -455,9 +476,10 @@ struct Options {
   std::string deck, out_dir = ".", summary, state, kernel, kernels, checkpoint, restart;
   long max_steps = -1, checkpoint_every = 0;
   double end_time = -1.0;
-  int threads = 0, patch_cells = 8;
+  int threads = 0, patch_cells = 4;
   long regrid_every = -1;  // -1: the deck's
   std::string scatter = "patches";
+  std::string particle_order = "blocks";
   bool no_output = false, quiet = false, hdf5 = false, patch_given = false;
 };
 
@@ -533,6 +555,10 @@ Options parse_args(int argc, char** argv, bool& exit_now) {
       o.patch_given = true;
       o.patch_cells = int(to_long(a, value()));
       if (o.patch_cells < 1 || o.patch_cells > 64) throw UsageError("--patch-cells must lie in 1..64");
+    } else if (a == "--particle-order") {
+      o.particle_order = value();
+      if (o.particle_order != "blocks" && o.particle_order != "deck")
+        throw UsageError("--particle-order must be blocks or deck");
     } else if (a == "--regrid-every") {
       o.regrid_every = to_long(a, value());
       if (o.regrid_every < 0 || o.regrid_every > 1000000000) throw UsageError("--regrid-every must lie in 0..1000000000");
@@ -638,7 +664,8 @@ int run_main(int argc, char** argv) {
     const auto t_start = std::chrono::steady_clock::now();
     // A restart keeps the patch size of the checkpoint (it fixes the summation order).
     const int patch_cells = opt.restart.empty() ? opt.patch_cells : checkpoint_patch_cells(opt.restart);
-    Simulation sim(std::move(model), patch_cells);
+    Simulation sim(std::move(model), patch_cells,
+                   opt.particle_order == "deck" ? ParticleOrder::deck : ParticleOrder::blocks);
     {
       StageTable t = cxx_stages();
       if (!opt.kernel.empty()) select_stages(t, opt.kernel, false);

@@ -22,7 +22,8 @@ class HealthError : public std::runtime_error {
 
 class Simulation {
  public:
-  explicit Simulation(Model model, int patch_cells = 8);
+  // order: the particles' storage order (order_by_blocks, cxx/particle.hpp; deck: as read).
+  explicit Simulation(Model model, int patch_cells = 4, ParticleOrder order = ParticleOrder::blocks);
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
 
@@ -77,6 +78,9 @@ class Simulation {
   void note_regrid(int escaped);
   bool expansion_ = false;
   std::vector<double> tgrid_;
+  // Thread shares and busy times of the patch stages (StepContext::thread_share), one set
+  // per context, for up to kMaxBalancedThreads threads.
+  std::vector<double> balance_, balance2_;
   void ensure_expansion_buffers();
   void ensure_patch_buffers();
   void health_check();

@@ -1,5 +1,9 @@
 #include "particle.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
 namespace mpm3d {
 
 void Particles::resize(int n) {
@@ -29,7 +33,53 @@ std::vector<ParticleField> particle_fields(Particles& P) {
           {"external_force", 3, &P.fext, nullptr},
           {"lighting_time", 1, &P.tlight, nullptr},
           {"bulk_viscosity", 1, &P.qv, nullptr},
-          {"gimp_half_size", 1, &P.psize, nullptr}};
+          {"gimp_half_size", 1, &P.psize, nullptr},
+          {"deck_id", 1, nullptr, &P.id}};
+}
+
+namespace {
+template <class T>
+void permute(std::vector<T>& a, int ncomp, const std::vector<int>& from) {
+  if (a.empty()) return;
+  std::vector<T> t(a.size());
+  for (size_t p = 0; p < from.size(); ++p)
+    for (int c = 0; c < ncomp; ++c) t[size_t(ncomp) * p + size_t(c)] = a[size_t(ncomp) * size_t(from[p]) + size_t(c)];
+  a.swap(t);
+}
+}  // namespace
+
+void order_by_blocks(Particles& P, const double lo[3], double h, const int nc[3], int block_cells) {
+  const int np = P.np;
+  if (P.id.empty()) {
+    P.id.resize(size_t(np));
+    std::iota(P.id.begin(), P.id.end(), 0);
+  }
+  long nb[3];
+  for (int a = 0; a < 3; ++a) nb[a] = (std::max(nc[a], 1) - 1) / block_cells + 1;
+  std::vector<int64_t> key(static_cast<size_t>(np));
+  for (int p = 0; p < np; ++p) {
+    long b[3];
+    for (int a = 0; a < 3; ++a) {
+      // The cell as the bin stage finds it, clamped into the lattice (NaN: cell 0).
+      const double t = (P.x[3 * size_t(p) + a] - lo[a]) / h;
+      const long i = t >= 0.0 ? (t < double(nc[a]) ? long(t) : long(nc[a]) - 1) : 0;
+      b[a] = i / block_cells;
+    }
+    key[size_t(p)] = int64_t(b[0] + nb[0] * (b[1] + nb[1] * b[2])) * int64_t(np) + p;
+  }
+  std::sort(key.begin(), key.end());
+  std::vector<int> from(static_cast<size_t>(np));
+  for (int p = 0; p < np; ++p) from[size_t(p)] = int(key[size_t(p)] % np);
+  for (const ParticleField& f : particle_fields(P)) {
+    if (f.d) permute(*f.d, f.ncomp, from);
+    if (f.i) permute(*f.i, f.ncomp, from);
+  }
+}
+
+std::vector<int> stored_index(const Particles& P) {
+  std::vector<int> at(static_cast<size_t>(P.np));
+  for (int p = 0; p < P.np; ++p) at[size_t(P.deck_number(p))] = p;
+  return at;
 }
 
 }  // namespace mpm3d

@@ -9,8 +9,8 @@
 namespace mpm3d {
 
 struct Body {
-  int first = 0;      // first particle (0-based)
-  int count = 0;      // particles in the body
+  int first = 0;      // deck number of the first particle (0-based): the deck numbers
+  int count = 0;      // first .. first + count - 1 (not the storage order, Particles::id)
   int component = 1;  // contact component (1-based, as in the deck)
   double spacing = 0.0;  // particle spacing dp of bloc/sphe/cyli cards; 0 for poin
   double gravity[3] = {0.0, 0.0, 0.0};
@@ -26,10 +26,28 @@ struct Particles {
   std::vector<double> tlight;              // (np) only with hiex: lighting time
   std::vector<double> qv;                  // (np) only with 'bulk': bulk viscosity pressure
   std::vector<double> psize;               // (np) GIMP particle half-size lp, only with gimp
+  std::vector<int32_t> id;                 // (np) deck number (0-based) of each stored
+                                           // particle; empty: stored in deck order
 
   void resize(int n);
   double density(int p) const { return mass[p] / vol[p]; }
+  int deck_number(int p) const { return id.empty() ? p : id[size_t(p)]; }  // 0-based
 };
+
+// Storage order of the solver (Simulation, mpm3d_ref): the particles sorted by the block of
+// block_cells^3 cells of the deck's lattice (origin lo, cell h, nc cells per axis) that
+// holds them, blocks in patch order (x fastest, z slowest), deck order within a block. The
+// patch stages give each thread a run of consecutive patches, which is then a run of
+// consecutive particles: deck order (z fastest in a cylinder or block) gave every thread
+// particles in every cache line at each column's cut, and at two threads each thread ran
+// 1.6x slower than one thread alone (docs/PERFORMANCE.md). The sort key is
+// block * np + deck number, unique, so any sort gives the same order; P.id records it.
+// Every array of particle_fields() is permuted. Outputs are written in deck order
+// (stored_index).
+enum class ParticleOrder { blocks, deck };
+void order_by_blocks(Particles& P, const double lo[3], double h, const int nc[3], int block_cells);
+// Stored index of each deck particle (the inverse of id; the identity when id is empty).
+std::vector<int> stored_index(const Particles& P);
 
 // Every array of Particles by name, for generic code (the checkpoint stores and restores
 // each allocated one). Exactly one of d, i is set; ncomp values per particle. A new array
@@ -42,7 +60,7 @@ struct ParticleField {
   std::vector<int32_t>* i;
 };
 std::vector<ParticleField> particle_fields(Particles& P);
-constexpr int kParticleArrays = 14;  // arrays listed by particle_fields
+constexpr int kParticleArrays = 15;  // arrays listed by particle_fields
 
 // Physical sums over all particles (deterministic, see update_step).
 struct Energies {

@@ -62,6 +62,12 @@ struct StepContext {
   int *pscratch;       // (np) patch of each particle during binning
   double *tgrid;       // --scatter expansion: per-thread grid copies (kNodeFields, nnode, ntgrid)
   int ntgrid;          // copies in tgrid
+  // Load balance of the trilinear patch stages (update_step_detail.hpp): thread t of
+  // nshare takes about share[t] of the binned particles (the shares sum to 1), and adds
+  // the seconds it spends in those stages to busy[t]; the bin stage turns the busy times
+  // into new shares. Null: equal shares. Which thread does a patch never changes a bit.
+  double *thread_share, *thread_busy;
+  int nshare;
 };
 
 typedef void (*StageFn)(StepContext*);
@@ -102,6 +108,8 @@ namespace mpm3d {
 enum Stage { ST_BIN, ST_P2G, ST_FORCES, ST_INTEGRATE, ST_G2P, ST_STRESS, ST_ENERGY, ST_CONTACT, ST_RECONTACT, ST_COUNT };
 extern const char* const kStageNames[ST_COUNT];
 constexpr int kReduceFields = 5;
+// Capacity of StepContext::thread_share and thread_busy; more threads run with equal shares.
+constexpr int kMaxBalancedThreads = 1024;
 
 // The stage table: which implementation each stage uses.
 struct StageTable {

@@ -136,26 +136,35 @@ __attribute__((always_inline)) inline void p2g_particle(const StepContext* c, in
   }
 }
 
-// Patches [lo, hi) of thread t of T: contiguous ranges of the patch index holding about
-// 1/T of the binned particles each (patch_start is the prefix sum of the lists). The
-// trilinear patch stages (P2G, assembly, integration, G2P, node velocities, stress) all use
-// these ranges, so a thread finds in its own cache the nodes and particles it wrote in the
-// stage before; with a dynamic schedule every stage dealt the patches out anew and about
-// half of all node and particle reads came from the other core's cache (measured: G2P
-// slower at 2 threads than at 1). Which thread does a patch never changes a result.
+// Patches [lo, hi) of thread t of T: contiguous ranges of the patch index holding the
+// thread's share of the binned particles (patch_start is the prefix sum of the lists;
+// equal shares without c->thread_share). The trilinear patch stages (P2G, assembly,
+// integration, G2P, node velocities, stress) all use these ranges, so a thread finds in its
+// own cache the nodes and particles it wrote in the stage before; with a dynamic schedule
+// every stage dealt the patches out anew and about half of all node and particle reads
+// came from the other core's cache. Which thread does a patch never changes a result.
 inline void thread_patches(const StepContext* c, int t, int T, int& lo, int& hi) {
+  const bool shared = c->thread_share && c->nshare == T;
   auto first = [&](int u) -> int {
     if (u <= 0) return 0;
     if (u >= T) return c->npatch;
     const int64_t total = c->patch_start[c->npatch];
-    const int target = int((total * u) / T);
+    int target;
+    if (shared) {
+      double cum = 0.0;
+      for (int v = 0; v < u; ++v) cum += c->thread_share[v];
+      target = int(std::min(double(total), std::max(0.0, cum * double(total) + 0.5)));
+    } else {
+      target = int((total * u) / T);
+    }
     return int(std::lower_bound(c->patch_start, c->patch_start + c->npatch, target) - c->patch_start);
   };
   lo = first(t);
   hi = first(t + 1);
 }
 
-// f(q) for every patch q, each thread over its thread_patches range.
+// f(q) for every patch q, each thread over its thread_patches range; the thread's time in
+// its range goes to thread_busy (the load balance of rebalance_threads).
 template <class F>
 inline void for_thread_patches(const StepContext* c, F&& f) {
 #pragma omp parallel
@@ -167,7 +176,14 @@ inline void for_thread_patches(const StepContext* c, F&& f) {
 #endif
     int lo, hi;
     thread_patches(c, t, T, lo, hi);
+    const bool timed = c->thread_busy && c->nshare == T;
+#ifdef _OPENMP
+    const double t0 = timed ? omp_get_wtime() : 0.0;
+#endif
     for (int q = lo; q < hi; ++q) f(q);
+#ifdef _OPENMP
+    if (timed) c->thread_busy[t] += omp_get_wtime() - t0;
+#endif
   }
 }
 

@@ -7,6 +7,7 @@ module mpm3d_data_out
   use hdf5
   use mpm3d_material, only: dp
   use mpm3d_data_in, only: model_t
+  use mpm3d_particle, only: particles_deck_order
   implicit none
   private
 
@@ -100,12 +101,13 @@ contains
     type(model_t), intent(in), target :: m
     real(dp), intent(in) :: time, dt
     integer(int64), intent(in) :: step
-    real(dp), allocatable, target :: rho(:)
+    real(dp), allocatable, target :: rho(:), x(:,:), v(:,:), sig(:,:), s1(:)
     integer(c_int), allocatable, target :: mat(:), body(:)
+    integer, allocatable :: at(:)
     real(dp), target :: t_time, t_dt
     integer(int64), target :: t_step
     integer(hid_t) :: f, g
-    integer :: st, np, p
+    integer :: st, np, p, i
     character(len=:), allocatable :: tmp
     np = m%particles%np
     tmp = path // '.tmp'
@@ -119,21 +121,34 @@ contains
     end if
     call h5gcreate_f(f, '/particles', g, st)
     call check(st, '/particles')
-    allocate(rho(np), mat(np), body(np))
-    do p = 1, np
-      rho(p) = m%particles%mass(p) / m%particles%vol(p)
-      mat(p) = m%particles%mat(p) + 1
-      body(p) = m%particles%body(p) + 1
+    ! In deck order, whatever the storage order (particles_order_by_blocks).
+    call particles_deck_order(m%particles, at)
+    allocate(rho(np), mat(np), body(np), x(3, np), v(3, np), sig(6, np), s1(np))
+    do i = 1, np
+      p = at(i)
+      rho(i) = m%particles%mass(p) / m%particles%vol(p)
+      mat(i) = m%particles%mat(p) + 1
+      body(i) = m%particles%body(p) + 1
+      x(:, i) = m%particles%x(:, p)
+      v(:, i) = m%particles%v(:, p)
+      sig(:, i) = m%particles%sig(:, p)
     end do
-    call write_real(g, 'position', c_loc(m%particles%x), np, 3)
-    call write_real(g, 'velocity', c_loc(m%particles%v), np, 3)
-    call write_real(g, 'stress', c_loc(m%particles%sig), np, 6)
-    call write_real(g, 'mass', c_loc(m%particles%mass), np, 0)
-    call write_real(g, 'volume', c_loc(m%particles%vol), np, 0)
+    call write_real(g, 'position', c_loc(x), np, 3)
+    call write_real(g, 'velocity', c_loc(v), np, 3)
+    call write_real(g, 'stress', c_loc(sig), np, 6)
+    s1 = m%particles%mass(at)
+    call write_real(g, 'mass', c_loc(s1), np, 0)
+    s1 = m%particles%vol(at)
+    call write_real(g, 'volume', c_loc(s1), np, 0)
     call write_real(g, 'density', c_loc(rho), np, 0)
-    call write_real(g, 'epeff', c_loc(m%particles%epeff), np, 0)
-    call write_real(g, 'internal_energy', c_loc(m%particles%ie), np, 0)
-    if (allocated(m%particles%temp)) call write_real(g, 'temperature', c_loc(m%particles%temp), np, 0)
+    s1 = m%particles%epeff(at)
+    call write_real(g, 'epeff', c_loc(s1), np, 0)
+    s1 = m%particles%ie(at)
+    call write_real(g, 'internal_energy', c_loc(s1), np, 0)
+    if (allocated(m%particles%temp)) then
+      s1 = m%particles%temp(at)
+      call write_real(g, 'temperature', c_loc(s1), np, 0)
+    end if
     call write_int(g, 'material', c_loc(mat), np)
     call write_int(g, 'body', c_loc(body), np)
     t_time = time

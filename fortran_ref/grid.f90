@@ -22,7 +22,7 @@ module mpm3d_grid
     integer :: fix(6) = 0              ! faces x0 xn y0 yn z0 zn: 0 free, 1 fixed, 2 symmetry
     real(dp) :: mass_cutoff = 0.0_dp   ! nodes lighter than this form no velocity
     real(dp), allocatable :: mass(:), mom(:,:), force(:,:)   ! (nnode) (3,nnode) (3,nnode)
-    integer :: patch_cells = 8
+    integer :: patch_cells = 4
     integer :: npd(3) = 0              ! patches per axis
     integer :: npatch = 0
     integer :: patch_halo = 0          ! node layers beyond a patch's cells: 0, 1 (GIMP)

@@ -3,7 +3,7 @@
 ! Fortran stage kernels (mpm3d_update_step) and writes the HDF5 state file.
 !
 ! usage: mpm3d_ref [--steps N] [--end-time T] [--state F.h5] [--init-state F.h5]
-!                  [--energies F.txt] [--patch-cells N] [--regrid-every N] [--quiet] DECK.mpm
+!                  [--energies F.txt] [--patch-cells N] [--regrid-every N] [--particle-order blocks|deck] [--quiet] DECK.mpm
 ! --regrid-every N: the adaptive background grid (as mpm3d; default: the deck's adgr, else
 ! off); each regrid prints 'regrid step K window i0 i1 j0 j1 k0 k1' as mpm3d does.
 ! --energies writes the kinetic, internal and initial total energy and the momentum of the
@@ -33,7 +33,7 @@ program mpm3d_ref
   integer :: woff(3), wnc(3)
   real(dp) :: end_time, time, eps, kinetic, internal, rv, initial_total, momentum(3)
   real(dp) :: external_work    ! bound of the work of gravity and loads: sum |f.v| dt (health check)
-  logical :: quiet
+  logical :: quiet, order_blocks
   character(len=4096) :: arg
 
   ! ---------------------------------------------------------------- command line
@@ -43,7 +43,8 @@ program mpm3d_ref
   energy_path = ''
   max_steps = -1
   end_time = -1.0_dp
-  patch_cells = 8
+  patch_cells = 4
+  order_blocks = .true.
   regrid_every = -1
   quiet = .false.
   nargs = command_argument_count()
@@ -53,7 +54,8 @@ program mpm3d_ref
     select case (trim(arg))
     case ('--help', '-h')
       write (output_unit, '(a)') 'usage: mpm3d_ref [--steps N] [--end-time T] [--state F.h5] ' // &
-        '[--init-state F.h5] [--energies F.txt] [--patch-cells N] [--regrid-every N] [--quiet] DECK.mpm'
+        '[--init-state F.h5] [--energies F.txt] [--patch-cells N] [--regrid-every N] ' // &
+        '[--particle-order blocks|deck] [--quiet] DECK.mpm'
       stop
     case ('--steps')
       call value(i, arg)
@@ -84,6 +86,10 @@ program mpm3d_ref
       if (.not. parse_integer(trim(arg), iv)) call usage('--regrid-every needs an integer')
       if (iv < 0 .or. iv > 1000000000_int64) call usage('--regrid-every must lie in 0..1000000000')
       regrid_every = int(iv)
+    case ('--particle-order')
+      call value(i, arg)
+      if (trim(arg) /= 'blocks' .and. trim(arg) /= 'deck') call usage('--particle-order must be blocks or deck')
+      order_blocks = trim(arg) == 'blocks'
     case ('--quiet', '-q')
       quiet = .true.
     case default
@@ -108,6 +114,9 @@ program mpm3d_ref
   if (len(err) > 0) call fatal(deck // ': ' // err)
   grid%fix = model%fix
   grid%mass_cutoff = model%mass_cutoff
+  ! The storage order of the particles (as the Simulation constructor).
+  call particles_order_by_blocks(model%particles, model%box_lo, model%dcell, grid%deck_nc, patch_cells, &
+                                 order_blocks)
   ! The first window (the whole box without the adaptive grid), as the Simulation constructor.
   woff = 0
   wnc = grid%deck_nc

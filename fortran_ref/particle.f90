@@ -3,13 +3,14 @@
 ! scalars (np). Material and body numbers are stored 0-based, as in C++.
 module mpm3d_particle
   use, intrinsic :: iso_c_binding, only: c_int
+  use, intrinsic :: iso_fortran_env, only: int64
   use mpm3d_material, only: dp
   implicit none
   private
 
   type, public :: body_t
-    integer :: first = 0       ! first particle (0-based)
-    integer :: count = 0       ! particles in the body
+    integer :: first = 0       ! deck number of the first particle (0-based): the deck
+    integer :: count = 0       ! numbers first .. first + count - 1, not the storage order (id)
     integer :: component = 1   ! contact component (1-based, as in the deck)
     real(dp) :: spacing = 0.0_dp   ! particle spacing of bloc/sphe/cyli cards; 0 for poin
     real(dp) :: gravity(3) = 0.0_dp
@@ -25,9 +26,10 @@ module mpm3d_particle
     real(dp), allocatable :: tlight(:)  ! only with hiex: lighting time
     real(dp), allocatable :: qv(:)      ! only with 'bulk': bulk viscosity pressure
     real(dp), allocatable :: psize(:)   ! only with gimp: particle half-size lp
+    integer(c_int), allocatable :: id(:)  ! deck number (0-based) of each stored particle
   end type particles_t
 
-  public :: particles_resize, particles_grow
+  public :: particles_resize, particles_grow, particles_order_by_blocks, particles_deck_order
 
 contains
 
@@ -99,5 +101,145 @@ contains
       call move_alloc(t, a)
     end subroutine growi
   end subroutine particles_grow
+
+  ! The solver's storage order (as order_by_blocks in cxx/particle.cpp, so both languages
+  ! store the particles alike and their sums agree in bits): sorted by the block of
+  ! block_cells**3 cells of the deck's lattice (origin lo, cell h, nc cells per axis) that
+  ! holds each particle, blocks x fastest and z slowest, deck order within a block. The
+  ! keys block * np + deck number are unique, so any sort gives the same order. Sets id and
+  ! permutes every particle array. order_blocks false: deck order (id only).
+  subroutine particles_order_by_blocks(p, lo, h, nc, block_cells, order_blocks)
+    type(particles_t), intent(inout) :: p
+    real(dp), intent(in) :: lo(3), h
+    integer, intent(in) :: nc(3), block_cells
+    logical, intent(in) :: order_blocks
+    integer(int64), allocatable :: key(:)
+    integer, allocatable :: from(:)
+    integer(int64) :: nb(3), bl(3), ic
+    real(dp) :: t
+    integer :: i, a, n
+    n = p%np
+    if (allocated(p%id)) deallocate(p%id)
+    allocate(p%id(n))
+    do i = 1, n
+      p%id(i) = i - 1
+    end do
+    if (.not. order_blocks .or. n == 0) return
+    do a = 1, 3
+      nb(a) = (max(nc(a), 1) - 1) / block_cells + 1
+    end do
+    allocate(key(n), from(n))
+    do i = 1, n
+      do a = 1, 3
+        ! The cell as the bin stage finds it, clamped into the lattice (NaN: cell 0).
+        t = (p%x(a, i) - lo(a)) / h
+        if (t >= 0.0_dp .and. t < real(nc(a), dp)) then
+          ic = int(t, int64)
+        else if (t >= real(nc(a), dp)) then
+          ic = nc(a) - 1
+        else
+          ic = 0
+        end if
+        bl(a) = ic / block_cells
+      end do
+      key(i) = (bl(1) + nb(1) * (bl(2) + nb(2) * bl(3))) * int(n, int64) + (i - 1)
+    end do
+    call sort_int64(key)
+    do i = 1, n
+      from(i) = int(mod(key(i), int(n, int64))) + 1
+    end do
+    call permute2(p%x)
+    call permute2(p%v)
+    call permute2(p%sig)
+    call permute1(p%mass)
+    call permute1(p%vol)
+    call permute1(p%epeff)
+    call permute1(p%ie)
+    call permutei(p%mat)
+    call permutei(p%body)
+    if (allocated(p%temp)) call permute1(p%temp)
+    if (allocated(p%fext)) call permute2(p%fext)
+    if (allocated(p%tlight)) call permute1(p%tlight)
+    if (allocated(p%qv)) call permute1(p%qv)
+    if (allocated(p%psize)) call permute1(p%psize)
+    call permutei(p%id)
+  contains
+    subroutine permute2(a2)
+      real(dp), allocatable, intent(inout) :: a2(:,:)
+      real(dp), allocatable :: w(:,:)
+      integer :: k
+      allocate(w(size(a2, 1), n))
+      do k = 1, n
+        w(:, k) = a2(:, from(k))
+      end do
+      call move_alloc(w, a2)
+    end subroutine permute2
+    subroutine permute1(a1)
+      real(dp), allocatable, intent(inout) :: a1(:)
+      real(dp), allocatable :: w(:)
+      integer :: k
+      allocate(w(n))
+      do k = 1, n
+        w(k) = a1(from(k))
+      end do
+      call move_alloc(w, a1)
+    end subroutine permute1
+    subroutine permutei(ai)
+      integer(c_int), allocatable, intent(inout) :: ai(:)
+      integer(c_int), allocatable :: w(:)
+      integer :: k
+      allocate(w(n))
+      do k = 1, n
+        w(k) = ai(from(k))
+      end do
+      call move_alloc(w, ai)
+    end subroutine permutei
+  end subroutine particles_order_by_blocks
+
+  ! Stored index (1-based) of each deck particle: the inverse of id, for the outputs.
+  subroutine particles_deck_order(p, at)
+    type(particles_t), intent(in) :: p
+    integer, allocatable, intent(out) :: at(:)
+    integer :: i
+    allocate(at(p%np))
+    do i = 1, p%np
+      if (allocated(p%id)) then
+        at(p%id(i) + 1) = i
+      else
+        at(i) = i
+      end if
+    end do
+  end subroutine particles_deck_order
+
+  ! Ascending sort of distinct keys (bottom-up merge sort).
+  subroutine sort_int64(a)
+    integer(int64), intent(inout) :: a(:)
+    integer(int64), allocatable :: w(:)
+    integer :: n, width, lo, mid, hi, i, j, k
+    n = size(a)
+    allocate(w(n))
+    width = 1
+    do while (width < n)
+      lo = 1
+      do while (lo <= n)
+        mid = min(lo + width - 1, n)
+        hi = min(lo + 2 * width - 1, n)
+        i = lo
+        j = mid + 1
+        do k = lo, hi
+          if (i <= mid .and. (j > hi .or. a(min(i, n)) <= a(min(j, n)))) then
+            w(k) = a(i)
+            i = i + 1
+          else
+            w(k) = a(j)
+            j = j + 1
+          end if
+        end do
+        lo = lo + 2 * width
+      end do
+      a = w
+      width = 2 * width
+    end do
+  end subroutine sort_int64
 
 end module mpm3d_particle

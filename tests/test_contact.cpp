@@ -32,9 +32,9 @@ std::string replace(std::string s, const std::string& from, const std::string& t
 // Mass-weighted mean velocity component a of a body.
 double body_velocity(const mpm3d::Simulation& sim, int b, int a) {
   const auto& P = sim.model.particles;
-  const auto& B = sim.model.bodies[size_t(b)];
   double m = 0, mv = 0;
-  for (int p = B.first; p < B.first + B.count; ++p) {
+  for (int p = 0; p < P.np; ++p) {  // the solver's storage order: bodies are not runs
+    if (P.body[p] != b) continue;
     m += P.mass[p];
     mv += P.mass[p] * P.v[3 * size_t(p) + a];
   }
@@ -44,11 +44,10 @@ double body_velocity(const mpm3d::Simulation& sim, int b, int a) {
 // Smallest distance between a particle of body 0 and a particle of body 1.
 double min_gap(const mpm3d::Simulation& sim) {
   const auto& P = sim.model.particles;
-  const auto& A = sim.model.bodies[0];
-  const auto& B = sim.model.bodies[1];
   double d2 = INFINITY;
-  for (int p = A.first; p < A.first + A.count; ++p)
-    for (int q = B.first; q < B.first + B.count; ++q) {
+  for (int p = 0; p < P.np; ++p)
+    for (int q = 0; q < P.np; ++q) {
+      if (P.body[p] != 0 || P.body[q] != 1) continue;
       double s = 0;
       for (int a = 0; a < 3; ++a) {
         const double d = P.x[3 * size_t(p) + a] - P.x[3 * size_t(q) + a];
@@ -119,7 +118,7 @@ TEST(Contact, CollidingSpheresDoNotInterpenetrateConserveMomentumAndSeparate) {
   mpm3d::Simulation sim(mpm3d::read_deck(MPM3D_INPUTS "/contact/spheres.mpm"));
   const double dp = 0.5, v0 = 20.0;
   double M = 0;
-  for (int p = 0; p < sim.model.bodies[0].count; ++p) M += sim.model.particles.mass[p];
+  for (int p = 0; p < sim.model.particles.np; ++p) M += sim.model.particles.body[p] == 0 ? sim.model.particles.mass[p] : 0.0;
   const double scale = M * v0;
   double gap_min = INFINITY, mom_max = 0.0, force_max = 0.0;
   double gap_late = 0.0;
@@ -173,7 +172,7 @@ TEST(Contact, SpheresGainNoEnergyWithLargerStepsOrUsf) {
     deck = replace(deck, "musl on", k.scheme);
     mpm3d::Simulation sim(mpm3d::read_deck_text(deck, "spheres.mpm"));
     double M = 0;
-    for (int p = 0; p < sim.model.bodies[0].count; ++p) M += sim.model.particles.mass[p];
+    for (int p = 0; p < sim.model.particles.np; ++p) M += sim.model.particles.body[p] == 0 ? sim.model.particles.mass[p] : 0.0;
     const double v0 = 20.0, E0 = M * v0 * v0;
     double e_max = 0.0;
     while (sim.time < sim.model.endtime - 1e-9) {

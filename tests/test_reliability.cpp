@@ -164,7 +164,7 @@ TEST_F(Reliability, CheckpointHoldsEveryParticleArrayAndRestoresInProcess) {
     if (fa[k].i) EXPECT_TRUE(*fa[k].i == *fb[k].i) << fa[k].name;
     compared += fa[k].d ? !fa[k].d->empty() : !fa[k].i->empty();
   }
-  EXPECT_EQ(compared, 10);  // all but external_force, temperature included
+  EXPECT_EQ(compared, 11);  // all but external_force, temperature and deck_id included
   ASSERT_FALSE(b.model.particles.temp.empty());
   // Both continue to the same bits.
   for (int s = 0; s < 5; ++s) {

@@ -71,8 +71,8 @@ TEST_P(SchemeTest, UniformMotionIsExactAndStressFree) {
   const double v[3] = {0.125 / dt, 0.2 / (nsteps * dt), -0.2 / (nsteps * dt)};
   for (int p = 0; p < model.particles.np; ++p)
     for (int a = 0; a < 3; ++a) model.particles.v[3 * p + a] = v[a];
-  const std::vector<double> x0 = model.particles.x;
   mpm3d::Simulation sim(std::move(model));
+  const std::vector<double> x0 = sim.model.particles.x;  // in the solver's storage order
   for (int s = 0; s < nsteps; ++s) {
     sim.step();
     ASSERT_GT(lightest_node(sim), sim.model.mass_cutoff) << "step " << s + 1;
@@ -119,8 +119,8 @@ TEST_P(SchemeTest, CollidingBodiesConserveMassAndMomentum) {
       block_deck(scheme, "velo body 1 0.1 0.0 0.02 body 2 -0.05 0.01 0.0 endv\n", 2, "2.2 2.7 3.1",
                  scheme == "usl" ? "0.3" : "0.9"),
       "collide.mpm");
-  const std::vector<double> mass0 = model.particles.mass;
   mpm3d::Simulation sim(std::move(model));
+  const std::vector<double> mass0 = sim.model.particles.mass;  // in the solver's storage order
   double m_total = 0, pabs = 0;
   for (int p = 0; p < sim.model.particles.np; ++p) {
     m_total += mass0[p];
@@ -167,8 +167,8 @@ TEST(Solver, FreeFallUnderGravityIsExactForTheLeapfrog) {
   mpm3d::Model model = mpm3d::read_deck_text(
       block_deck("musl", "velo body 1 0.02 0 0 endv\nload grav 1 0.0 0.008 -0.009 endl\n", 1, "2 3 3"),
       "fall.mpm");
-  const std::vector<double> x0 = model.particles.x;
   mpm3d::Simulation sim(std::move(model));
+  const std::vector<double> x0 = sim.model.particles.x;  // in the solver's storage order
   const int n = 80;
   for (int s = 0; s < n; ++s) {
     sim.step();

@@ -26,3 +26,8 @@ mpm3d_thread_test(two_blocks_gimp ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks_g
 mpm3d_thread_test(spheres ${CMAKE_SOURCE_DIR}/inputs/contact/spheres.mpm 120)
 mpm3d_thread_test(sliding_block ${CMAKE_SOURCE_DIR}/inputs/contact/sliding_block.mpm 80)
 mpm3d_thread_test(two_blocks_gimp_adaptive ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks_gimp.mpm 60 --regrid-every 4)
+# The particles' storage order (tests/particle_order.sh): deck order keeps every bit too.
+mpm3d_thread_test(two_blocks_deck_order ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks.mpm 207 --particle-order deck)
+add_test(NAME particle_order
+         COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/particle_order.sh $<TARGET_FILE:mpm3d> "${_mpm3d_ref_exe}"
+                 ${CMAKE_SOURCE_DIR} ${CMAKE_CURRENT_BINARY_DIR}/particle_order)

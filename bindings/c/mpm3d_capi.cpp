@@ -234,7 +234,11 @@ MPM3D_API int mpm3d_get_array(const mpm3d_sim* sim, const char* name, double* ds
     return fail(MPM3D_ERR_ARGUMENT, "mpm3d_get_array('%s'): wrong size %ld, need %ld (%ld x %d particles)", name, n,
                 need, r.ncomp, sim->sim.model.particles.np);
   if (!dst && need > 0) return fail(MPM3D_ERR_ARGUMENT, "mpm3d_get_array('%s'): null destination", name);
-  if (need > 0) std::memcpy(dst, r.data->data(), size_t(need) * sizeof(double));
+  // In deck order (the solver stores the particles in its own order, Particles::id).
+  const mpm3d::Particles& P = sim->sim.model.particles;
+  const std::vector<double>& a = *r.data;
+  for (int p = 0; p < P.np; ++p)
+    for (long c = 0; c < r.ncomp; ++c) dst[size_t(r.ncomp) * size_t(P.deck_number(p)) + size_t(c)] = a[size_t(r.ncomp) * size_t(p) + size_t(c)];
   return MPM3D_OK;
 }
 
@@ -248,8 +252,13 @@ MPM3D_API int mpm3d_set_array(mpm3d_sim* sim, const char* name, const double* sr
                 need, r.ncomp, sim->sim.model.particles.np);
   if (!src && need > 0) return fail(MPM3D_ERR_ARGUMENT, "mpm3d_set_array('%s'): null source", name);
   try {
-    // In place: the step context keeps pointing at these arrays.
-    if (need > 0) std::memmove(r.data->data(), src, size_t(need) * sizeof(double));
+    // In place (the step context keeps pointing at these arrays), from deck order. The
+    // source is read completely before anything changes, so it may alias the array.
+    const mpm3d::Particles& P = sim->sim.model.particles;
+    std::vector<double> t(src, src + need);
+    std::vector<double>& a = *r.data;
+    for (int p = 0; p < P.np; ++p)
+      for (long c = 0; c < r.ncomp; ++c) a[size_t(r.ncomp) * size_t(p) + size_t(c)] = t[size_t(r.ncomp) * size_t(P.deck_number(p)) + size_t(c)];
     sim->sim.measure();  // energies and momentum of the new state
     return MPM3D_OK;
   } catch (...) {
