@@ -612,12 +612,18 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
   int* patch_of = c->pscratch;  // patch of each particle, -1 outside
   int outside = 0;
   // Cells, local coordinates, patches (transfer_lanes.hpp), in fixed chunks.
-  constexpr int kChunk = 2048;
-  const int nbinchunk = (np + kChunk - 1) / kChunk;
+  // Each thread bins a run of particles sized by its share: in the block storage order
+  // (order_by_blocks) about the particles its patch range holds.
   const bool avx2 = lanes_use_avx2();
-#pragma omp parallel for schedule(static) reduction(+ : outside)
-  for (int ch = 0; ch < nbinchunk; ++ch) {
-    const int lo = ch * kChunk, hi = std::min(np, lo + kChunk);
+#pragma omp parallel reduction(+ : outside)
+  {
+    int t = 0, T = 1;
+#ifdef _OPENMP
+    t = omp_get_thread_num();
+    T = omp_get_num_threads();
+#endif
+    int lo, hi;
+    thread_particles(c, t, T, lo, hi);
     outside += avx2 ? bin_range_avx2(c, lo, hi, patch_of) : bin_range<VectorLane<kLanes>>(c, lo, hi, patch_of);
   }
   // Stable counting sort of the particles by patch: ascending particle index within each

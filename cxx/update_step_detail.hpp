@@ -163,6 +163,22 @@ inline void thread_patches(const StepContext* c, int t, int T, int& lo, int& hi)
   hi = first(t + 1);
 }
 
+// Particles [lo, hi) of thread t of T: consecutive runs of the particle index in the
+// proportions of the thread shares (equal without them).
+inline void thread_particles(const StepContext* c, int t, int T, int& lo, int& hi) {
+  const bool shared = c->thread_share && c->nshare == T;
+  auto first = [&](int u) -> int {
+    if (u <= 0) return 0;
+    if (u >= T) return c->np;
+    if (!shared) return int((int64_t(c->np) * u) / T);
+    double cum = 0.0;
+    for (int v = 0; v < u; ++v) cum += c->thread_share[v];
+    return int(std::min(double(c->np), std::max(0.0, cum * double(c->np) + 0.5)));
+  };
+  lo = first(t);
+  hi = first(t + 1);
+}
+
 // f(q) for every patch q, each thread over its thread_patches range; the thread's time in
 // its range goes to thread_busy (the load balance of rebalance_threads).
 template <class F>

@@ -7,7 +7,12 @@ BENCH_REPEATS runs of `mpm3d --steps BENCH_STEPS --no-output`: ns per particle-s
 step loop alone, from the summary), speedup and efficiency against 1 thread of the same
 configuration, bytes per particle (peak resident memory from /usr/bin/time -v divided by
 the particles), the share of each stage (stage_seconds in the summary), the patch
-statistics, and the 1-minute load average before the run (timings on a loaded machine are
+statistics, and the 1-minute load average before the run. For the patch scheme without the
+adaptive grid it also runs 1 thread pinned to each CPU in turn (taskset): `capacity` is the
+sum over the CPUs of (1-thread time / time pinned to that CPU), the speedup the machine's
+CPUs could give at that moment if every one ran as fast as it does alone (2.0 on two
+equal, idle cores; less when the virtual machine's CPUs run at different speeds), and
+`capacity_efficiency` is the speedup at the full core count divided by it (timings on a loaded machine are
 not worth much: compare rows measured side by side, and rerun on a quiet machine).
 
 usage: bench.py BUILD_DIR CSV [max_threads] [deck ...]
@@ -17,6 +22,7 @@ environment: BENCH_STEPS (default 100), BENCH_REPEATS (3), BENCH_REGRID (20),
 import csv
 import json
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -29,9 +35,10 @@ def load1():
         return float(f.read().split()[0])
 
 
-def run_once(exe, deck, threads, steps, scheme, regrid, tmp):
+def run_once(exe, deck, threads, steps, scheme, regrid, tmp, cpu=None):
     summary = os.path.join(tmp, "s.json")
-    cmd = ["/usr/bin/time", "-v", exe, "--threads", str(threads), "--steps", str(steps), "--no-output",
+    pin = ["taskset", "-c", str(cpu)] if cpu is not None else []
+    cmd = ["/usr/bin/time", "-v"] + pin + [exe, "--threads", str(threads), "--steps", str(steps), "--no-output",
            "--quiet", "--summary", summary, "--scatter", scheme, "--regrid-every", str(regrid), deck]
     load = load1()
     p = subprocess.run(cmd, capture_output=True, text=True)
@@ -74,7 +81,9 @@ def main():
     exe = os.path.join(build, "cxx", "mpm3d")
     fields = ["deck", "particles", "scatter", "regrid_every", "threads", "steps", "ns_per_particle_step",
               "speedup", "efficiency", "peak_rss_bytes_per_particle"] + [f"share_{s}" for s in STAGES] + \
-             ["patches", "patches_empty", "patch_imbalance", "load1_before", "load1_max"]
+             ["patches", "patches_empty", "patch_imbalance", "load1_before", "load1_max", "capacity",
+              "capacity_efficiency"]
+    pinning = shutil.which("taskset") is not None
     rows = []
     with tempfile.TemporaryDirectory() as tmp, open(out_csv, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=fields)
@@ -83,6 +92,11 @@ def main():
             for scheme in schemes:
                 for rg in (0, regrid):
                     base = None
+                    cpu_ns = []
+                    if pinning and scheme == "patches" and rg == 0:
+                        for cpu in range(os.cpu_count()):
+                            cpu_ns.append(min(run_once(exe, deck, 1, steps, scheme, rg, tmp, cpu)[0]["ns_per_particle_step"]
+                                              for _ in range(repeats)))
                     for t in thread_counts(maxt):
                         best, loads = None, []
                         for _ in range(repeats):
@@ -104,12 +118,19 @@ def main():
                                "load1_before": f"{loads[0]:.2f}", "load1_max": f"{max(loads):.2f}"}
                         for st in STAGES:
                             row[f"share_{st}"] = f"{s['stage_seconds'][st] / total:.3f}"
+                        row["capacity"] = row["capacity_efficiency"] = ""
+                        if cpu_ns and t == maxt:
+                            cap = sum(base / c for c in cpu_ns)
+                            row["capacity"] = f"{cap:.3f}"
+                            row["capacity_efficiency"] = f"{base / ns / cap:.3f}"
                         w.writerow(row)
                         f.flush()
                         rows.append(row)
                         print(f"{row['deck']:24s} {scheme:9s} regrid {rg:3d} threads {t:2d}: {row['ns_per_particle_step']:>7s} ns "
                               f"speedup {row['speedup']} eff {row['efficiency']} {row['peak_rss_bytes_per_particle']} B/p "
-                              f"(load {loads[0]:.2f})", flush=True)
+                              f"(load {loads[0]:.2f})"
+                              + (f" capacity {row['capacity']} (eff {row['capacity_efficiency']}; 1 thread pinned: "
+                                 + " ".join(f"{c:.1f}" for c in cpu_ns) + " ns)" if row["capacity"] else ""), flush=True)
 
 
 if __name__ == "__main__":
