@@ -8,8 +8,10 @@ step loop alone, from the summary), speedup and efficiency against 1 thread of t
 configuration, bytes per particle (peak resident memory from /usr/bin/time -v divided by
 the particles), the share of each stage (stage_seconds in the summary), the patch
 statistics, and the 1-minute load average before the run. For the patch scheme without the
-adaptive grid it also runs 1 thread pinned to each CPU in turn (taskset): `capacity` is the
-sum over the CPUs of (1-thread time / time pinned to that CPU), the speedup the machine's
+adaptive grid it also runs 1 thread pinned to each CPU in turn (taskset): the 1-thread time
+is then the best of the unpinned and the pinned runs (on a virtual machine whose CPUs run
+at different speeds, an unpinned run may land on the slow one and flatter the speedup),
+`capacity` is the sum over the CPUs of (1-thread time / time pinned to that CPU), the speedup the machine's
 CPUs could give at that moment if every one ran as fast as it does alone (2.0 on two
 equal, idle cores; less when the virtual machine's CPUs run at different speeds), and
 `capacity_efficiency` is the speedup at the full core count divided by it (timings on a loaded machine are
@@ -106,6 +108,8 @@ def main():
                                 best = (s, rss)
                         s, rss = best
                         ns = s["ns_per_particle_step"]
+                        if t == 1 and cpu_ns:
+                            ns = min([ns] + cpu_ns)  # the fastest CPU's 1-thread time
                         base = base or ns
                         total = sum(s["stage_seconds"].values()) or 1.0
                         row = {"deck": os.path.basename(deck), "particles": s["particles"], "scatter": scheme,
