@@ -617,12 +617,8 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
   const bool avx2 = lanes_use_avx2();
 #pragma omp parallel reduction(+ : outside)
   {
-    int t = 0, T = 1;
-#ifdef _OPENMP
-    t = omp_get_thread_num();
-    T = omp_get_num_threads();
-#endif
-    int lo, hi;
+    int t, T, lo, hi;
+    team_position(t, T);
     thread_particles(c, t, T, lo, hi);
     outside += avx2 ? bin_range_avx2(c, lo, hi, patch_of) : bin_range<VectorLane<kLanes>>(c, lo, hi, patch_of);
   }

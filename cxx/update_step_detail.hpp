@@ -136,6 +136,17 @@ __attribute__((always_inline)) inline void p2g_particle(const StepContext* c, in
   }
 }
 
+// Where the items of threads 0 .. u-1 of T end among total items: the sum of their shares
+// of total (equal shares without c->thread_share for T threads).
+inline int share_boundary(const StepContext* c, int u, int T, int64_t total) {
+  if (u <= 0) return 0;
+  if (u >= T) return int(total);
+  if (!(c->thread_share && c->nshare == T)) return int((total * u) / T);
+  double cum = 0.0;
+  for (int v = 0; v < u; ++v) cum += c->thread_share[v];
+  return int(std::min(double(total), std::max(0.0, cum * double(total) + 0.5)));
+}
+
 // Patches [lo, hi) of thread t of T: contiguous ranges of the patch index holding the
 // thread's share of the binned particles (patch_start is the prefix sum of the lists;
 // equal shares without c->thread_share). The trilinear patch stages (P2G, assembly,
@@ -144,19 +155,9 @@ __attribute__((always_inline)) inline void p2g_particle(const StepContext* c, in
 // every stage dealt the patches out anew and about half of all node and particle reads
 // came from the other core's cache. Which thread does a patch never changes a result.
 inline void thread_patches(const StepContext* c, int t, int T, int& lo, int& hi) {
-  const bool shared = c->thread_share && c->nshare == T;
   auto first = [&](int u) -> int {
-    if (u <= 0) return 0;
+    const int target = share_boundary(c, u, T, c->patch_start[c->npatch]);
     if (u >= T) return c->npatch;
-    const int64_t total = c->patch_start[c->npatch];
-    int target;
-    if (shared) {
-      double cum = 0.0;
-      for (int v = 0; v < u; ++v) cum += c->thread_share[v];
-      target = int(std::min(double(total), std::max(0.0, cum * double(total) + 0.5)));
-    } else {
-      target = int((total * u) / T);
-    }
     return int(std::lower_bound(c->patch_start, c->patch_start + c->npatch, target) - c->patch_start);
   };
   lo = first(t);
@@ -166,17 +167,18 @@ inline void thread_patches(const StepContext* c, int t, int T, int& lo, int& hi)
 // Particles [lo, hi) of thread t of T: consecutive runs of the particle index in the
 // proportions of the thread shares (equal without them).
 inline void thread_particles(const StepContext* c, int t, int T, int& lo, int& hi) {
-  const bool shared = c->thread_share && c->nshare == T;
-  auto first = [&](int u) -> int {
-    if (u <= 0) return 0;
-    if (u >= T) return c->np;
-    if (!shared) return int((int64_t(c->np) * u) / T);
-    double cum = 0.0;
-    for (int v = 0; v < u; ++v) cum += c->thread_share[v];
-    return int(std::min(double(c->np), std::max(0.0, cum * double(c->np) + 0.5)));
-  };
-  lo = first(t);
-  hi = first(t + 1);
+  lo = share_boundary(c, t, T, c->np);
+  hi = share_boundary(c, t + 1, T, c->np);
+}
+
+// This thread's number t and the team size T (0 and 1 without OpenMP).
+inline void team_position(int& t, int& T) {
+  t = 0;
+  T = 1;
+#ifdef _OPENMP
+  t = omp_get_thread_num();
+  T = omp_get_num_threads();
+#endif
 }
 
 // f(q) for every patch q, each thread over its thread_patches range; the thread's time in
@@ -185,12 +187,8 @@ template <class F>
 inline void for_thread_patches(const StepContext* c, F&& f) {
 #pragma omp parallel
   {
-    int t = 0, T = 1;
-#ifdef _OPENMP
-    t = omp_get_thread_num();
-    T = omp_get_num_threads();
-#endif
-    int lo, hi;
+    int t, T, lo, hi;
+    team_position(t, T);
     thread_patches(c, t, T, lo, hi);
     const bool timed = c->thread_busy && c->nshare == T;
 #ifdef _OPENMP
