@@ -73,7 +73,7 @@ void put_array(const std::string& path, hid_t g, const char* name, hid_t type, c
                hsize_t cols) {
   const hsize_t dims[2] = {rows, cols};
   Id space{H5Screate_simple(cols > 1 ? 2 : 1, dims, nullptr), H5Sclose};
-  Id d{H5Dcreate2(g, name, type, space.id, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose};
+  Id d{H5Dcreate2(g, name, type, space.id, H5P_DEFAULT, H5Untimed().dataset, H5P_DEFAULT), H5Dclose};
   if (d.id < 0 || (rows * cols > 0 && H5Dwrite(d.id, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0))
     fail(path, std::string("cannot write ") + name);
 }
@@ -98,7 +98,7 @@ void write_checkpoint(const std::string& path, const Simulation& sim, const Outp
   const std::string tmp = path + ".tmp";
   const H5ErrorSilencer quiet;
   {
-    Id f{H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose};
+    Id f{H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5Untimed().file, H5P_DEFAULT), H5Fclose};
     if (f.id < 0) fail(path, "cannot create " + tmp);
     try {
       const Model& m = sim.model;
@@ -108,7 +108,7 @@ void write_checkpoint(const std::string& path, const Simulation& sim, const Outp
       const int counts[3] = {m.particles.np, int(m.bodies.size()), int(m.mats.size())};
       put(path, f.id, "counts", H5T_NATIVE_INT, counts, 3);
 
-      Id s{H5Gcreate2(f.id, "/simulation", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose};
+      Id s{H5Gcreate2(f.id, "/simulation", H5P_DEFAULT, H5Untimed().group, H5P_DEFAULT), H5Gclose};
       if (s.id < 0) fail(path, "cannot create /simulation");
       put(path, s.id, "step", H5T_NATIVE_LONG, &sim.steps);
       put(path, s.id, "time", H5T_NATIVE_DOUBLE, &sim.time);
@@ -131,7 +131,7 @@ void write_checkpoint(const std::string& path, const Simulation& sim, const Outp
       if (m.contact && m.scheme == SCHEME_USF)
         put_array(path, s.id, "contact_marks", H5T_NATIVE_DOUBLE, sim.ctx.gnormal, hsize_t(sim.grid.nnode()), 3);
 
-      Id g{H5Gcreate2(f.id, "/particles", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose};
+      Id g{H5Gcreate2(f.id, "/particles", H5P_DEFAULT, H5Untimed().group, H5P_DEFAULT), H5Gclose};
       if (g.id < 0) fail(path, "cannot create /particles");
       const hsize_t np = hsize_t(m.particles.np);
       for (const ParticleField& fd : particle_fields(const_cast<Particles&>(m.particles))) {
@@ -139,7 +139,7 @@ void write_checkpoint(const std::string& path, const Simulation& sim, const Outp
         if (fd.i && !fd.i->empty()) put_array(path, g.id, fd.name, H5T_NATIVE_INT32, fd.i->data(), np, hsize_t(fd.ncomp));
       }
 
-      Id o{H5Gcreate2(f.id, "/output", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose};
+      Id o{H5Gcreate2(f.id, "/output", H5P_DEFAULT, H5Untimed().group, H5P_DEFAULT), H5Gclose};
       if (o.id < 0) fail(path, "cannot create /output");
       put(path, o.id, "next_output_time", H5T_NATIVE_DOUBLE, &out.next_out);
       put(path, o.id, "next_report_time", H5T_NATIVE_DOUBLE, &out.next_rpt);

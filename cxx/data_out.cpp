@@ -122,7 +122,7 @@ std::vector<T> deck_ordered(const std::vector<T>& a, int ncomp, const std::vecto
 void write_dataset(hid_t group, const char* name, hid_t type, const void* data, hsize_t rows, hsize_t cols) {
   hsize_t dims[2] = {rows, cols};
   hid_t space = H5Screate_simple(cols ? 2 : 1, dims, nullptr);
-  hid_t ds = H5Dcreate2(group, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  hid_t ds = H5Dcreate2(group, name, type, space, H5P_DEFAULT, H5Untimed().dataset, H5P_DEFAULT);
   herr_t st = ds < 0 ? -1 : H5Dwrite(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data);
   if (ds >= 0) H5Dclose(ds);
   H5Sclose(space);
@@ -144,9 +144,9 @@ void write_state_h5(const std::string& path, const Model& m, double time, long s
   const std::string tmp = path + ".tmp";
   const H5ErrorSilencer quiet;  // our own messages instead; the caller's handler is restored
   {
-    H5File f{H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT)};
+    H5File f{H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5Untimed().file, H5P_DEFAULT)};
     if (f.id < 0) throw std::runtime_error("cannot create the state file " + path);
-    hid_t g = H5Gcreate2(f.id, "/particles", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    hid_t g = H5Gcreate2(f.id, "/particles", H5P_DEFAULT, H5Untimed().group, H5P_DEFAULT);
     if (g < 0) throw std::runtime_error("cannot create /particles in " + path);
     const Particles& P = m.particles;
     const hsize_t n = hsize_t(P.np);
@@ -253,9 +253,9 @@ void H5Series::open(const Model& m, const std::string& dir, const std::vector<do
   // New file (or a restart whose earlier series is gone: frames before it are not listed).
   first_ = resume_times.size();
   times_ = resume_times;
-  H5File f{H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT)};
+  H5File f{H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5Untimed().file, H5P_DEFAULT)};
   if (f.id < 0) throw std::runtime_error("cannot create " + path);
-  hid_t g = H5Gcreate2(f.id, "/frames", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  hid_t g = H5Gcreate2(f.id, "/frames", H5P_DEFAULT, H5Untimed().group, H5P_DEFAULT);
   if (g < 0) throw std::runtime_error("cannot write " + path);
   H5Gclose(g);
 }
@@ -268,13 +268,13 @@ void H5Series::frame(const Model& m, double time, long step) {
     H5File f{H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT)};
     if (f.id < 0) throw std::runtime_error("cannot open " + path);
     if (H5Lexists(f.id, "/frames", H5P_DEFAULT) <= 0) {
-      hid_t g0 = H5Gcreate2(f.id, "/frames", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+      hid_t g0 = H5Gcreate2(f.id, "/frames", H5P_DEFAULT, H5Untimed().group, H5P_DEFAULT);
       if (g0 < 0) throw std::runtime_error("cannot write " + path);
       H5Gclose(g0);
     }
     const std::string name = "/frames/" + std::to_string(k);
     if (H5Lexists(f.id, name.c_str(), H5P_DEFAULT) > 0) H5Ldelete(f.id, name.c_str(), H5P_DEFAULT);
-    hid_t g = H5Gcreate2(f.id, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    hid_t g = H5Gcreate2(f.id, name.c_str(), H5P_DEFAULT, H5Untimed().group, H5P_DEFAULT);
     if (g < 0) throw std::runtime_error("cannot write " + path);
     try {
       const Particles& P = m.particles;

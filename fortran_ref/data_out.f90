@@ -13,6 +13,10 @@ module mpm3d_data_out
 
   public :: write_state_h5
 
+  ! Dataset creation properties without modification times (as H5Untimed in
+  ! cxx/h5_quiet.hpp): the same state gives the same bytes.
+  integer(hid_t) :: untimed_dataset
+
   interface
     integer(c_int) function c_rename(from, to) bind(C, name='rename')
       import :: c_int, c_char
@@ -51,7 +55,7 @@ contains
       call h5screate_simple_f(1, dims(1:1), space, st)
     end if
     call check(st, name)
-    call h5dcreate_f(g, name, H5T_NATIVE_DOUBLE, space, ds, st)
+    call h5dcreate_f(g, name, H5T_NATIVE_DOUBLE, space, ds, st, dcpl_id=untimed_dataset)
     call check(st, name)
     call h5dwrite_f(ds, H5T_NATIVE_DOUBLE, data, st)
     call check(st, name)
@@ -71,7 +75,7 @@ contains
     itype = h5kind_to_type(c_int, H5_INTEGER_KIND)
     call h5screate_simple_f(1, dims, space, st)
     call check(st, name)
-    call h5dcreate_f(g, name, itype, space, ds, st)
+    call h5dcreate_f(g, name, itype, space, ds, st, dcpl_id=untimed_dataset)
     call check(st, name)
     call h5dwrite_f(ds, itype, data, st)
     call check(st, name)
@@ -106,7 +110,7 @@ contains
     integer, allocatable :: at(:)
     real(dp), target :: t_time, t_dt
     integer(int64), target :: t_step
-    integer(hid_t) :: f, g
+    integer(hid_t) :: f, g, untimed_file, untimed_group
     integer :: st, np, p, i
     character(len=:), allocatable :: tmp
     np = m%particles%np
@@ -114,12 +118,19 @@ contains
     call h5open_f(st)
     call check(st, 'the HDF5 library')
     call h5eset_auto_f(0, st)
-    call h5fcreate_f(tmp, H5F_ACC_TRUNC_F, f, st)
+    call h5pcreate_f(H5P_FILE_CREATE_F, untimed_file, st)
+    call h5pset_obj_track_times_f(untimed_file, .false., st)
+    call h5pcreate_f(H5P_GROUP_CREATE_F, untimed_group, st)
+    call h5pset_obj_track_times_f(untimed_group, .false., st)
+    call h5pcreate_f(H5P_DATASET_CREATE_F, untimed_dataset, st)
+    call h5pset_obj_track_times_f(untimed_dataset, .false., st)
+    call check(st, 'the creation properties')
+    call h5fcreate_f(tmp, H5F_ACC_TRUNC_F, f, st, creation_prp=untimed_file)
     if (st < 0) then
       write (error_unit, '(a)') 'mpm3d_ref: cannot create the state file ' // path
       stop 1, quiet=.true.
     end if
-    call h5gcreate_f(f, '/particles', g, st)
+    call h5gcreate_f(f, '/particles', g, st, gcpl_id=untimed_group)
     call check(st, '/particles')
     ! In deck order, whatever the storage order (particles_order_by_blocks).
     call particles_deck_order(m%particles, at)
@@ -160,6 +171,9 @@ contains
     call h5gclose_f(g, st)
     call h5fclose_f(f, st)
     call check(st, path)
+    call h5pclose_f(untimed_dataset, st)
+    call h5pclose_f(untimed_group, st)
+    call h5pclose_f(untimed_file, st)
     call h5close_f(st)
     if (c_rename(tmp // c_null_char, path // c_null_char) /= 0) then
       st = c_remove(tmp // c_null_char)
