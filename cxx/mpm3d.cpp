@@ -98,9 +98,9 @@ void Simulation::bind() {
   c.cell = cell_.data();
   pscratch_.assign(size_t(P.np), 0);
   c.pscratch = pscratch_.data();
-  balance_.assign(2 * size_t(kMaxBalancedThreads), 0.0);
+  balance_.assign(kBalanceValues, 0.0);
   c.thread_share = balance_.data();
-  c.thread_busy = balance_.data() + kMaxBalancedThreads;
+  c.thread_busy = balance_.data() + kBalanceValues / 2;
   c.nshare = 0;  // the first binning sets equal shares
   std::vector<double>& grav = gravity_;
   grav.assign(3 * model.bodies.size(), 0.0);
@@ -160,9 +160,9 @@ void Simulation::bind() {
     ctx2.patch_part = grid2.patch_part.data();
     ctx2.patch_slot = grid2.patch_slot.data();
     ctx2.patch_buf = grid2.patch_buf.data();
-    balance2_.assign(2 * size_t(kMaxBalancedThreads), 0.0);
+    balance2_.assign(kBalanceValues, 0.0);
     ctx2.thread_share = balance2_.data();
-    ctx2.thread_busy = balance2_.data() + kMaxBalancedThreads;
+    ctx2.thread_busy = balance2_.data() + kBalanceValues / 2;
   }
 }
 
@@ -250,9 +250,6 @@ void Simulation::ensure_patch_buffers() {
     if (grid2.patch_buf.size() < need2) {
       grid2.patch_buf.resize(need2 + need2 / 4);
       ctx2.patch_buf = grid2.patch_buf.data();
-    balance2_.assign(2 * size_t(kMaxBalancedThreads), 0.0);
-    ctx2.thread_share = balance2_.data();
-    ctx2.thread_busy = balance2_.data() + kMaxBalancedThreads;
     }
   }
 }

@@ -121,11 +121,11 @@ void assemble_wide(const StepContext* c, int first, int count, double* dst_mass,
 
 // The field range is a compile-time constant, so the per-node loops unroll.
 template <int first, int count>
-void assemble_fields(const StepContext* c, double* dst_mass, double* dst_mom, double* dst_force) {
+void assemble_fields(const StepContext* c, PatchLoop loop, double* dst_mass, double* dst_mom, double* dst_force) {
   const int P = c->patch_cells, Q = P + 1;
   const int npd0 = c->npd[0], npd1 = c->npd[1], npd2 = c->npd[2];
   const int pn = Q * Q * Q;
-  for_thread_patches(c, [&](int q) {
+  for_thread_patches(c, loop, [&](int q) {
     const int qx = q % npd0, qy = (q / npd0) % npd1, qz = q / (npd0 * npd1);
     // Slots of the patch and its lower neighbours: nb[cz][cy][cx], c = 0 lower, 1 self.
     const double* nb[2][2][2];
@@ -186,18 +186,18 @@ void assemble_fields(const StepContext* c, double* dst_mass, double* dst_mom, do
   });
 }
 
-void assemble(const StepContext* c, int first, int count, double* dst_mass, double* dst_mom,
+void assemble(const StepContext* c, PatchLoop loop, int first, int count, double* dst_mass, double* dst_mom,
               double* dst_force) {
   if (c->patch_halo > 0)
     assemble_wide(c, first, count, dst_mass, dst_mom, dst_force);
   else if (first == 0 && count == 7)
-    assemble_fields<0, 7>(c, dst_mass, dst_mom, dst_force);
+    assemble_fields<0, 7>(c, loop, dst_mass, dst_mom, dst_force);
   else if (first == 0 && count == 4)
-    assemble_fields<0, 4>(c, dst_mass, dst_mom, dst_force);
+    assemble_fields<0, 4>(c, loop, dst_mass, dst_mom, dst_force);
   else if (first == 1 && count == 3)
-    assemble_fields<1, 3>(c, dst_mass, dst_mom, dst_force);
+    assemble_fields<1, 3>(c, loop, dst_mass, dst_mom, dst_force);
   else if (first == 4 && count == 3)
-    assemble_fields<4, 3>(c, dst_mass, dst_mom, dst_force);
+    assemble_fields<4, 3>(c, loop, dst_mass, dst_mom, dst_force);
   else
     throw std::logic_error("assemble: unexpected field range");
 }
@@ -323,7 +323,7 @@ void scatter_p2g(StepContext* c, bool with_mass_mom, bool with_forces) {
     return;
   }
   const bool avx2 = lanes_use_avx2();
-  for_thread_patches(c, [&](int q) {
+  for_thread_patches(c, with_mass_mom ? LOOP_P2G : LOOP_FORCES, [&](int q) {
     if (c->patch_slot[q] < 0) return;
     if (avx2)
       p2g_patch_avx2(c, q, with_mass_mom, with_forces);
@@ -416,7 +416,7 @@ void g2p_gimp(StepContext* c) {
     }
   }
   if (remap) {
-    assemble(c, 1, 3, c->gmass, c->gmom, c->gforce);
+    assemble(c, LOOP_REMAP_ASSEMBLY, 1, 3, c->gmass, c->gmom, c->gforce);
     apply_bc(c, c->gmom);
   }
 }
@@ -458,7 +458,7 @@ void stress_particles(StepContext* c, const double* gvel) {
   const StressBlockArgs args{c->dt, c->temp != nullptr, c->qv != nullptr, c->bulk_q1, c->bulk_q2, c->h};
   if (c->shape != 1) {
     const bool avx2 = lanes_use_avx2();
-    for_thread_patches(c, [&](int q) {
+    for_thread_patches(c, LOOP_STRESS, [&](int q) {
       const int* list = c->patch_part + c->patch_start[q];
       const int count = c->patch_start[q + 1] - c->patch_start[q];
       if (count == 0) return;
@@ -546,62 +546,75 @@ void scatter_mass_gradient(StepContext* c) {
       }
     }
   }
-  assemble(c, 4, 3, c->gmass, c->gmom, c->gnormal);
+  assemble(c, LOOP_NORMAL_ASSEMBLY, 4, 3, c->gmass, c->gmom, c->gnormal);
 }
 
-// The load balance of the patch stages, before the patch lists change: each thread's
-// speed (particles of its range per busy second since the last binning) gives its share
-// of the next step, taken halfway to damp the jumps of the patch granularity. A thread
-// that had no particles counts at the mean speed, and no share falls below a tenth of an
-// equal one. On this project's virtual machines one core can run 1.5x slower than the
-// other for minutes; equal ranges then leave the fast thread waiting a third of each step.
-// The shares start equal, and again whenever the number of threads changes.
+}  // namespace
+
+// The load balance of the patch stages, before the patch lists change, loop by loop
+// (PatchLoop): each thread's speed in a loop (the particles of its range per busy second
+// since the last binning) gives its share of that loop in the next step, taken halfway to
+// damp the jumps of the patch granularity. A thread that had no particles counts at the
+// mean speed, and no share falls below a tenth of an equal one. On this project's virtual
+// machines one core can run 1.5x slower than the other for minutes; equal ranges then
+// leave the fast thread waiting a third of each step. A loop that did not run keeps its
+// shares. The shares start equal, and again whenever the number of threads changes.
 void rebalance_threads(StepContext* c) {
   if (!c->thread_share) return;
   int T = 1;
 #ifdef _OPENMP
   T = omp_get_max_threads();
 #endif
-  double* share = c->thread_share;
-  double* busy = c->thread_busy;
   if (T > kMaxBalancedThreads) {
     c->nshare = 0;
     return;
   }
   if (T != c->nshare) {
     c->nshare = T;
-    for (int t = 0; t < T; ++t) share[t] = 1.0 / T, busy[t] = 0.0;
+    for (int loop = 0; loop < LOOP_COUNT; ++loop)
+      for (int t = 0; t < T; ++t) {
+        c->thread_share[size_t(loop) * kMaxBalancedThreads + size_t(t)] = 1.0 / T;
+        c->thread_busy[size_t(loop) * kMaxBalancedThreads + size_t(t)] = 0.0;
+      }
     return;
   }
-  if (T < 2) return;
   std::vector<double> rate(size_t(T), 0.0);
-  double sum = 0.0;
-  int known = 0;
-  for (int t = 0; t < T; ++t) {
-    int lo, hi;
-    thread_patches(c, t, T, lo, hi);
-    const int n = c->patch_start[hi] - c->patch_start[lo];
-    if (n > 0 && busy[t] > 0.0) {
-      rate[t] = double(n) / busy[t];
-      sum += rate[t];
-      ++known;
+  for (int loop = 0; loop < LOOP_COUNT; ++loop) {
+    double* share = c->thread_share + size_t(loop) * kMaxBalancedThreads;
+    double* busy = c->thread_busy + size_t(loop) * kMaxBalancedThreads;
+    double sum = 0.0;
+    int known = 0;
+    for (int t = 0; t < T && T > 1; ++t) {
+      int lo, hi, n;
+      if (loop == LOOP_BIN) {
+        thread_particles(c, t, T, lo, hi);
+        n = hi - lo;
+      } else {
+        thread_patches(c, PatchLoop(loop), t, T, lo, hi);
+        n = c->patch_start[hi] - c->patch_start[lo];
+      }
+      rate[size_t(t)] = 0.0;
+      if (n > 0 && busy[t] > 0.0) {
+        rate[size_t(t)] = double(n) / busy[t];
+        sum += rate[size_t(t)];
+        ++known;
+      }
     }
-  }
-  if (known > 0) {
-    const double mean = sum / known;
-    for (int t = 0; t < T; ++t)
-      if (!(rate[t] > 0.0)) rate[t] = mean, sum += mean;
-    double total = 0.0;
-    for (int t = 0; t < T; ++t) {
-      share[t] = std::max(0.1 / T, 0.5 * share[t] + 0.5 * rate[t] / sum);
-      total += share[t];
+    if (known > 0) {
+      const double mean = sum / known;
+      for (int t = 0; t < T; ++t)
+        if (!(rate[size_t(t)] > 0.0)) rate[size_t(t)] = mean, sum += mean;
+      double total = 0.0;
+      for (int t = 0; t < T; ++t) {
+        share[t] = std::max(0.1 / T, 0.5 * share[t] + 0.5 * rate[size_t(t)] / sum);
+        total += share[t];
+      }
+      for (int t = 0; t < T; ++t) share[t] /= total;
     }
-    for (int t = 0; t < T; ++t) share[t] /= total;
+    for (int t = 0; t < T; ++t) busy[t] = 0.0;
   }
-  for (int t = 0; t < T; ++t) busy[t] = 0.0;
 }
 
-}  // namespace
 }  // namespace mpm3d
 
 using namespace mpm3d;
@@ -620,7 +633,10 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
     int t, T, lo, hi;
     team_position(t, T);
     thread_particles(c, t, T, lo, hi);
+    const bool timed = balance_timed(c, T);
+    const double t0 = timed ? busy_clock() : 0.0;
     outside += avx2 ? bin_range_avx2(c, lo, hi, patch_of) : bin_range<VectorLane<kLanes>>(c, lo, hi, patch_of);
+    if (timed) add_busy(c, LOOP_BIN, t, t0);
   }
   // Stable counting sort of the particles by patch: ascending particle index within each
   // patch whatever the number of chunks, so the lists do not depend on the thread count.
@@ -666,20 +682,20 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
 extern "C" void mpm3d_cxx_p2g(StepContext* c) {
   const bool forces = c->scheme != SCHEME_USF;
   scatter_p2g(c, true, forces);
-  assemble(c, 0, forces ? 7 : 4, c->gmass, c->gmom, c->gforce);
+  assemble(c, LOOP_P2G_ASSEMBLY, 0, forces ? 7 : 4, c->gmass, c->gmom, c->gforce);
   apply_bc(c, c->gmom);
 }
 
 extern "C" void mpm3d_cxx_forces(StepContext* c) {
   scatter_p2g(c, false, true);
-  assemble(c, 4, 3, c->gmass, c->gmom, c->gforce);
+  assemble(c, LOOP_FORCES_ASSEMBLY, 4, 3, c->gmass, c->gmom, c->gforce);
 }
 
 extern "C" void mpm3d_cxx_integrate(StepContext* c) {
   const double dt = c->dt_int;
   double* mom = c->gmom;
   const double* f = c->gforce;
-  for_thread_patches(c, [&](int q) {
+  for_thread_patches(c, LOOP_INTEGRATE, [&](int q) {
     const OwnedNodes o = owned_nodes(c, q);
     if (!o.active) return;
     for (int k = o.lo[2]; k < o.hi[2]; ++k)
@@ -699,7 +715,7 @@ extern "C" void mpm3d_cxx_g2p(StepContext* c) {
   }
   const bool remap = c->scheme == SCHEME_MUSL;
   const bool avx2 = lanes_use_avx2();
-  for_thread_patches(c, [&](int q) {
+  for_thread_patches(c, LOOP_G2P, [&](int q) {
     if (c->patch_slot[q] < 0) return;
     if (avx2)
       g2p_patch_avx2(c, q, remap);
@@ -707,7 +723,7 @@ extern "C" void mpm3d_cxx_g2p(StepContext* c) {
       g2p_patch<VectorLane<kLanes>>(c, CellDecoder(c), q, remap);
   });
   if (remap) {
-    assemble(c, 1, 3, c->gmass, c->gmom, c->gforce);
+    assemble(c, LOOP_REMAP_ASSEMBLY, 1, 3, c->gmass, c->gmom, c->gforce);
     apply_bc(c, c->gmom);
   }
 }
@@ -718,7 +734,7 @@ extern "C" void mpm3d_cxx_stress(StepContext* c) {
   // They are kept in the force array, which no stage reads again before the next p2g or
   // forces stage overwrites it (USF: stress runs before forces).
   double* gvel = c->gforce;
-  for_thread_patches(c, [&](int q) {
+  for_thread_patches(c, LOOP_NODE_VELOCITY, [&](int q) {
     const OwnedNodes o = owned_nodes(c, q);
     if (!o.active) return;
     for (int k = o.lo[2]; k < o.hi[2]; ++k)

@@ -62,10 +62,11 @@ struct StepContext {
   int *pscratch;       // (np) patch of each particle during binning
   double *tgrid;       // --scatter expansion: per-thread grid copies (kNodeFields, nnode, ntgrid)
   int ntgrid;          // copies in tgrid
-  // Load balance of the trilinear patch stages (update_step_detail.hpp): thread t of
-  // nshare takes about share[t] of the binned particles (the shares sum to 1), and adds
-  // the seconds it spends in those stages to busy[t]; the bin stage turns the busy times
-  // into new shares. Null: equal shares. Which thread does a patch never changes a bit.
+  // Load balance of the trilinear patch stages (update_step_detail.hpp), one set per
+  // PatchLoop: in loop l, thread t of nshare takes about share[l * kMaxBalancedThreads + t]
+  // of the binned particles (each loop's shares sum to 1) and adds the seconds it spends
+  // there to busy[l * kMaxBalancedThreads + t]; the bin stage turns the busy times into
+  // new shares. Null: equal shares. Which thread does a patch never changes a bit.
   double *thread_share, *thread_busy;
   int nshare;
 };
@@ -110,6 +111,29 @@ extern const char* const kStageNames[ST_COUNT];
 constexpr int kReduceFields = 5;
 // Capacity of StepContext::thread_share and thread_busy; more threads run with equal shares.
 constexpr int kMaxBalancedThreads = 1024;
+// The thread-range loops of the trilinear stages, each balanced on its own: their costs
+// are spread differently along a body (a node loop's with the active patches, a particle
+// loop's with the particles), so one set of shares balanced over the whole step left
+// every loop unbalanced, each waiting at its own barrier.
+enum PatchLoop {
+  LOOP_BIN,              // binning: a run of particle indices
+  LOOP_P2G,              // scatter of mass, momentum (and forces) into the patch buffers
+  LOOP_P2G_ASSEMBLY,     // ... and their assembly into the nodes
+  LOOP_FORCES,           // USF: scatter of the forces
+  LOOP_FORCES_ASSEMBLY,  // ... and their assembly
+  LOOP_INTEGRATE,        // node momentum update
+  LOOP_G2P,              // particle velocities and positions (MUSL: and the remap scatter)
+  LOOP_REMAP_ASSEMBLY,   // MUSL: assembly of the remapped momentum
+  LOOP_NODE_VELOCITY,    // node velocities for the stress stage
+  LOOP_STRESS,           // velocity gradients and the stress update
+  LOOP_NORMAL_ASSEMBLY,  // contact: assembly of the mass gradients
+  LOOP_COUNT
+};
+// Doubles behind StepContext::thread_share and thread_busy (shares, then busy times).
+constexpr size_t kBalanceValues = 2 * size_t(LOOP_COUNT) * size_t(kMaxBalancedThreads);
+// New thread shares of every PatchLoop from the busy times since the last call (the bin
+// stage calls it first; cxx/update_step.cpp). Equal shares when the team size changed.
+void rebalance_threads(StepContext* c);
 
 // The stage table: which implementation each stage uses.
 struct StageTable {

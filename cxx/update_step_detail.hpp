@@ -136,27 +136,29 @@ __attribute__((always_inline)) inline void p2g_particle(const StepContext* c, in
   }
 }
 
-// Where the items of threads 0 .. u-1 of T end among total items: the sum of their shares
-// of total (equal shares without c->thread_share for T threads).
-inline int share_boundary(const StepContext* c, int u, int T, int64_t total) {
+// Where the items of threads 0 .. u-1 of T end among total items in loop `loop`: the sum
+// of their shares of total (equal shares without c->thread_share for T threads).
+inline int share_boundary(const StepContext* c, PatchLoop loop, int u, int T, int64_t total) {
   if (u <= 0) return 0;
   if (u >= T) return int(total);
   if (!(c->thread_share && c->nshare == T)) return int((total * u) / T);
+  const double* share = c->thread_share + size_t(loop) * kMaxBalancedThreads;
   double cum = 0.0;
-  for (int v = 0; v < u; ++v) cum += c->thread_share[v];
+  for (int v = 0; v < u; ++v) cum += share[v];
   return int(std::min(double(total), std::max(0.0, cum * double(total) + 0.5)));
 }
 
-// Patches [lo, hi) of thread t of T: contiguous ranges of the patch index holding the
-// thread's share of the binned particles (patch_start is the prefix sum of the lists;
-// equal shares without c->thread_share). The trilinear patch stages (P2G, assembly,
-// integration, G2P, node velocities, stress) all use these ranges, so a thread finds in its
-// own cache the nodes and particles it wrote in the stage before; with a dynamic schedule
-// every stage dealt the patches out anew and about half of all node and particle reads
-// came from the other core's cache. Which thread does a patch never changes a result.
-inline void thread_patches(const StepContext* c, int t, int T, int& lo, int& hi) {
+// Patches [lo, hi) of thread t of T in loop `loop`: contiguous ranges of the patch index
+// holding the thread's share of the binned particles (patch_start is the prefix sum of the
+// lists; equal shares without c->thread_share). The trilinear patch stages (P2G, assembly,
+// integration, G2P, node velocities, stress) all use such ranges, and the loops' shares
+// differ little, so a thread finds in its own cache most nodes and particles it wrote in
+// the loop before; with a dynamic schedule every stage dealt the patches out anew and
+// about half of all node and particle reads came from the other core's cache. Which
+// thread does a patch never changes a result.
+inline void thread_patches(const StepContext* c, PatchLoop loop, int t, int T, int& lo, int& hi) {
   auto first = [&](int u) -> int {
-    const int target = share_boundary(c, u, T, c->patch_start[c->npatch]);
+    const int target = share_boundary(c, loop, u, T, c->patch_start[c->npatch]);
     if (u >= T) return c->npatch;
     return int(std::lower_bound(c->patch_start, c->patch_start + c->npatch, target) - c->patch_start);
   };
@@ -165,10 +167,10 @@ inline void thread_patches(const StepContext* c, int t, int T, int& lo, int& hi)
 }
 
 // Particles [lo, hi) of thread t of T: consecutive runs of the particle index in the
-// proportions of the thread shares (equal without them).
+// proportions of the thread shares of the bin loop (equal without them).
 inline void thread_particles(const StepContext* c, int t, int T, int& lo, int& hi) {
-  lo = share_boundary(c, t, T, c->np);
-  hi = share_boundary(c, t + 1, T, c->np);
+  lo = share_boundary(c, LOOP_BIN, t, T, c->np);
+  hi = share_boundary(c, LOOP_BIN, t + 1, T, c->np);
 }
 
 // This thread's number t and the team size T (0 and 1 without OpenMP).
@@ -181,23 +183,36 @@ inline void team_position(int& t, int& T) {
 #endif
 }
 
-// f(q) for every patch q, each thread over its thread_patches range; the thread's time in
-// its range goes to thread_busy (the load balance of rebalance_threads).
+// The clock of the busy times (0 without OpenMP, which needs no balance).
+inline double busy_clock() {
+#ifdef _OPENMP
+  return omp_get_wtime();
+#else
+  return 0.0;
+#endif
+}
+
+// Whether a team of T threads records its busy times (the shares are set for its size).
+inline bool balance_timed(const StepContext* c, int T) { return c->thread_busy && c->nshare == T; }
+
+// Adds the seconds since t0 to thread t's busy time in loop `loop` (rebalance_threads).
+inline void add_busy(const StepContext* c, PatchLoop loop, int t, double t0) {
+  c->thread_busy[size_t(loop) * kMaxBalancedThreads + size_t(t)] += busy_clock() - t0;
+}
+
+// f(q) for every patch q, each thread over its thread_patches range of loop `loop`; the
+// thread's time in its range goes to that loop's thread_busy (rebalance_threads).
 template <class F>
-inline void for_thread_patches(const StepContext* c, F&& f) {
+inline void for_thread_patches(const StepContext* c, PatchLoop loop, F&& f) {
 #pragma omp parallel
   {
     int t, T, lo, hi;
     team_position(t, T);
-    thread_patches(c, t, T, lo, hi);
-    const bool timed = c->thread_busy && c->nshare == T;
-#ifdef _OPENMP
-    const double t0 = timed ? omp_get_wtime() : 0.0;
-#endif
+    thread_patches(c, loop, t, T, lo, hi);
+    const bool timed = balance_timed(c, T);
+    const double t0 = timed ? busy_clock() : 0.0;
     for (int q = lo; q < hi; ++q) f(q);
-#ifdef _OPENMP
-    if (timed) c->thread_busy[t] += omp_get_wtime() - t0;
-#endif
+    if (timed) add_busy(c, loop, t, t0);
   }
 }
 

@@ -237,3 +237,56 @@ TEST(Adaptive, ElasticBenchDeckIsTheTaylorGeometry) {
   EXPECT_EQ(e.mats[0].eos_type, EOS_NONE);
   EXPECT_NE(t.mats[0].eos_type, EOS_NONE);
 }
+
+// The thread shares of the patch loops (rebalance_threads), hand-derived: 8 patches of 100
+// particles, 2 threads with equal shares. In the G2P loop thread 1 was twice as fast
+// (0.5 s against 1.0 s for 400 particles each), so the speeds 400 and 800 particles per
+// second ask for shares 1/3 and 2/3, taken halfway: 5/12 and 7/12. The stress loop ran
+// equally fast and keeps 1/2; the forces loop did not run and keeps its shares. Every
+// busy time is cleared, and a change of the team size starts equal shares again.
+TEST(Adaptive, ThreadSharesFollowEachLoopsMeasuredSpeed) {
+#ifndef _OPENMP
+  GTEST_SKIP() << "built without OpenMP";
+#else
+  const int threads_before = omp_get_max_threads();
+  omp_set_num_threads(2);
+  std::vector<double> balance(mpm3d::kBalanceValues, 0.0);
+  std::vector<int> start = {0, 100, 200, 300, 400, 500, 600, 700, 800};
+  StepContext c{};
+  c.np = 800;
+  c.npatch = 8;
+  c.patch_start = start.data();
+  c.thread_share = balance.data();
+  c.thread_busy = balance.data() + mpm3d::kBalanceValues / 2;
+  c.nshare = 0;
+  auto share = [&](mpm3d::PatchLoop l, int t) { return c.thread_share[size_t(l) * mpm3d::kMaxBalancedThreads + t]; };
+  auto busy = [&](mpm3d::PatchLoop l, int t) -> double& {
+    return c.thread_busy[size_t(l) * mpm3d::kMaxBalancedThreads + t];
+  };
+  mpm3d::rebalance_threads(&c);  // the first call sets equal shares for 2 threads
+  EXPECT_EQ(c.nshare, 2);
+  for (int l = 0; l < mpm3d::LOOP_COUNT; ++l) EXPECT_EQ(share(mpm3d::PatchLoop(l), 0), 0.5);
+  busy(mpm3d::LOOP_G2P, 0) = 1.0;
+  busy(mpm3d::LOOP_G2P, 1) = 0.5;
+  busy(mpm3d::LOOP_STRESS, 0) = 0.25;
+  busy(mpm3d::LOOP_STRESS, 1) = 0.25;
+  mpm3d::rebalance_threads(&c);
+  EXPECT_NEAR(share(mpm3d::LOOP_G2P, 0), 5.0 / 12.0, 1e-15);
+  EXPECT_NEAR(share(mpm3d::LOOP_G2P, 1), 7.0 / 12.0, 1e-15);
+  EXPECT_EQ(share(mpm3d::LOOP_STRESS, 0), 0.5);
+  EXPECT_EQ(share(mpm3d::LOOP_FORCES, 1), 0.5);
+  for (int l = 0; l < mpm3d::LOOP_COUNT; ++l)
+    for (int t = 0; t < 2; ++t) EXPECT_EQ(busy(mpm3d::PatchLoop(l), t), 0.0);
+  // Thread 0's G2P range now ends at the first patch start at or beyond 5/12 of 800 (333):
+  // patches 0-3 stay with it, and the busy times of that range drive the next shares.
+  busy(mpm3d::LOOP_G2P, 0) = 400.0 / 400.0;  // the same speeds again
+  busy(mpm3d::LOOP_G2P, 1) = 400.0 / 800.0;
+  mpm3d::rebalance_threads(&c);
+  EXPECT_NEAR(share(mpm3d::LOOP_G2P, 0), 0.5 * 5.0 / 12.0 + 0.5 / 3.0, 1e-15);
+  omp_set_num_threads(3);
+  mpm3d::rebalance_threads(&c);
+  EXPECT_EQ(c.nshare, 3);
+  EXPECT_EQ(share(mpm3d::LOOP_G2P, 2), 1.0 / 3.0);
+  omp_set_num_threads(threads_before);
+#endif
+}
