@@ -7,24 +7,32 @@ BENCH_REPEATS runs of `mpm3d --steps BENCH_STEPS --no-output`: ns per particle-s
 step loop alone, from the summary), speedup and efficiency against 1 thread of the same
 configuration, bytes per particle (peak resident memory from /usr/bin/time -v divided by
 the particles), the share of each stage (stage_seconds in the summary), the patch
-statistics, and the 1-minute load average before the run. For the patch scheme without the
-adaptive grid it also runs 1 thread pinned to each CPU in turn (taskset): the 1-thread time
-is then the best of the unpinned and the pinned runs (on a virtual machine whose CPUs run
-at different speeds, an unpinned run may land on the slow one and flatter the speedup),
-`capacity` is the sum over the CPUs of (1-thread time / time pinned to that CPU), the speedup the machine's
-CPUs could give at that moment if every one ran as fast as it does alone (2.0 on two
-equal, idle cores; less when the virtual machine's CPUs run at different speeds), and
-`capacity_efficiency` is the speedup at the full core count divided by it (timings on a loaded machine are
-not worth much: compare rows measured side by side, and rerun on a quiet machine).
+statistics, and the 1-minute load average before the run.
+
+For the patch scheme without the adaptive grid the runs go in BENCH_ROUNDS rounds instead:
+each round runs 1 thread pinned to each CPU in turn (taskset), then every thread count
+once, so that a round's figures are seconds apart. The 1-thread time is then the best of
+all unpinned and pinned runs (on a virtual machine whose CPUs run at different speeds, an
+unpinned run may land on the slow one and flatter the speedup). `capacity` is the sum over
+the CPUs of (1-thread time / best time pinned to that CPU), the speedup the CPUs could give
+if every one ran as fast as it does alone (2.0 on two equal, idle cores; less when the
+virtual machine's CPUs run at different speeds), and `capacity_efficiency` the speedup at
+the full core count divided by it. As these best-of figures may come from different
+minutes, each round also gives its own speedup at the full core count (over the round's
+fastest pinned 1-thread run) and that speedup over the round's own capacity:
+`round_speedup` and `round_capacity_efficiency` are their medians over the rounds.
+Timings on a loaded machine are not worth much: compare rows measured side by side, and
+rerun on a quiet machine.
 
 usage: bench.py BUILD_DIR CSV [max_threads] [deck ...]
-environment: BENCH_STEPS (default 100), BENCH_REPEATS (3), BENCH_REGRID (20),
+environment: BENCH_STEPS (default 100), BENCH_REPEATS (3), BENCH_ROUNDS (5), BENCH_REGRID (20),
              BENCH_SCHEMES ("patches expansion"), BENCH_FINE=1 adds taylor_fine.mpm
 """
 import csv
 import json
 import os
 import shutil
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -78,13 +86,14 @@ def main():
             decks.insert(0, "../shared/decks/Taylor.mpm")
     steps = int(os.environ.get("BENCH_STEPS", "100"))
     repeats = int(os.environ.get("BENCH_REPEATS", "3"))
+    rounds = int(os.environ.get("BENCH_ROUNDS", "5"))
     regrid = int(os.environ.get("BENCH_REGRID", "20"))
     schemes = os.environ.get("BENCH_SCHEMES", "patches expansion").split()
     exe = os.path.join(build, "cxx", "mpm3d")
     fields = ["deck", "particles", "scatter", "regrid_every", "threads", "steps", "ns_per_particle_step",
               "speedup", "efficiency", "peak_rss_bytes_per_particle"] + [f"share_{s}" for s in STAGES] + \
              ["patches", "patches_empty", "patch_imbalance", "load1_before", "load1_max", "capacity",
-              "capacity_efficiency"]
+              "capacity_efficiency", "round_speedup", "round_capacity_efficiency"]
     pinning = shutil.which("taskset") is not None
     rows = []
     with tempfile.TemporaryDirectory() as tmp, open(out_csv, "w", newline="") as f:
@@ -94,22 +103,26 @@ def main():
             for scheme in schemes:
                 for rg in (0, regrid):
                     base = None
+                    paired = pinning and scheme == "patches" and rg == 0
+                    # samples[t]: (summary, rss, load) of every run at t threads; cpu_ns[r][k]:
+                    # round r's 1-thread time pinned to CPU k. In the paired configuration the
+                    # runs go in rounds (every CPU pinned, then each thread count), so that a
+                    # round's figures are seconds apart and share the CPUs' speeds.
+                    samples = {t: [] for t in thread_counts(maxt)}
                     cpu_ns = []
-                    if pinning and scheme == "patches" and rg == 0:
-                        for cpu in range(os.cpu_count()):
-                            cpu_ns.append(min(run_once(exe, deck, 1, steps, scheme, rg, tmp, cpu)[0]["ns_per_particle_step"]
-                                              for _ in range(repeats)))
+                    for _ in range(rounds if paired else 1):
+                        if paired:
+                            cpu_ns.append([run_once(exe, deck, 1, steps, scheme, rg, tmp, cpu)[0]["ns_per_particle_step"]
+                                           for cpu in range(os.cpu_count())])
+                        for t in thread_counts(maxt):
+                            for _ in range(1 if paired else repeats):
+                                samples[t].append(run_once(exe, deck, t, steps, scheme, rg, tmp))
                     for t in thread_counts(maxt):
-                        best, loads = None, []
-                        for _ in range(repeats):
-                            s, rss, load = run_once(exe, deck, t, steps, scheme, rg, tmp)
-                            loads.append(load)
-                            if best is None or s["ns_per_particle_step"] < best[0]["ns_per_particle_step"]:
-                                best = (s, rss)
-                        s, rss = best
+                        s, rss, _ = min(samples[t], key=lambda x: x[0]["ns_per_particle_step"])
+                        loads = [x[2] for x in samples[t]]
                         ns = s["ns_per_particle_step"]
                         if t == 1 and cpu_ns:
-                            ns = min([ns] + cpu_ns)  # the fastest CPU's 1-thread time
+                            ns = min([ns] + [c for r in cpu_ns for c in r])  # the fastest CPU's 1-thread time
                         base = base or ns
                         total = sum(s["stage_seconds"].values()) or 1.0
                         row = {"deck": os.path.basename(deck), "particles": s["particles"], "scatter": scheme,
@@ -122,20 +135,32 @@ def main():
                                "load1_before": f"{loads[0]:.2f}", "load1_max": f"{max(loads):.2f}"}
                         for st in STAGES:
                             row[f"share_{st}"] = f"{s['stage_seconds'][st] / total:.3f}"
-                        row["capacity"] = row["capacity_efficiency"] = ""
+                        for k in ("capacity", "capacity_efficiency", "round_speedup", "round_capacity_efficiency"):
+                            row[k] = ""
+                        extra = ""
                         if cpu_ns and t == maxt:
-                            cap = sum(base / c for c in cpu_ns)
+                            cap = sum(base / min(r[k] for r in cpu_ns) for k in range(len(cpu_ns[0])))
                             row["capacity"] = f"{cap:.3f}"
                             row["capacity_efficiency"] = f"{base / ns / cap:.3f}"
+                            # Per round: the speedup over that round's fastest pinned 1-thread
+                            # run, and that against the round's own capacity; their medians.
+                            rs, re = [], []
+                            for r, cpus in enumerate(cpu_ns):
+                                tn = samples[t][r][0]["ns_per_particle_step"]
+                                rs.append(min(cpus) / tn)
+                                re.append(min(cpus) / tn / sum(min(cpus) / c for c in cpus))
+                            row["round_speedup"] = f"{statistics.median(rs):.3f}"
+                            row["round_capacity_efficiency"] = f"{statistics.median(re):.3f}"
+                            extra = (f" capacity {row['capacity']} (eff {row['capacity_efficiency']}); rounds: speedup "
+                                     + " ".join(f"{x:.3f}" for x in rs) + f" median {row['round_speedup']}, against the "
+                                     f"round's capacity median {row['round_capacity_efficiency']}; 1 thread pinned: "
+                                     + "; ".join(" ".join(f"{c:.1f}" for c in r) for r in cpu_ns) + " ns")
                         w.writerow(row)
                         f.flush()
                         rows.append(row)
                         print(f"{row['deck']:24s} {scheme:9s} regrid {rg:3d} threads {t:2d}: {row['ns_per_particle_step']:>7s} ns "
                               f"speedup {row['speedup']} eff {row['efficiency']} {row['peak_rss_bytes_per_particle']} B/p "
-                              f"(load {loads[0]:.2f})"
-                              + (f" capacity {row['capacity']} (eff {row['capacity_efficiency']}; 1 thread pinned: "
-                                 + " ".join(f"{c:.1f}" for c in cpu_ns) + " ns)" if row["capacity"] else ""), flush=True)
-
+                              f"(load {loads[0]:.2f})" + extra, flush=True)
 
 if __name__ == "__main__":
     main()

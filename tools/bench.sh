@@ -28,17 +28,26 @@ if [ ${#decks[@]} -eq 0 ]; then
   [ -f ../shared/decks/Taylor.mpm ] && decks=(../shared/decks/Taylor.mpm "${decks[@]}")
 fi
 # Serial speed of the Fortran reference program next to the C++ one: (t(N steps) - t(0
-# steps)) / (particles * N), so the deck reading is left out, as in mpm3d's own figure.
+# steps)) / (particles * N), so the deck reading is left out, as in mpm3d's own figure;
+# the best over the repeats, each pinned to every CPU in turn (the CPUs of a virtual
+# machine may run at different speeds for minutes).
 if [ -x "$build/fortran_ref/mpm3d_ref" ]; then
+  pins=("")
+  if command -v taskset > /dev/null; then
+    pins=()
+    for ((k = 0; k < $(nproc); ++k)); do pins+=("taskset -c $k"); done
+  fi
   ref_csv=$outdir/reference.csv
   echo "deck,particles,steps,mpm3d_ref_ns_per_particle_step,mpm3d_1thread_ns_per_particle_step,ratio" > "$ref_csv"
   for deck in "${decks[@]}"; do
     best=""
     for ((r = 0; r < repeats; ++r)); do
-      t0=$(date +%s.%N); "$build/fortran_ref/mpm3d_ref" --steps 0 "$deck" > /dev/null; t1=$(date +%s.%N)
-      "$build/fortran_ref/mpm3d_ref" --steps "$steps" "$deck" > /dev/null; t2=$(date +%s.%N)
-      d=$(awk -v a="$t0" -v b="$t1" -v c="$t2" 'BEGIN{print (c - b) - (b - a)}')
-      if [ -z "$best" ] || awk "BEGIN{exit !($d < $best)}"; then best=$d; fi
+      for pin in "${pins[@]}"; do  # pinned to each CPU in turn, as mpm3d's 1-thread time
+        t0=$(date +%s.%N); $pin "$build/fortran_ref/mpm3d_ref" --steps 0 "$deck" > /dev/null; t1=$(date +%s.%N)
+        $pin "$build/fortran_ref/mpm3d_ref" --steps "$steps" "$deck" > /dev/null; t2=$(date +%s.%N)
+        d=$(awk -v a="$t0" -v b="$t1" -v c="$t2" 'BEGIN{print (c - b) - (b - a)}')
+        if [ -z "$best" ] || awk "BEGIN{exit !($d < $best)}"; then best=$d; fi
+      done
     done
     # The 1-thread patch-scheme row without the adaptive grid.
     np=$(awk -F, -v d="$(basename "$deck")" '$1 == d && $3 == "patches" && $4 == 0 && $5 == 1 {print $2}' "$csv")
