@@ -21,6 +21,16 @@
 #endif
 
 namespace mpm3d {
+namespace {
+
+// The first 64-byte boundary in v (which has 8 words to spare), so that each thread's
+// patch range word has a cache line of its own.
+uint64_t* line_aligned(std::vector<uint64_t>& v) {
+  const auto at = reinterpret_cast<std::uintptr_t>(v.data());
+  return v.data() + ((64 - at % 64) % 64) / sizeof(uint64_t);
+}
+
+}  // namespace
 
 Simulation::Simulation(Model m, int patch_cells, ParticleOrder order) : model(std::move(m)), stages_(cxx_stages()) {
   if (patch_cells < 1) throw std::invalid_argument("patch size must be at least one cell");
@@ -100,7 +110,10 @@ void Simulation::bind() {
   c.pscratch = pscratch_.data();
   balance_.assign(kBalanceValues, 0.0);
   c.thread_share = balance_.data();
-  c.thread_busy = balance_.data() + kBalanceValues / 2;
+  c.thread_busy = balance_.data() + kBalanceValues / 3;
+  c.thread_done = balance_.data() + 2 * (kBalanceValues / 3);
+  ranges_.assign(kPatchRangeWords + 8, 0);
+  c.patch_ranges = line_aligned(ranges_);
   c.nshare = 0;  // the first binning sets equal shares
   std::vector<double>& grav = gravity_;
   grav.assign(3 * model.bodies.size(), 0.0);
@@ -162,7 +175,10 @@ void Simulation::bind() {
     ctx2.patch_buf = grid2.patch_buf.data();
     balance2_.assign(kBalanceValues, 0.0);
     ctx2.thread_share = balance2_.data();
-    ctx2.thread_busy = balance2_.data() + kBalanceValues / 2;
+    ctx2.thread_busy = balance2_.data() + kBalanceValues / 3;
+    ctx2.thread_done = balance2_.data() + 2 * (kBalanceValues / 3);
+    ranges2_.assign(kPatchRangeWords + 8, 0);
+    ctx2.patch_ranges = line_aligned(ranges2_);
   }
 }
 

@@ -81,6 +81,8 @@ class Simulation {
   // Thread shares and busy times of the patch stages (StepContext::thread_share), one set
   // per context, for up to kMaxBalancedThreads threads.
   std::vector<double> balance_, balance2_;
+  // Behind StepContext::patch_ranges (kPatchRangeWords from a 64-byte boundary).
+  std::vector<uint64_t> ranges_, ranges2_;
   void ensure_expansion_buffers();
   void ensure_patch_buffers();
   void health_check();

@@ -552,8 +552,8 @@ void scatter_mass_gradient(StepContext* c) {
 }  // namespace
 
 // The load balance of the patch stages, before the patch lists change, loop by loop
-// (PatchLoop): each thread's speed in a loop (the particles of its range per busy second
-// since the last binning) gives its share of that loop in the next step, taken halfway to
+// (PatchLoop): each thread's speed in a loop (the particles it did there per busy second
+// since the last binning: thread_done, else those of its range) gives its share of that loop in the next step, taken halfway to
 // damp the jumps of the patch granularity. A thread that had no particles counts at the
 // mean speed, and no share falls below a tenth of an equal one. On this project's virtual
 // machines one core can run 1.5x slower than the other for minutes; equal ranges then
@@ -575,6 +575,7 @@ void rebalance_threads(StepContext* c) {
       for (int t = 0; t < T; ++t) {
         c->thread_share[size_t(loop) * kMaxBalancedThreads + size_t(t)] = 1.0 / T;
         c->thread_busy[size_t(loop) * kMaxBalancedThreads + size_t(t)] = 0.0;
+        if (c->thread_done) c->thread_done[size_t(loop) * kMaxBalancedThreads + size_t(t)] = 0.0;
       }
     return;
   }
@@ -582,20 +583,24 @@ void rebalance_threads(StepContext* c) {
   for (int loop = 0; loop < LOOP_COUNT; ++loop) {
     double* share = c->thread_share + size_t(loop) * kMaxBalancedThreads;
     double* busy = c->thread_busy + size_t(loop) * kMaxBalancedThreads;
+    double* done = c->thread_done ? c->thread_done + size_t(loop) * kMaxBalancedThreads : nullptr;
     double sum = 0.0;
     int known = 0;
     for (int t = 0; t < T && T > 1; ++t) {
-      int lo, hi, n;
+      int lo, hi;
+      double n;
       if (loop == LOOP_BIN) {
         thread_particles(c, t, T, lo, hi);
         n = hi - lo;
+      } else if (done) {
+        n = done[t];  // its own range and what it took from others
       } else {
         thread_patches(c, PatchLoop(loop), t, T, lo, hi);
         n = c->patch_start[hi] - c->patch_start[lo];
       }
       rate[size_t(t)] = 0.0;
       if (n > 0 && busy[t] > 0.0) {
-        rate[size_t(t)] = double(n) / busy[t];
+        rate[size_t(t)] = n / busy[t];
         sum += rate[size_t(t)];
         ++known;
       }
@@ -611,7 +616,10 @@ void rebalance_threads(StepContext* c) {
       }
       for (int t = 0; t < T; ++t) share[t] /= total;
     }
-    for (int t = 0; t < T; ++t) busy[t] = 0.0;
+    for (int t = 0; t < T; ++t) {
+      busy[t] = 0.0;
+      if (done) done[t] = 0.0;
+    }
   }
 }
 

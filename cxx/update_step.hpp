@@ -2,6 +2,7 @@
 // Every stage takes one StepContext, a plain C struct of pointers and sizes, so the
 // same stage can come from C++ or from the Fortran reference (bind(C)), in any mix.
 #pragma once
+#include <cstdint>
 #include <string>
 
 #include "material.hpp"
@@ -69,6 +70,13 @@ struct StepContext {
   // new shares. Null: equal shares. Which thread does a patch never changes a bit.
   double *thread_share, *thread_busy;
   int nshare;
+  // The particles each thread did in each loop since the last binning (laid out as
+  // thread_busy; null: its range's). With patch_ranges, a thread that finishes its range
+  // takes the remaining patches of another's from the far end, so a CPU held back for a
+  // moment delays the loop by one patch at most; patch_ranges holds one 64-byte line per
+  // thread: the unclaimed patches [first, end) of its range, packed in one word.
+  double* thread_done;
+  uint64_t* patch_ranges;
 };
 
 typedef void (*StageFn)(StepContext*);
@@ -129,8 +137,10 @@ enum PatchLoop {
   LOOP_NORMAL_ASSEMBLY,  // contact: assembly of the mass gradients
   LOOP_COUNT
 };
-// Doubles behind StepContext::thread_share and thread_busy (shares, then busy times).
-constexpr size_t kBalanceValues = 2 * size_t(LOOP_COUNT) * size_t(kMaxBalancedThreads);
+// Doubles behind StepContext::thread_share, thread_busy and thread_done, in that order.
+constexpr size_t kBalanceValues = 3 * size_t(LOOP_COUNT) * size_t(kMaxBalancedThreads);
+// 64-bit words behind StepContext::patch_ranges (one cache line per thread).
+constexpr size_t kPatchRangeWords = 8 * size_t(kMaxBalancedThreads);
 // New thread shares of every PatchLoop from the busy times since the last call (the bin
 // stage calls it first; cxx/update_step.cpp). Equal shares when the team size changed.
 void rebalance_threads(StepContext* c);

@@ -200,19 +200,69 @@ inline void add_busy(const StepContext* c, PatchLoop loop, int t, double t0) {
   c->thread_busy[size_t(loop) * kMaxBalancedThreads + size_t(t)] += busy_clock() - t0;
 }
 
+// The unclaimed patches [first, end) of one thread's range in one word (StepContext::
+// patch_ranges): its owner claims from the front, others from the end, each claim one
+// compare-and-swap, so every patch is done exactly once.
+inline uint64_t pack_range(int first, int end) { return (uint64_t(uint32_t(first)) << 32) | uint32_t(end); }
+
+// Claims the next patch of range word w, from the front (the owner) or the end; -1 when
+// none is left.
+inline int claim_patch(uint64_t* w, bool front) {
+  uint64_t cur = __atomic_load_n(w, __ATOMIC_ACQUIRE);
+  for (;;) {
+    const int first = int(cur >> 32), end = int(uint32_t(cur));
+    if (first >= end) return -1;
+    const uint64_t next = front ? pack_range(first + 1, end) : pack_range(first, end - 1);
+    if (__atomic_compare_exchange_n(w, &cur, next, false, __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE))
+      return front ? first : end - 1;
+  }
+}
+
 // f(q) for every patch q, each thread over its thread_patches range of loop `loop`; the
-// thread's time in its range goes to that loop's thread_busy (rebalance_threads).
+// thread's time in the loop goes to that loop's thread_busy, and the particles it did to
+// thread_done (rebalance_threads). With c->patch_ranges a thread that is through its own
+// range takes the remaining patches of the others from their far ends (the ranges are set
+// before the team starts, so no thread can miss one); which thread does a patch never
+// changes a bit.
 template <class F>
 inline void for_thread_patches(const StepContext* c, PatchLoop loop, F&& f) {
-#pragma omp parallel
+  int team = 1;
+#ifdef _OPENMP
+  team = omp_get_max_threads();
+#endif
+  const bool steal = c->patch_ranges && team > 1 && team <= kMaxBalancedThreads;
+  if (steal)
+    for (int t = 0; t < team; ++t) {
+      int lo, hi;
+      thread_patches(c, loop, t, team, lo, hi);
+      __atomic_store_n(c->patch_ranges + 8 * size_t(t), pack_range(lo, hi), __ATOMIC_RELAXED);
+    }
+#pragma omp parallel num_threads(team)
   {
-    int t, T, lo, hi;
+    int t, T;
     team_position(t, T);
-    thread_patches(c, loop, t, T, lo, hi);
     const bool timed = balance_timed(c, T);
     const double t0 = timed ? busy_clock() : 0.0;
-    for (int q = lo; q < hi; ++q) f(q);
-    if (timed) add_busy(c, loop, t, t0);
+    int64_t done = 0;
+    auto run = [&](int q) {
+      f(q);
+      done += c->patch_start[q + 1] - c->patch_start[q];
+    };
+    if (steal && T == team) {
+      for (int q; (q = claim_patch(c->patch_ranges + 8 * size_t(t), true)) >= 0;) run(q);
+      for (int k = 1; k < T; ++k) {
+        uint64_t* w = c->patch_ranges + 8 * size_t((t + k) % T);
+        for (int q; (q = claim_patch(w, false)) >= 0;) run(q);
+      }
+    } else {
+      int lo, hi;
+      thread_patches(c, loop, t, T, lo, hi);
+      for (int q = lo; q < hi; ++q) run(q);
+    }
+    if (timed) {
+      add_busy(c, loop, t, t0);
+      if (c->thread_done) c->thread_done[size_t(loop) * kMaxBalancedThreads + size_t(t)] += double(done);
+    }
   }
 }
 

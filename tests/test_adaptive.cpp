@@ -257,7 +257,7 @@ TEST(Adaptive, ThreadSharesFollowEachLoopsMeasuredSpeed) {
   c.npatch = 8;
   c.patch_start = start.data();
   c.thread_share = balance.data();
-  c.thread_busy = balance.data() + mpm3d::kBalanceValues / 2;
+  c.thread_busy = balance.data() + mpm3d::kBalanceValues / 3;
   c.nshare = 0;
   auto share = [&](mpm3d::PatchLoop l, int t) { return c.thread_share[size_t(l) * mpm3d::kMaxBalancedThreads + t]; };
   auto busy = [&](mpm3d::PatchLoop l, int t) -> double& {
@@ -283,6 +283,17 @@ TEST(Adaptive, ThreadSharesFollowEachLoopsMeasuredSpeed) {
   busy(mpm3d::LOOP_G2P, 1) = 400.0 / 800.0;
   mpm3d::rebalance_threads(&c);
   EXPECT_NEAR(share(mpm3d::LOOP_G2P, 0), 0.5 * 5.0 / 12.0 + 0.5 / 3.0, 1e-15);
+  // With thread_done (the patches a thread took from another's range count as its own):
+  // 300 and 500 particles in equal times ask for 3/8, so the stress share goes to 7/16.
+  std::vector<double> done(size_t(mpm3d::LOOP_COUNT) * mpm3d::kMaxBalancedThreads, 0.0);
+  c.thread_done = done.data();
+  done[size_t(mpm3d::LOOP_STRESS) * mpm3d::kMaxBalancedThreads + 0] = 300.0;
+  done[size_t(mpm3d::LOOP_STRESS) * mpm3d::kMaxBalancedThreads + 1] = 500.0;
+  busy(mpm3d::LOOP_STRESS, 0) = 1.0;
+  busy(mpm3d::LOOP_STRESS, 1) = 1.0;
+  mpm3d::rebalance_threads(&c);
+  EXPECT_NEAR(share(mpm3d::LOOP_STRESS, 0), 7.0 / 16.0, 1e-15);
+  EXPECT_EQ(done[size_t(mpm3d::LOOP_STRESS) * mpm3d::kMaxBalancedThreads + 1], 0.0);
   omp_set_num_threads(3);
   mpm3d::rebalance_threads(&c);
   EXPECT_EQ(c.nshare, 3);
