@@ -4,7 +4,9 @@
 // fortran_ref/tests.cmake; these tests check the rules and the hand-derived figures.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+#include <thread>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -17,6 +19,7 @@
 #include "ffi.hpp"
 #include "mpm3d.hpp"
 #include "test_util.hpp"
+#include "update_step_detail.hpp"
 
 using testutil::RunResult;
 using testutil::TempDir;
@@ -298,6 +301,51 @@ TEST(Adaptive, ThreadSharesFollowEachLoopsMeasuredSpeed) {
   mpm3d::rebalance_threads(&c);
   EXPECT_EQ(c.nshare, 3);
   EXPECT_EQ(share(mpm3d::LOOP_G2P, 2), 1.0 / 3.0);
+  omp_set_num_threads(threads_before);
+#endif
+}
+
+// Work stealing in the patch loops (claim_patch): 4 threads, each with a range of 1000
+// patches of 1 particle, run for_thread_patches 200 times; each thread sleeps now and then
+// inside a patch so that the others steal. Every patch must be done exactly once per loop,
+// and what the threads did must add up to all the particles.
+TEST(Adaptive, StolenPatchesAreDoneExactlyOnce) {
+#ifndef _OPENMP
+  GTEST_SKIP() << "built without OpenMP";
+#else
+  const int threads_before = omp_get_max_threads();
+  omp_set_num_threads(4);
+  const int npatch = 4000;
+  std::vector<int> start(npatch + 1);
+  for (int q = 0; q <= npatch; ++q) start[size_t(q)] = q;
+  std::vector<double> balance(mpm3d::kBalanceValues, 0.0);
+  std::vector<uint64_t> ranges(mpm3d::kPatchRangeWords, 0);
+  StepContext c{};
+  c.np = npatch;
+  c.npatch = npatch;
+  c.patch_start = start.data();
+  c.thread_share = balance.data();
+  c.thread_busy = balance.data() + mpm3d::kBalanceValues / 3;
+  c.thread_done = balance.data() + 2 * (mpm3d::kBalanceValues / 3);
+  c.patch_ranges = ranges.data();
+  mpm3d::rebalance_threads(&c);  // equal shares for 4 threads
+  std::vector<int> hits(npatch);
+  std::vector<int> by_thread(npatch);
+  long stolen = 0;
+  for (int rep = 0; rep < 200; ++rep) {
+    std::fill(hits.begin(), hits.end(), 0);
+    mpm3d::for_thread_patches(&c, mpm3d::LOOP_G2P, [&](int q) {
+      __atomic_add_fetch(&hits[size_t(q)], 1, __ATOMIC_RELAXED);
+      by_thread[size_t(q)] = omp_get_thread_num();
+      if (q % 997 == rep % 997) std::this_thread::sleep_for(std::chrono::microseconds(100));  // held back
+    });
+    for (int q = 0; q < npatch; ++q) ASSERT_EQ(hits[size_t(q)], 1) << "patch " << q << " in loop " << rep;
+    for (int q = 0; q < npatch; ++q) stolen += by_thread[size_t(q)] != q / 1000;
+  }
+  double done = 0.0;
+  for (int t = 0; t < 4; ++t) done += c.thread_done[size_t(mpm3d::LOOP_G2P) * mpm3d::kMaxBalancedThreads + t];
+  EXPECT_EQ(done, 200.0 * npatch);
+  EXPECT_GT(stolen, 0) << "no patch was ever taken from another thread's range";
   omp_set_num_threads(threads_before);
 #endif
 }
