@@ -553,8 +553,8 @@ void scatter_mass_gradient(StepContext* c) {
 
 // The load balance of the patch stages, before the patch lists change, loop by loop
 // (PatchLoop): each thread's speed in a loop (the particles it did there per busy second
-// since the last binning: thread_done, else those of its range) gives its share of that loop in the next step, taken halfway to
-// damp the jumps of the patch granularity. A thread that had no particles counts at the
+// since the last binning: thread_done, else those of its range) gives its share of that
+// loop in the next step, taken halfway to damp the jumps of the patch granularity. A thread that had no particles counts at the
 // mean speed, and no share falls below a tenth of an equal one. On this project's virtual
 // machines one core can run 1.5x slower than the other for minutes; equal ranges then
 // leave the fast thread waiting a third of each step. A loop that did not run keeps its
@@ -573,17 +573,17 @@ void rebalance_threads(StepContext* c) {
     c->nshare = T;
     for (int loop = 0; loop < LOOP_COUNT; ++loop)
       for (int t = 0; t < T; ++t) {
-        c->thread_share[size_t(loop) * kMaxBalancedThreads + size_t(t)] = 1.0 / T;
-        c->thread_busy[size_t(loop) * kMaxBalancedThreads + size_t(t)] = 0.0;
-        if (c->thread_done) c->thread_done[size_t(loop) * kMaxBalancedThreads + size_t(t)] = 0.0;
+        c->thread_share[balance_index(loop, t)] = 1.0 / T;
+        c->thread_busy[balance_index(loop, t)] = 0.0;
+        if (c->thread_done) c->thread_done[balance_index(loop, t)] = 0.0;
       }
     return;
   }
   std::vector<double> rate(size_t(T), 0.0);
   for (int loop = 0; loop < LOOP_COUNT; ++loop) {
-    double* share = c->thread_share + size_t(loop) * kMaxBalancedThreads;
-    double* busy = c->thread_busy + size_t(loop) * kMaxBalancedThreads;
-    double* done = c->thread_done ? c->thread_done + size_t(loop) * kMaxBalancedThreads : nullptr;
+    double* share = c->thread_share + balance_index(loop, 0);
+    double* busy = c->thread_busy + balance_index(loop, 0);
+    double* done = c->thread_done ? c->thread_done + balance_index(loop, 0) : nullptr;
     double sum = 0.0;
     int known = 0;
     for (int t = 0; t < T && T > 1; ++t) {

@@ -64,9 +64,9 @@ struct StepContext {
   double *tgrid;       // --scatter expansion: per-thread grid copies (kNodeFields, nnode, ntgrid)
   int ntgrid;          // copies in tgrid
   // Load balance of the trilinear patch stages (update_step_detail.hpp), one set per
-  // PatchLoop: in loop l, thread t of nshare takes about share[l * kMaxBalancedThreads + t]
+  // PatchLoop: in loop l, thread t of nshare takes about share[balance_index(l, t)]
   // of the binned particles (each loop's shares sum to 1) and adds the seconds it spends
-  // there to busy[l * kMaxBalancedThreads + t]; the bin stage turns the busy times into
+  // there to busy[balance_index(l, t)]; the bin stage turns the busy times into
   // new shares. Null: equal shares. Which thread does a patch never changes a bit.
   double *thread_share, *thread_busy;
   int nshare;
@@ -141,6 +141,8 @@ enum PatchLoop {
 constexpr size_t kBalanceValues = 3 * size_t(LOOP_COUNT) * size_t(kMaxBalancedThreads);
 // 64-bit words behind StepContext::patch_ranges (one cache line per thread).
 constexpr size_t kPatchRangeWords = 8 * size_t(kMaxBalancedThreads);
+// Where thread t's value of loop `loop` lies in thread_share, thread_busy and thread_done.
+constexpr size_t balance_index(int loop, int t) { return size_t(loop) * size_t(kMaxBalancedThreads) + size_t(t); }
 // New thread shares of every PatchLoop from the busy times since the last call (the bin
 // stage calls it first; cxx/update_step.cpp). Equal shares when the team size changed.
 void rebalance_threads(StepContext* c);

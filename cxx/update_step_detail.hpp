@@ -142,7 +142,7 @@ inline int share_boundary(const StepContext* c, PatchLoop loop, int u, int T, in
   if (u <= 0) return 0;
   if (u >= T) return int(total);
   if (!(c->thread_share && c->nshare == T)) return int((total * u) / T);
-  const double* share = c->thread_share + size_t(loop) * kMaxBalancedThreads;
+  const double* share = c->thread_share + balance_index(loop, 0);
   double cum = 0.0;
   for (int v = 0; v < u; ++v) cum += share[v];
   return int(std::min(double(total), std::max(0.0, cum * double(total) + 0.5)));
@@ -197,7 +197,7 @@ inline bool balance_timed(const StepContext* c, int T) { return c->thread_busy &
 
 // Adds the seconds since t0 to thread t's busy time in loop `loop` (rebalance_threads).
 inline void add_busy(const StepContext* c, PatchLoop loop, int t, double t0) {
-  c->thread_busy[size_t(loop) * kMaxBalancedThreads + size_t(t)] += busy_clock() - t0;
+  c->thread_busy[balance_index(loop, t)] += busy_clock() - t0;
 }
 
 // The unclaimed patches [first, end) of one thread's range in one word (StepContext::
@@ -261,7 +261,7 @@ inline void for_thread_patches(const StepContext* c, PatchLoop loop, F&& f) {
     }
     if (timed) {
       add_busy(c, loop, t, t0);
-      if (c->thread_done) c->thread_done[size_t(loop) * kMaxBalancedThreads + size_t(t)] += double(done);
+      if (c->thread_done) c->thread_done[balance_index(loop, t)] += double(done);
     }
   }
 }

@@ -262,9 +262,9 @@ TEST(Adaptive, ThreadSharesFollowEachLoopsMeasuredSpeed) {
   c.thread_share = balance.data();
   c.thread_busy = balance.data() + mpm3d::kBalanceValues / 3;
   c.nshare = 0;
-  auto share = [&](mpm3d::PatchLoop l, int t) { return c.thread_share[size_t(l) * mpm3d::kMaxBalancedThreads + t]; };
+  auto share = [&](mpm3d::PatchLoop l, int t) { return c.thread_share[mpm3d::balance_index(l, t)]; };
   auto busy = [&](mpm3d::PatchLoop l, int t) -> double& {
-    return c.thread_busy[size_t(l) * mpm3d::kMaxBalancedThreads + t];
+    return c.thread_busy[mpm3d::balance_index(l, t)];
   };
   mpm3d::rebalance_threads(&c);  // the first call sets equal shares for 2 threads
   EXPECT_EQ(c.nshare, 2);
@@ -290,13 +290,13 @@ TEST(Adaptive, ThreadSharesFollowEachLoopsMeasuredSpeed) {
   // 300 and 500 particles in equal times ask for 3/8, so the stress share goes to 7/16.
   std::vector<double> done(size_t(mpm3d::LOOP_COUNT) * mpm3d::kMaxBalancedThreads, 0.0);
   c.thread_done = done.data();
-  done[size_t(mpm3d::LOOP_STRESS) * mpm3d::kMaxBalancedThreads + 0] = 300.0;
-  done[size_t(mpm3d::LOOP_STRESS) * mpm3d::kMaxBalancedThreads + 1] = 500.0;
+  done[mpm3d::balance_index(mpm3d::LOOP_STRESS, 0)] = 300.0;
+  done[mpm3d::balance_index(mpm3d::LOOP_STRESS, 1)] = 500.0;
   busy(mpm3d::LOOP_STRESS, 0) = 1.0;
   busy(mpm3d::LOOP_STRESS, 1) = 1.0;
   mpm3d::rebalance_threads(&c);
   EXPECT_NEAR(share(mpm3d::LOOP_STRESS, 0), 7.0 / 16.0, 1e-15);
-  EXPECT_EQ(done[size_t(mpm3d::LOOP_STRESS) * mpm3d::kMaxBalancedThreads + 1], 0.0);
+  EXPECT_EQ(done[mpm3d::balance_index(mpm3d::LOOP_STRESS, 1)], 0.0);
   omp_set_num_threads(3);
   mpm3d::rebalance_threads(&c);
   EXPECT_EQ(c.nshare, 3);
@@ -343,7 +343,7 @@ TEST(Adaptive, StolenPatchesAreDoneExactlyOnce) {
     for (int q = 0; q < npatch; ++q) stolen += by_thread[size_t(q)] != q / 1000;
   }
   double done = 0.0;
-  for (int t = 0; t < 4; ++t) done += c.thread_done[size_t(mpm3d::LOOP_G2P) * mpm3d::kMaxBalancedThreads + t];
+  for (int t = 0; t < 4; ++t) done += c.thread_done[mpm3d::balance_index(mpm3d::LOOP_G2P, t)];
   EXPECT_EQ(done, 200.0 * npatch);
   EXPECT_GT(stolen, 0) << "no patch was ever taken from another thread's range";
   omp_set_num_threads(threads_before);
