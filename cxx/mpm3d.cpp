@@ -30,6 +30,18 @@ uint64_t* line_aligned(std::vector<uint64_t>& v) {
   return v.data() + ((64 - at % 64) % 64) / sizeof(uint64_t);
 }
 
+// Points c's load-balance arrays (thread shares, busy times, particles done, patch range
+// words) at fresh storage in balance and ranges; the first binning sets equal shares.
+void bind_balance(StepContext& c, std::vector<double>& balance, std::vector<uint64_t>& ranges) {
+  balance.assign(kBalanceValues, 0.0);
+  c.thread_share = balance.data();
+  c.thread_busy = balance.data() + kBalanceValues / 3;
+  c.thread_done = balance.data() + 2 * (kBalanceValues / 3);
+  ranges.assign(kPatchRangeWords + 8, 0);
+  c.patch_ranges = line_aligned(ranges);
+  c.nshare = 0;
+}
+
 }  // namespace
 
 Simulation::Simulation(Model m, int patch_cells, ParticleOrder order) : model(std::move(m)), stages_(cxx_stages()) {
@@ -108,13 +120,7 @@ void Simulation::bind() {
   c.cell = cell_.data();
   pscratch_.assign(size_t(P.np), 0);
   c.pscratch = pscratch_.data();
-  balance_.assign(kBalanceValues, 0.0);
-  c.thread_share = balance_.data();
-  c.thread_busy = balance_.data() + kBalanceValues / 3;
-  c.thread_done = balance_.data() + 2 * (kBalanceValues / 3);
-  ranges_.assign(kPatchRangeWords + 8, 0);
-  c.patch_ranges = line_aligned(ranges_);
-  c.nshare = 0;  // the first binning sets equal shares
+  bind_balance(c, balance_, ranges_);
   std::vector<double>& grav = gravity_;
   grav.assign(3 * model.bodies.size(), 0.0);
   for (size_t b = 0; b < model.bodies.size(); ++b)
@@ -173,12 +179,7 @@ void Simulation::bind() {
     ctx2.patch_part = grid2.patch_part.data();
     ctx2.patch_slot = grid2.patch_slot.data();
     ctx2.patch_buf = grid2.patch_buf.data();
-    balance2_.assign(kBalanceValues, 0.0);
-    ctx2.thread_share = balance2_.data();
-    ctx2.thread_busy = balance2_.data() + kBalanceValues / 3;
-    ctx2.thread_done = balance2_.data() + 2 * (kBalanceValues / 3);
-    ranges2_.assign(kPatchRangeWords + 8, 0);
-    ctx2.patch_ranges = line_aligned(ranges2_);
+    bind_balance(ctx2, balance2_, ranges2_);
   }
 }
 
