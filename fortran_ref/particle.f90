@@ -148,52 +148,23 @@ contains
     do i = 1, n
       from(i) = int(mod(key(i), int(n, int64))) + 1
     end do
-    call permute2(p%x)
-    call permute2(p%v)
-    call permute2(p%sig)
-    call permute1(p%mass)
-    call permute1(p%vol)
-    call permute1(p%epeff)
-    call permute1(p%ie)
-    call permutei(p%mat)
-    call permutei(p%body)
-    if (allocated(p%temp)) call permute1(p%temp)
-    if (allocated(p%fext)) call permute2(p%fext)
-    if (allocated(p%tlight)) call permute1(p%tlight)
-    if (allocated(p%qv)) call permute1(p%qv)
-    if (allocated(p%psize)) call permute1(p%psize)
-    call permutei(p%id)
-  contains
-    subroutine permute2(a2)
-      real(dp), allocatable, intent(inout) :: a2(:,:)
-      real(dp), allocatable :: w(:,:)
-      integer :: k
-      allocate(w(size(a2, 1), n))
-      do k = 1, n
-        w(:, k) = a2(:, from(k))
-      end do
-      call move_alloc(w, a2)
-    end subroutine permute2
-    subroutine permute1(a1)
-      real(dp), allocatable, intent(inout) :: a1(:)
-      real(dp), allocatable :: w(:)
-      integer :: k
-      allocate(w(n))
-      do k = 1, n
-        w(k) = a1(from(k))
-      end do
-      call move_alloc(w, a1)
-    end subroutine permute1
-    subroutine permutei(ai)
-      integer(c_int), allocatable, intent(inout) :: ai(:)
-      integer(c_int), allocatable :: w(:)
-      integer :: k
-      allocate(w(n))
-      do k = 1, n
-        w(k) = ai(from(k))
-      end do
-      call move_alloc(w, ai)
-    end subroutine permutei
+    ! Gathers through the vector subscript from (the right side is evaluated before the
+    ! assignment, so each array is permuted whole).
+    p%x = p%x(:, from)
+    p%v = p%v(:, from)
+    p%sig = p%sig(:, from)
+    p%mass = p%mass(from)
+    p%vol = p%vol(from)
+    p%epeff = p%epeff(from)
+    p%ie = p%ie(from)
+    p%mat = p%mat(from)
+    p%body = p%body(from)
+    if (allocated(p%temp)) p%temp = p%temp(from)
+    if (allocated(p%fext)) p%fext = p%fext(:, from)
+    if (allocated(p%tlight)) p%tlight = p%tlight(from)
+    if (allocated(p%qv)) p%qv = p%qv(from)
+    if (allocated(p%psize)) p%psize = p%psize(from)
+    p%id = p%id(from)
   end subroutine particles_order_by_blocks
 
   ! Stored index (1-based) of each deck particle: the inverse of id, for the outputs.
