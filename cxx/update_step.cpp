@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <memory>
 #include <stdexcept>
 #include <vector>
 
@@ -629,59 +630,58 @@ using namespace mpm3d;
 
 extern "C" void mpm3d_cxx_bin(StepContext* c) {
   rebalance_threads(c);
-  const int np = c->np, npatch = c->npatch;
+  const int npatch = c->npatch;
   int* patch_of = c->pscratch;  // patch of each particle, -1 outside
-  int outside = 0;
-  // Cells, local coordinates, patches (transfer_lanes.hpp), in fixed chunks.
-  // Each thread bins a run of particles sized by its share: in the block storage order
-  // (order_by_blocks) about the particles its patch range holds.
+  int outside = 0, nslot = 0;
+  int team = 1;
+#ifdef _OPENMP
+  team = omp_get_max_threads();
+#endif
+  // One row of patch counts per thread, each zeroed by its thread.
+  std::unique_ptr<int[]> counts(new int[size_t(team) * size_t(npatch)]);
   const bool avx2 = lanes_use_avx2();
-#pragma omp parallel reduction(+ : outside)
+  // One team for the whole stage: each thread bins a run of particles sized by its share
+  // (in the block storage order (order_by_blocks) about the particles its patch range
+  // holds) and counts them by patch; then a stable counting sort with those runs as its
+  // chunks. The runs are consecutive and ascending, so each patch lists its particles in
+  // ascending index whatever the number of threads: the lists do not depend on it.
+#pragma omp parallel num_threads(team) reduction(+ : outside)
   {
     int t, T, lo, hi;
     team_position(t, T);
     thread_particles(c, t, T, lo, hi);
     const bool timed = balance_timed(c, T);
     const double t0 = timed ? busy_clock() : 0.0;
+    int* cnt = counts.get() + size_t(t) * size_t(npatch);
+    std::fill(cnt, cnt + npatch, 0);
+    // Cells, local coordinates, patches (transfer_lanes.hpp).
     outside += avx2 ? bin_range_avx2(c, lo, hi, patch_of) : bin_range<VectorLane<kLanes>>(c, lo, hi, patch_of);
-    if (timed) add_busy(c, LOOP_BIN, t, t0);
-  }
-  // Stable counting sort of the particles by patch: ascending particle index within each
-  // patch whatever the number of chunks, so the lists do not depend on the thread count.
-  int nchunk = 1;
-#ifdef _OPENMP
-  nchunk = omp_get_max_threads();
-#endif
-  if (nchunk > np / 1024 + 1) nchunk = np / 1024 + 1;
-  std::vector<int> counts(size_t(nchunk) * size_t(npatch), 0);
-#pragma omp parallel for schedule(static, 1) num_threads(nchunk)
-  for (int t = 0; t < nchunk; ++t) {
-    int* cnt = counts.data() + size_t(t) * npatch;
-    const int p0 = int(int64_t(np) * t / nchunk), p1 = int(int64_t(np) * (t + 1) / nchunk);
-    for (int p = p0; p < p1; ++p)
+    for (int p = lo; p < hi; ++p)
       if (patch_of[p] >= 0) ++cnt[patch_of[p]];
-  }
-  int* start = c->patch_start;
-  int offset = 0, nslot = 0;
-  for (int q = 0; q < npatch; ++q) {
-    start[q] = offset;
-    int total = 0;
-    for (int t = 0; t < nchunk; ++t) {
-      int& cnt = counts[size_t(t) * npatch + q];
-      const int n = cnt;
-      cnt = offset + total;  // becomes this chunk's fill pointer
-      total += n;
+    if (timed) add_busy(c, LOOP_BIN, t, t0);
+#pragma omp barrier
+#pragma omp master
+    {
+      // Patch starts, buffer slots, and each run's fill pointer into every patch's list.
+      int* start = c->patch_start;
+      int offset = 0;
+      for (int q = 0; q < npatch; ++q) {
+        start[q] = offset;
+        int total = 0;
+        for (int u = 0; u < T; ++u) {
+          int& n = counts[size_t(u) * size_t(npatch) + size_t(q)];
+          const int here = n;
+          n = offset + total;
+          total += here;
+        }
+        c->patch_slot[q] = total > 0 ? nslot++ : -1;
+        offset += total;
+      }
+      start[npatch] = offset;
     }
-    c->patch_slot[q] = total > 0 ? nslot++ : -1;
-    offset += total;
-  }
-  start[npatch] = offset;
-#pragma omp parallel for schedule(static, 1) num_threads(nchunk)
-  for (int t = 0; t < nchunk; ++t) {
-    int* fill = counts.data() + size_t(t) * npatch;
-    const int p0 = int(int64_t(np) * t / nchunk), p1 = int(int64_t(np) * (t + 1) / nchunk);
-    for (int p = p0; p < p1; ++p)
-      if (patch_of[p] >= 0) c->patch_part[fill[patch_of[p]]++] = p;
+#pragma omp barrier
+    for (int p = lo; p < hi; ++p)
+      if (patch_of[p] >= 0) c->patch_part[cnt[patch_of[p]]++] = p;
   }
   c->nslot = nslot;
   c->noutside = outside;
