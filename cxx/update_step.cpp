@@ -452,17 +452,16 @@ inline void velocity_gradient_gimp(const StepContext* c, const CellDecoder& dec,
 // The particle loop of the stress stage: velocity gradients from the node velocities
 // gvel, then strain and spin increments, volume and stress update, consecutive particles
 // of one material kStressLanes at a time (stress_block; a shorter run lane by lane).
-// Trilinear: per patch list, gradients in lanes too (stress_list, transfer_lanes.hpp);
+// Trilinear: chunks of the patch lists, gradients in lanes too (stress_list, transfer_lanes.hpp);
 // GIMP: in fixed particle chunks.
 void stress_particles(StepContext* c, const double* gvel) {
   const CellDecoder dec(c);
   const StressBlockArgs args{c->dt, c->temp != nullptr, c->qv != nullptr, c->bulk_q1, c->bulk_q2, c->h};
   if (c->shape != 1) {
     const bool avx2 = lanes_use_avx2();
-    for_thread_patches(c, LOOP_STRESS, [&](int q) {
-      const int* list = c->patch_part + c->patch_start[q];
-      const int count = c->patch_start[q + 1] - c->patch_start[q];
-      if (count == 0) return;
+    // Each particle's update is its own, so the lists go in chunks across patch ends.
+    for_thread_list_chunks(c, LOOP_STRESS, [&](int first, int count) {
+      const int* list = c->patch_part + first;
       if (avx2)
         stress_list_avx2(c, list, count, gvel, args);
       else
@@ -595,6 +594,10 @@ void rebalance_threads(StepContext* c) {
         n = hi - lo;
       } else if (done) {
         n = done[t];  // its own range and what it took from others
+      } else if (loop == LOOP_STRESS) {
+        thread_list_chunks(c, LOOP_STRESS, t, T, lo, hi);
+        const int total = c->patch_start[c->npatch];
+        n = std::min(total, hi * kListChunk) - std::min(total, lo * kListChunk);
       } else {
         thread_patches(c, PatchLoop(loop), t, T, lo, hi);
         n = c->patch_start[hi] - c->patch_start[lo];

@@ -218,14 +218,32 @@ inline int claim_patch(uint64_t* w, bool front) {
   }
 }
 
-// f(q) for every patch q, each thread over its thread_patches range of loop `loop`; the
-// thread's time in the loop goes to that loop's thread_busy, and the particles it did to
-// thread_done (rebalance_threads). With c->patch_ranges a thread that is through its own
-// range takes the remaining patches of the others from their far ends (the ranges are set
-// before the team starts, so no thread can miss one); which thread does a patch never
-// changes a bit.
-template <class F>
-inline void for_thread_patches(const StepContext* c, PatchLoop loop, F&& f) {
+// The particle stages that need no patch buffer (the stress update) take the patch lists
+// in chunks of this many entries: runs of whole lane groups, fine enough that the shares
+// cut within a patch and that a stolen item is short.
+constexpr int kListChunk = 64;
+
+// Chunks [lo, hi) of the concatenated patch lists (patch_part) of thread t of T in loop
+// `loop`: its share of the binned particles, rounded to whole chunks.
+inline void thread_list_chunks(const StepContext* c, PatchLoop loop, int t, int T, int& lo, int& hi) {
+  const int total = c->patch_start[c->npatch];
+  const int nchunk = (total + kListChunk - 1) / kListChunk;
+  auto first = [&](int u) -> int {
+    if (u >= T) return nchunk;
+    return std::min(nchunk, (share_boundary(c, loop, u, T, total) + kListChunk / 2) / kListChunk);
+  };
+  lo = first(t);
+  hi = first(t + 1);
+}
+
+// f(i) for every item i of a loop, each thread over its range(t, T, lo, hi); the thread's
+// time in the loop goes to that loop's thread_busy, and the particles it did (weight(i)
+// each) to thread_done (rebalance_threads). With c->patch_ranges a thread that is through
+// its own range takes the remaining items of the others from their far ends (the ranges
+// are set before the team starts, so no thread can miss one); which thread does an item
+// never changes a bit.
+template <class Range, class Weight, class F>
+inline void for_thread_items(const StepContext* c, PatchLoop loop, Range&& range, Weight&& weight, F&& f) {
   int team = 1;
 #ifdef _OPENMP
   team = omp_get_max_threads();
@@ -234,7 +252,7 @@ inline void for_thread_patches(const StepContext* c, PatchLoop loop, F&& f) {
   if (steal)
     for (int t = 0; t < team; ++t) {
       int lo, hi;
-      thread_patches(c, loop, t, team, lo, hi);
+      range(t, team, lo, hi);
       __atomic_store_n(c->patch_ranges + 8 * size_t(t), pack_range(lo, hi), __ATOMIC_RELAXED);
     }
 #pragma omp parallel num_threads(team)
@@ -244,26 +262,45 @@ inline void for_thread_patches(const StepContext* c, PatchLoop loop, F&& f) {
     const bool timed = balance_timed(c, T);
     const double t0 = timed ? busy_clock() : 0.0;
     int64_t done = 0;
-    auto run = [&](int q) {
-      f(q);
-      done += c->patch_start[q + 1] - c->patch_start[q];
+    auto run = [&](int i) {
+      f(i);
+      done += weight(i);
     };
     if (steal && T == team) {
-      for (int q; (q = claim_patch(c->patch_ranges + 8 * size_t(t), true)) >= 0;) run(q);
+      for (int i; (i = claim_patch(c->patch_ranges + 8 * size_t(t), true)) >= 0;) run(i);
       for (int k = 1; k < T; ++k) {
         uint64_t* w = c->patch_ranges + 8 * size_t((t + k) % T);
-        for (int q; (q = claim_patch(w, false)) >= 0;) run(q);
+        for (int i; (i = claim_patch(w, false)) >= 0;) run(i);
       }
     } else {
       int lo, hi;
-      thread_patches(c, loop, t, T, lo, hi);
-      for (int q = lo; q < hi; ++q) run(q);
+      range(t, T, lo, hi);
+      for (int i = lo; i < hi; ++i) run(i);
     }
     if (timed) {
       add_busy(c, loop, t, t0);
       if (c->thread_done) c->thread_done[balance_index(loop, t)] += double(done);
     }
   }
+}
+
+// f(q) for every patch q, each thread over its thread_patches range of loop `loop`.
+template <class F>
+inline void for_thread_patches(const StepContext* c, PatchLoop loop, F&& f) {
+  for_thread_items(
+      c, loop, [&](int t, int T, int& lo, int& hi) { thread_patches(c, loop, t, T, lo, hi); },
+      [&](int q) { return c->patch_start[q + 1] - c->patch_start[q]; }, f);
+}
+
+// f(first, count) for every chunk of kListChunk entries of the patch lists (the last one
+// shorter), each thread over its thread_list_chunks range of loop `loop`.
+template <class F>
+inline void for_thread_list_chunks(const StepContext* c, PatchLoop loop, F&& f) {
+  const int total = c->patch_start[c->npatch];
+  auto count = [total](int k) { return std::min(kListChunk, total - k * kListChunk); };
+  for_thread_items(
+      c, loop, [&](int t, int T, int& lo, int& hi) { thread_list_chunks(c, loop, t, T, lo, hi); }, count,
+      [&](int k) { f(k * kListChunk, count(k)); });
 }
 
 }  // namespace

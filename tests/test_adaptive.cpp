@@ -276,7 +276,10 @@ TEST(Adaptive, ThreadSharesFollowEachLoopsMeasuredSpeed) {
   mpm3d::rebalance_threads(&c);
   EXPECT_NEAR(share(mpm3d::LOOP_G2P, 0), 5.0 / 12.0, 1e-15);
   EXPECT_NEAR(share(mpm3d::LOOP_G2P, 1), 7.0 / 12.0, 1e-15);
-  EXPECT_EQ(share(mpm3d::LOOP_STRESS, 0), 0.5);
+  // The stress loop takes the lists in chunks of kListChunk (64) entries: at equal shares
+  // thread 0 has 6 of the 13 chunks, 384 of the 800 particles, so equal busy times make it
+  // the slower one: 0.5 * 0.5 + 0.5 * 384 / 800.
+  EXPECT_NEAR(share(mpm3d::LOOP_STRESS, 0), 0.49, 1e-15);
   EXPECT_EQ(share(mpm3d::LOOP_FORCES, 1), 0.5);
   for (int l = 0; l < mpm3d::LOOP_COUNT; ++l)
     for (int t = 0; t < 2; ++t) EXPECT_EQ(busy(mpm3d::PatchLoop(l), t), 0.0);
@@ -287,7 +290,8 @@ TEST(Adaptive, ThreadSharesFollowEachLoopsMeasuredSpeed) {
   mpm3d::rebalance_threads(&c);
   EXPECT_NEAR(share(mpm3d::LOOP_G2P, 0), 0.5 * 5.0 / 12.0 + 0.5 / 3.0, 1e-15);
   // With thread_done (the patches a thread took from another's range count as its own):
-  // 300 and 500 particles in equal times ask for 3/8, so the stress share goes to 7/16.
+  // 300 and 500 particles in equal times ask for 3/8, so the stress share goes halfway
+  // there from 0.49: 0.5 * 0.49 + 0.5 * 3 / 8.
   std::vector<double> done(size_t(mpm3d::LOOP_COUNT) * mpm3d::kMaxBalancedThreads, 0.0);
   c.thread_done = done.data();
   done[mpm3d::balance_index(mpm3d::LOOP_STRESS, 0)] = 300.0;
@@ -295,7 +299,7 @@ TEST(Adaptive, ThreadSharesFollowEachLoopsMeasuredSpeed) {
   busy(mpm3d::LOOP_STRESS, 0) = 1.0;
   busy(mpm3d::LOOP_STRESS, 1) = 1.0;
   mpm3d::rebalance_threads(&c);
-  EXPECT_NEAR(share(mpm3d::LOOP_STRESS, 0), 7.0 / 16.0, 1e-15);
+  EXPECT_NEAR(share(mpm3d::LOOP_STRESS, 0), 0.5 * 0.49 + 0.5 * 3.0 / 8.0, 1e-15);
   EXPECT_EQ(done[mpm3d::balance_index(mpm3d::LOOP_STRESS, 1)], 0.0);
   omp_set_num_threads(3);
   mpm3d::rebalance_threads(&c);
@@ -346,6 +350,56 @@ TEST(Adaptive, StolenPatchesAreDoneExactlyOnce) {
   for (int t = 0; t < 4; ++t) done += c.thread_done[mpm3d::balance_index(mpm3d::LOOP_G2P, t)];
   EXPECT_EQ(done, 200.0 * npatch);
   EXPECT_GT(stolen, 0) << "no patch was ever taken from another thread's range";
+  omp_set_num_threads(threads_before);
+#endif
+}
+
+// The stress loop's chunks of the patch lists (for_thread_list_chunks): patches of 100,
+// 30 and 1 particles (601 list entries), 3 threads, stealing on. The chunks are 64 entries
+// from the start of the lists whatever the patch ends (the tenth one 25 long), each done
+// exactly once per loop, and thread_done adds up to the entries.
+TEST(Adaptive, ListChunksCoverEveryEntryOnce) {
+#ifndef _OPENMP
+  GTEST_SKIP() << "built without OpenMP";
+#else
+  const int threads_before = omp_get_max_threads();
+  omp_set_num_threads(3);
+  std::vector<int> start = {0, 100, 100, 130, 131, 231, 331, 431, 531, 561, 601};
+  const int npatch = int(start.size()) - 1;
+  std::vector<double> balance(mpm3d::kBalanceValues, 0.0);
+  std::vector<uint64_t> ranges(mpm3d::kPatchRangeWords, 0);
+  StepContext c{};
+  c.np = 601;
+  c.npatch = npatch;
+  c.patch_start = start.data();
+  c.thread_share = balance.data();
+  c.thread_busy = balance.data() + mpm3d::kBalanceValues / 3;
+  c.thread_done = balance.data() + 2 * (mpm3d::kBalanceValues / 3);
+  c.patch_ranges = ranges.data();
+  mpm3d::rebalance_threads(&c);
+  ASSERT_EQ(mpm3d::kListChunk, 64);
+  // Equal thirds of 601 entries end at 200 and 401 (rounded): chunk ends round(200 / 64) = 3
+  // and round(401 / 64) = 6, so the threads own chunks 0-2, 3-5 and 6-9.
+  int lo, hi;
+  mpm3d::thread_list_chunks(&c, mpm3d::LOOP_STRESS, 1, 3, lo, hi);
+  EXPECT_EQ(lo, 3);
+  EXPECT_EQ(hi, 6);
+  mpm3d::thread_list_chunks(&c, mpm3d::LOOP_STRESS, 2, 3, lo, hi);
+  EXPECT_EQ(lo, 6);
+  EXPECT_EQ(hi, 10);
+  std::vector<int> hits(601);
+  for (int rep = 0; rep < 50; ++rep) {
+    std::fill(hits.begin(), hits.end(), 0);
+    mpm3d::for_thread_list_chunks(&c, mpm3d::LOOP_STRESS, [&](int first, int count) {
+      EXPECT_EQ(first % 64, 0);
+      EXPECT_EQ(count, first == 576 ? 25 : 64);
+      for (int i = first; i < first + count; ++i) __atomic_add_fetch(&hits[size_t(i)], 1, __ATOMIC_RELAXED);
+    });
+    for (int i = 0; i < 601; ++i) ASSERT_EQ(hits[size_t(i)], 1) << "entry " << i << " in loop " << rep;
+  }
+  double done = 0.0;
+  for (int t = 0; t < 3; ++t) done += c.thread_done[mpm3d::balance_index(mpm3d::LOOP_STRESS, t)];
+  EXPECT_EQ(done, 50.0 * 601);
   omp_set_num_threads(threads_before);
 #endif
 }
