@@ -642,6 +642,11 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
 #endif
   // One row of patch counts per thread, each zeroed by its thread.
   std::unique_ptr<int[]> counts(new int[size_t(team) * size_t(npatch)]);
+  // Particles and non-empty patches of each thread's run of patches (own cache lines).
+  struct alignas(64) RunSums {
+    int particles, nonempty;
+  };
+  std::vector<RunSums> run_sums(static_cast<size_t>(team), RunSums{0, 0});
   const bool avx2 = lanes_use_avx2();
   // One team for the whole stage: each thread bins a run of particles sized by its share
   // (in the block storage order (order_by_blocks) about the particles its patch range
@@ -663,24 +668,46 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
       if (patch_of[p] >= 0) ++cnt[patch_of[p]];
     if (timed) add_busy(c, LOOP_BIN, t, t0);
 #pragma omp barrier
-#pragma omp master
+    // Patch starts, buffer slots, and each run's fill pointer into every patch's list: a
+    // prefix sum over the patches in two passes, each thread over an equal run of patches
+    // (a serial pass would cost T x npatch steps on one thread, a few percent of a step of
+    // the fine model at 16 threads): the run's particle and non-empty patch totals, then,
+    // once every run has its totals, the run's own entries.
+    const int q0 = int(int64_t(npatch) * t / T), q1 = int(int64_t(npatch) * (t + 1) / T);
+    auto count_of = [&](int u, int q) -> int& { return counts[size_t(u) * size_t(npatch) + size_t(q)]; };
     {
-      // Patch starts, buffer slots, and each run's fill pointer into every patch's list.
-      int* start = c->patch_start;
-      int offset = 0;
-      for (int q = 0; q < npatch; ++q) {
-        start[q] = offset;
+      int particles = 0, nonempty = 0;
+      for (int q = q0; q < q1; ++q) {
+        int total = 0;
+        for (int u = 0; u < T; ++u) total += count_of(u, q);
+        particles += total;
+        nonempty += total > 0;
+      }
+      run_sums[size_t(t)] = {particles, nonempty};
+    }
+#pragma omp barrier
+    {
+      int offset = 0, slot = 0;
+      for (int u = 0; u < t; ++u) {
+        offset += run_sums[size_t(u)].particles;
+        slot += run_sums[size_t(u)].nonempty;
+      }
+      for (int q = q0; q < q1; ++q) {
+        c->patch_start[q] = offset;
         int total = 0;
         for (int u = 0; u < T; ++u) {
-          int& n = counts[size_t(u) * size_t(npatch) + size_t(q)];
+          int& n = count_of(u, q);
           const int here = n;
           n = offset + total;
           total += here;
         }
-        c->patch_slot[q] = total > 0 ? nslot++ : -1;
+        c->patch_slot[q] = total > 0 ? slot++ : -1;
         offset += total;
       }
-      start[npatch] = offset;
+      if (t == T - 1) {
+        c->patch_start[npatch] = offset;
+        nslot = slot;
+      }
     }
 #pragma omp barrier
     for (int p = lo; p < hi; ++p)
