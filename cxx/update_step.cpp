@@ -596,8 +596,7 @@ void rebalance_threads(StepContext* c) {
         n = done[t];  // its own range and what it took from others
       } else if (loop == LOOP_STRESS) {
         thread_list_chunks(c, LOOP_STRESS, t, T, lo, hi);
-        const int total = c->patch_start[c->npatch];
-        n = std::min(total, hi * kListChunk) - std::min(total, lo * kListChunk);
+        n = list_chunk_entries(c, lo, hi);
       } else {
         thread_patches(c, PatchLoop(loop), t, T, lo, hi);
         n = c->patch_start[hi] - c->patch_start[lo];
@@ -670,8 +669,8 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
 #pragma omp barrier
     // Patch starts, buffer slots, and each run's fill pointer into every patch's list: a
     // prefix sum over the patches in two passes, each thread over an equal run of patches
-    // (a serial pass would cost T x npatch steps on one thread, a few percent of a step of
-    // the fine model at 16 threads): the run's particle and non-empty patch totals, then,
+    // (a serial pass would cost T x npatch steps on one thread, about 1 % of a step of the
+    // fine model at 16 threads): the run's particle and non-empty patch totals, then,
     // once every run has its totals, the run's own entries.
     const int q0 = int(int64_t(npatch) * t / T), q1 = int(int64_t(npatch) * (t + 1) / T);
     auto count_of = [&](int u, int q) -> int& { return counts[size_t(u) * size_t(npatch) + size_t(q)]; };

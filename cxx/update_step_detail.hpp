@@ -151,7 +151,8 @@ inline int share_boundary(const StepContext* c, PatchLoop loop, int u, int T, in
 // Patches [lo, hi) of thread t of T in loop `loop`: contiguous ranges of the patch index
 // holding the thread's share of the binned particles (patch_start is the prefix sum of the
 // lists; equal shares without c->thread_share). The trilinear patch stages (P2G, assembly,
-// integration, G2P, node velocities, stress) all use such ranges, and the loops' shares
+// integration, G2P, node velocities; the stress update in list chunks, the same runs of
+// particles) all use such ranges, and the loops' shares
 // differ little, so a thread finds in its own cache most nodes and particles it wrote in
 // the loop before; with a dynamic schedule every stage dealt the patches out anew and
 // about half of all node and particle reads came from the other core's cache. Which
@@ -236,6 +237,12 @@ inline void thread_list_chunks(const StepContext* c, PatchLoop loop, int t, int 
   hi = first(t + 1);
 }
 
+// List entries in chunks [lo, hi) (the last chunk of the lists may be short).
+inline int list_chunk_entries(const StepContext* c, int lo, int hi) {
+  const int total = c->patch_start[c->npatch];
+  return std::min(total, hi * kListChunk) - std::min(total, lo * kListChunk);
+}
+
 // f(i) for every item i of a loop, each thread over its range(t, T, lo, hi); the thread's
 // time in the loop goes to that loop's thread_busy, and the particles it did (weight(i)
 // each) to thread_done (rebalance_threads). With c->patch_ranges a thread that is through
@@ -296,8 +303,7 @@ inline void for_thread_patches(const StepContext* c, PatchLoop loop, F&& f) {
 // shorter), each thread over its thread_list_chunks range of loop `loop`.
 template <class F>
 inline void for_thread_list_chunks(const StepContext* c, PatchLoop loop, F&& f) {
-  const int total = c->patch_start[c->npatch];
-  auto count = [total](int k) { return std::min(kListChunk, total - k * kListChunk); };
+  auto count = [c](int k) { return list_chunk_entries(c, k, k + 1); };
   for_thread_items(
       c, loop, [&](int t, int T, int& lo, int& hi) { thread_list_chunks(c, loop, t, T, lo, hi); }, count,
       [&](int k) { f(k * kListChunk, count(k)); });
