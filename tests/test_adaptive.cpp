@@ -309,6 +309,22 @@ TEST(Adaptive, ThreadSharesFollowEachLoopsMeasuredSpeed) {
 #endif
 }
 
+// The load-balance arrays and range words the program binds (bind_balance in mpm3d.cpp),
+// bound to a context over the patch lists `start` (one particle per list entry).
+struct BalanceArrays {
+  std::vector<double> balance = std::vector<double>(mpm3d::kBalanceValues, 0.0);
+  std::vector<uint64_t> ranges = std::vector<uint64_t>(mpm3d::kPatchRangeWords, 0);
+  void bind(StepContext& c, std::vector<int>& start) {
+    c.npatch = int(start.size()) - 1;
+    c.np = start.back();
+    c.patch_start = start.data();
+    c.thread_share = balance.data();
+    c.thread_busy = balance.data() + mpm3d::kBalanceValues / 3;
+    c.thread_done = balance.data() + 2 * (mpm3d::kBalanceValues / 3);
+    c.patch_ranges = ranges.data();
+  }
+};
+
 // Work stealing in the patch loops (claim_patch): 4 threads, each with a range of 1000
 // patches of 1 particle, run for_thread_patches 200 times; each thread sleeps now and then
 // inside a patch so that the others steal. Every patch must be done exactly once per loop,
@@ -322,16 +338,9 @@ TEST(Adaptive, StolenPatchesAreDoneExactlyOnce) {
   const int npatch = 4000;
   std::vector<int> start(npatch + 1);
   for (int q = 0; q <= npatch; ++q) start[size_t(q)] = q;
-  std::vector<double> balance(mpm3d::kBalanceValues, 0.0);
-  std::vector<uint64_t> ranges(mpm3d::kPatchRangeWords, 0);
+  BalanceArrays arrays;
   StepContext c{};
-  c.np = npatch;
-  c.npatch = npatch;
-  c.patch_start = start.data();
-  c.thread_share = balance.data();
-  c.thread_busy = balance.data() + mpm3d::kBalanceValues / 3;
-  c.thread_done = balance.data() + 2 * (mpm3d::kBalanceValues / 3);
-  c.patch_ranges = ranges.data();
+  arrays.bind(c, start);
   mpm3d::rebalance_threads(&c);  // equal shares for 4 threads
   std::vector<int> hits(npatch);
   std::vector<int> by_thread(npatch);
@@ -365,17 +374,9 @@ TEST(Adaptive, ListChunksCoverEveryEntryOnce) {
   const int threads_before = omp_get_max_threads();
   omp_set_num_threads(3);
   std::vector<int> start = {0, 100, 100, 130, 131, 231, 331, 431, 531, 561, 601};
-  const int npatch = int(start.size()) - 1;
-  std::vector<double> balance(mpm3d::kBalanceValues, 0.0);
-  std::vector<uint64_t> ranges(mpm3d::kPatchRangeWords, 0);
+  BalanceArrays arrays;
   StepContext c{};
-  c.np = 601;
-  c.npatch = npatch;
-  c.patch_start = start.data();
-  c.thread_share = balance.data();
-  c.thread_busy = balance.data() + mpm3d::kBalanceValues / 3;
-  c.thread_done = balance.data() + 2 * (mpm3d::kBalanceValues / 3);
-  c.patch_ranges = ranges.data();
+  arrays.bind(c, start);
   mpm3d::rebalance_threads(&c);
   ASSERT_EQ(mpm3d::kListChunk, 64);
   // Equal thirds of 601 entries end at 200 and 401 (rounded): chunk ends round(200 / 64) = 3
