@@ -114,8 +114,7 @@ void check(herr_t s, const char* what) {
 template <class T>
 std::vector<T> deck_ordered(const std::vector<T>& a, int ncomp, const std::vector<int>& at) {
   std::vector<T> out(a.size());
-  for (size_t i = 0; i < at.size(); ++i)
-    for (int c = 0; c < ncomp; ++c) out[size_t(ncomp) * i + size_t(c)] = a[size_t(ncomp) * size_t(at[i]) + size_t(c)];
+  gather_rows(a.data(), ncomp, int(at.size()), [&](int i) { return at[size_t(i)]; }, out.data());
   return out;
 }
 

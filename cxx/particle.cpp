@@ -42,8 +42,7 @@ template <class T>
 void permute(std::vector<T>& a, int ncomp, const std::vector<int>& from) {
   if (a.empty()) return;
   std::vector<T> t(a.size());
-  for (size_t p = 0; p < from.size(); ++p)
-    for (int c = 0; c < ncomp; ++c) t[size_t(ncomp) * p + size_t(c)] = a[size_t(ncomp) * size_t(from[p]) + size_t(c)];
+  gather_rows(a.data(), ncomp, int(from.size()), [&](int p) { return from[size_t(p)]; }, t.data());
   a.swap(t);
 }
 }  // namespace

@@ -49,6 +49,17 @@ void order_by_blocks(Particles& P, const double lo[3], double h, const int nc[3]
 // Stored index of each deck particle (the inverse of id; the identity when id is empty).
 std::vector<int> stored_index(const Particles& P);
 
+// Row i of dst (ncomp values) = row from(i) of src, for rows 0..n-1: every move of a
+// per-particle array between the storage order and the deck order (the set-up sort, the
+// outputs, the C API's arrays).
+template <class T, class From>
+void gather_rows(const T* src, int ncomp, int n, From&& from, T* dst) {
+  for (int i = 0; i < n; ++i) {
+    const size_t s = size_t(ncomp) * size_t(from(i)), d = size_t(ncomp) * size_t(i);
+    for (int c = 0; c < ncomp; ++c) dst[d + size_t(c)] = src[s + size_t(c)];
+  }
+}
+
 // Every array of Particles by name, for generic code (the checkpoint stores and restores
 // each allocated one). Exactly one of d, i is set; ncomp values per particle. A new array
 // in Particles must be listed in particle_fields() (cxx/particle.cpp); cxx/checkpoint.cpp

@@ -111,7 +111,7 @@ contains
     real(dp), target :: t_time, t_dt
     integer(int64), target :: t_step
     integer(hid_t) :: f, g, untimed_file, untimed_group
-    integer :: st, np, p, i
+    integer :: st, np
     character(len=:), allocatable :: tmp
     np = m%particles%np
     tmp = path // '.tmp'
@@ -134,16 +134,12 @@ contains
     call check(st, '/particles')
     ! In deck order, whatever the storage order (particles_order_by_blocks).
     call particles_deck_order(m%particles, at)
-    allocate(rho(np), mat(np), body(np), x(3, np), v(3, np), sig(6, np), s1(np))
-    do i = 1, np
-      p = at(i)
-      rho(i) = m%particles%mass(p) / m%particles%vol(p)
-      mat(i) = m%particles%mat(p) + 1
-      body(i) = m%particles%body(p) + 1
-      x(:, i) = m%particles%x(:, p)
-      v(:, i) = m%particles%v(:, p)
-      sig(:, i) = m%particles%sig(:, p)
-    end do
+    rho = m%particles%mass(at) / m%particles%vol(at)
+    mat = m%particles%mat(at) + 1
+    body = m%particles%body(at) + 1
+    x = m%particles%x(:, at)
+    v = m%particles%v(:, at)
+    sig = m%particles%sig(:, at)
     call write_real(g, 'position', c_loc(x), np, 3)
     call write_real(g, 'velocity', c_loc(v), np, 3)
     call write_real(g, 'stress', c_loc(sig), np, 6)

@@ -236,9 +236,8 @@ MPM3D_API int mpm3d_get_array(const mpm3d_sim* sim, const char* name, double* ds
   if (!dst && need > 0) return fail(MPM3D_ERR_ARGUMENT, "mpm3d_get_array('%s'): null destination", name);
   // In deck order (the solver stores the particles in its own order, Particles::id).
   const mpm3d::Particles& P = sim->sim.model.particles;
-  const std::vector<double>& a = *r.data;
-  for (int p = 0; p < P.np; ++p)
-    for (long c = 0; c < r.ncomp; ++c) dst[size_t(r.ncomp) * size_t(P.deck_number(p)) + size_t(c)] = a[size_t(r.ncomp) * size_t(p) + size_t(c)];
+  const std::vector<int> at = mpm3d::stored_index(P);
+  mpm3d::gather_rows(r.data->data(), int(r.ncomp), P.np, [&](int i) { return at[size_t(i)]; }, dst);
   return MPM3D_OK;
 }
 
@@ -256,9 +255,7 @@ MPM3D_API int mpm3d_set_array(mpm3d_sim* sim, const char* name, const double* sr
     // source is read completely before anything changes, so it may alias the array.
     const mpm3d::Particles& P = sim->sim.model.particles;
     std::vector<double> t(src, src + need);
-    std::vector<double>& a = *r.data;
-    for (int p = 0; p < P.np; ++p)
-      for (long c = 0; c < r.ncomp; ++c) a[size_t(r.ncomp) * size_t(p) + size_t(c)] = t[size_t(r.ncomp) * size_t(P.deck_number(p)) + size_t(c)];
+    mpm3d::gather_rows(t.data(), int(r.ncomp), P.np, [&](int p) { return P.deck_number(p); }, r.data->data());
     sim->sim.measure();  // energies and momentum of the new state
     return MPM3D_OK;
   } catch (...) {
