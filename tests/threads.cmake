@@ -31,3 +31,10 @@ mpm3d_thread_test(two_blocks_deck_order ${CMAKE_SOURCE_DIR}/inputs/impact/two_bl
 add_test(NAME particle_order
          COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/particle_order.sh $<TARGET_FILE:mpm3d> "${_mpm3d_ref_exe}"
                  ${CMAKE_SOURCE_DIR} ${CMAKE_CURRENT_BINARY_DIR}/particle_order)
+# Parallel regions a step, counted from outside by tools/omp_regions.c (LD_PRELOAD; not in
+# the sanitizer build, where the ASan runtime must come first among the loaded libraries).
+if(NOT MPM3D_SANITIZE)
+  add_test(NAME omp_regions_per_step
+           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/omp_regions.sh $<TARGET_FILE:mpm3d> $<TARGET_FILE:mpm3d_omp_regions>
+                   ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks.mpm ${CMAKE_CURRENT_BINARY_DIR}/omp_regions)
+endif()

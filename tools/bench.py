@@ -25,6 +25,9 @@ Timings on a loaded machine are not worth much: compare rows measured side by si
 rerun on a quiet machine.
 
 usage: bench.py BUILD_DIR CSV [max_threads] [deck ...]
+Also, per deck, the parallel regions of a step and the step's time outside them at 1 thread
+(regions.csv beside CSV; the LD_PRELOAD counter BUILD_DIR/tools/mpm3d_omp_regions.so).
+
 environment: BENCH_STEPS (default 100), BENCH_REPEATS (3), BENCH_ROUNDS (5), BENCH_REGRID (20),
              BENCH_SCHEMES ("patches expansion"), BENCH_FINE=1 adds taylor_fine.mpm
 """
@@ -61,6 +64,46 @@ def run_once(exe, deck, threads, steps, scheme, regrid, tmp, cpu=None):
     with open(summary) as f:
         s = json.load(f)
     return s, rss_kb * 1024, load
+
+
+def regions_once(exe, counter, deck, threads, steps, tmp):
+    """One run under the region counter (tools/omp_regions.c), the set-up's regions left
+    out: (summary, parallel regions in the step loop, seconds inside them)."""
+    out = os.path.join(tmp, "regions.txt")
+    counts = []
+    for n, skip in ((0, 0), (steps, None)):
+        env = dict(os.environ, LD_PRELOAD=counter, OMP_REGIONS_OUT=out,
+                   OMP_REGIONS_SKIP=str(counts[0][0] if skip is None else skip))
+        summary = os.path.join(tmp, "r.json")
+        subprocess.run([exe, "--threads", str(threads), "--steps", str(n), "--no-output", "--quiet",
+                        "--summary", summary, deck], check=True, env=env)
+        with open(out) as f:
+            r, inside = f.read().split()
+        counts.append((int(r), float(inside)))
+    with open(summary) as f:
+        return json.load(f), counts[1][0], counts[1][1]
+
+
+def serial_profile(exe, counter, deck, steps, repeats, tmp):
+    """Regions per step and the step's time outside them at 1 thread (the best of the
+    repeats), with the speedup that serial part alone would allow at 8 and 16 threads."""
+    best = None
+    for _ in range(repeats):
+        s, regions, inside = regions_once(exe, counter, deck, 1, steps, tmp)
+        step_s = s["ns_per_particle_step"] * 1e-9 * s["particles"] * steps
+        if best is None or step_s < best[1]:
+            best = (s, step_s, regions, inside)
+    s, step_s, regions, inside = best
+    serial = max(0.0, step_s - inside)
+    f = serial / step_s
+    row = {"deck": os.path.basename(deck), "particles": s["particles"], "steps": steps,
+           "regions_per_step": f"{regions / steps:g}", "step_us_1thread": f"{1e6 * step_s / steps:.1f}",
+           "serial_us_per_step": f"{1e6 * serial / steps:.2f}", "serial_fraction": f"{f:.5f}"}
+    for t in (8, 16):
+        sp = 1.0 / (f + (1.0 - f) / t)
+        row[f"amdahl_speedup_{t}"] = f"{sp:.2f}"
+        row[f"amdahl_efficiency_{t}"] = f"{sp / t:.3f}"
+    return row
 
 
 def thread_counts(maxt):
@@ -161,6 +204,25 @@ def main():
                         print(f"{row['deck']:24s} {scheme:9s} regrid {rg:3d} threads {t:2d}: {row['ns_per_particle_step']:>7s} ns "
                               f"speedup {row['speedup']} eff {row['efficiency']} {row['peak_rss_bytes_per_particle']} B/p "
                               f"(load {loads[0]:.2f})" + extra, flush=True)
+
+    # The serial part of a step and its parallel regions (patch scheme, 1 thread), measured
+    # from outside the program by the LD_PRELOAD counter tools/omp_regions.c.
+    counter = os.path.join(build, "tools", "mpm3d_omp_regions.so")
+    if os.path.isfile(counter):
+        out = os.path.join(os.path.dirname(out_csv) or ".", "regions.csv")
+        with tempfile.TemporaryDirectory() as tmp, open(out, "w", newline="") as f:
+            w = None
+            for deck in decks:
+                row = serial_profile(exe, counter, deck, steps, repeats, tmp)
+                if w is None:
+                    w = csv.DictWriter(f, fieldnames=list(row))
+                    w.writeheader()
+                w.writerow(row)
+                print(f"{row['deck']:24s} 1 thread: {row['regions_per_step']} parallel regions a step, "
+                      f"{row['serial_us_per_step']} us of {row['step_us_1thread']} us outside them (serial "
+                      f"fraction {row['serial_fraction']}); that alone allows {row['amdahl_speedup_8']} at 8 "
+                      f"threads, {row['amdahl_speedup_16']} at 16", flush=True)
+
 
 if __name__ == "__main__":
     main()
