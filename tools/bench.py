@@ -69,19 +69,20 @@ def run_once(exe, deck, threads, steps, scheme, regrid, tmp, cpu=None):
 def regions_once(exe, counter, deck, threads, steps, tmp):
     """One run under the region counter (tools/omp_regions.c), the set-up's regions left
     out: (summary, parallel regions in the step loop, seconds inside them)."""
-    out = os.path.join(tmp, "regions.txt")
-    counts = []
-    for n, skip in ((0, 0), (steps, None)):
-        env = dict(os.environ, LD_PRELOAD=counter, OMP_REGIONS_OUT=out,
-                   OMP_REGIONS_SKIP=str(counts[0][0] if skip is None else skip))
-        summary = os.path.join(tmp, "r.json")
+    out, summary = os.path.join(tmp, "regions.txt"), os.path.join(tmp, "r.json")
+
+    def counted(n, skip):
+        env = dict(os.environ, LD_PRELOAD=counter, OMP_REGIONS_OUT=out, OMP_REGIONS_SKIP=str(skip))
         subprocess.run([exe, "--threads", str(threads), "--steps", str(n), "--no-output", "--quiet",
                         "--summary", summary, deck], check=True, env=env)
         with open(out) as f:
             r, inside = f.read().split()
-        counts.append((int(r), float(inside)))
+        return int(r), float(inside)
+
+    setup, _ = counted(0, 0)
+    regions, inside = counted(steps, setup)
     with open(summary) as f:
-        return json.load(f), counts[1][0], counts[1][1]
+        return json.load(f), regions, inside
 
 
 def serial_profile(exe, counter, deck, steps, repeats, tmp):
