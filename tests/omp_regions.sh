@@ -3,8 +3,9 @@
 # fork and a join of the whole team, a fixed cost per step that grows with the thread count,
 # so a new one should be a decision, not an accident. Counted with the LD_PRELOAD counter
 # tools/omp_regions.c: the set-up's regions from a run of 0 steps, then those of a run of N
-# steps that leaves the set-up's out, on a MUSL trilinear deck without contact: binning, P2G scatter, P2G assembly, integration, G2P, remap assembly, node
-# velocities, stress update, energies, health check = 10 a step, at any thread count.
+# steps that leaves the set-up's out, on a MUSL trilinear deck without contact: binning,
+# P2G scatter, P2G assembly, integration, G2P, remap assembly, node velocities, stress
+# update, energies, health check = 10 a step, at any thread count.
 # usage: omp_regions.sh MPM3D COUNTER.so DECK WORKDIR
 set -euo pipefail
 mpm3d=$1; counter=$2; deck=$3; work=$4

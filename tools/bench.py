@@ -66,14 +66,14 @@ def run_once(exe, deck, threads, steps, scheme, regrid, tmp, cpu=None):
     return s, rss_kb * 1024, load
 
 
-def regions_once(exe, counter, deck, threads, steps, tmp):
-    """One run under the region counter (tools/omp_regions.c), the set-up's regions left
-    out: (summary, parallel regions in the step loop, seconds inside them)."""
+def regions_once(exe, counter, deck, steps, tmp):
+    """One 1-thread run under the region counter (tools/omp_regions.c), the set-up's regions
+    left out: (summary, parallel regions in the step loop, seconds inside them)."""
     out, summary = os.path.join(tmp, "regions.txt"), os.path.join(tmp, "r.json")
 
     def counted(n, skip):
         env = dict(os.environ, LD_PRELOAD=counter, OMP_REGIONS_OUT=out, OMP_REGIONS_SKIP=str(skip))
-        subprocess.run([exe, "--threads", str(threads), "--steps", str(n), "--no-output", "--quiet",
+        subprocess.run([exe, "--threads", "1", "--steps", str(n), "--no-output", "--quiet",
                         "--summary", summary, deck], check=True, env=env)
         with open(out) as f:
             r, inside = f.read().split()
@@ -90,7 +90,7 @@ def serial_profile(exe, counter, deck, steps, repeats, tmp):
     repeats), with the speedup that serial part alone would allow at 8 and 16 threads."""
     best = None
     for _ in range(repeats):
-        s, regions, inside = regions_once(exe, counter, deck, 1, steps, tmp)
+        s, regions, inside = regions_once(exe, counter, deck, steps, tmp)
         step_s = s["ns_per_particle_step"] * 1e-9 * s["particles"] * steps
         if best is None or step_s < best[1]:
             best = (s, step_s, regions, inside)
