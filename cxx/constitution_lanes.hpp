@@ -64,12 +64,18 @@ struct LaneUpdate {
         TL::set(*a, i, ai);
         TL::set(*b, i, bi);
       }
-    } else {  // Mie-Gruneisen
-      const double rc2 = m.rho0 * (c[0] * c[0]);
-      const T den = 1.0 - (c[1] - 1.0) * mu;
-      const T compressed = (rc2 * mu) * (1.0 + (1.0 - 0.5 * c[2]) * mu) / (den * den);
-      *a = TL::select(mu > 0.0, compressed, rc2 * mu);
-      *b = TL::splat(c[2]);
+    } else {
+      // Mie-Gruneisen, the book's form (section 5.3.5): in compression the cubic Hugoniot
+      // C1 mu + C2 mu^2 + C3 mu^3 times (1 - g0 mu / (2 (1 + mu))), b = g0; in tension
+      // C1 mu, b = 0.
+      const double c1 = m.rho0 * (c[0] * c[0]);
+      const double c2 = c1 * (2.0 * c[1] - 1.0);
+      const double c3 = (c1 * (c[1] - 1.0)) * (3.0 * c[1] - 1.0);
+      const T mu2 = mu * mu;
+      const T hug = ((c1 * mu) + c2 * mu2) + c3 * (mu2 * mu);
+      const T compressed = hug * (1.0 - ((0.5 * c[2]) * mu) / (1.0 + mu));
+      *a = TL::select(mu > 0.0, compressed, c1 * mu);
+      *b = TL::select(mu > 0.0, TL::splat(c[2]), TL::splat(0.0));
     }
   }
 

@@ -449,8 +449,10 @@ void Reader::read_particles(const Token& key) {
     const double rho = ts_.real("the density");
     const double dp = ts_.real("the particle spacing");
     if (!(rho > 0.0) || !(dp > 0.0)) fail(kind.line, "density and spacing must be positive");
-    const double vol = (dp * dp) * dp;
-    const double mass = rho * vol;
+    // The card's density gives the mass; the volume is mass over the material's density,
+    // as in the book version (the two densities may differ in a deck).
+    const double mass = rho * ((dp * dp) * dp);
+    const double vol = mass / m_.mats[size_t(mat)].rho0;
     m_.bodies.back().spacing = dp;
     if (!(vol > 0.0) || !(mass > 0.0) || !std::isfinite(mass))
       fail(kind.line, "particle volume (spacing^3) or mass (density * volume) out of range");

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -403,18 +404,21 @@ void Simulation::health_check() {
       }
     }
   }
+  double ie_min = 0.0;  // the lowest particle internal energy, if negative (a min is exact)
   {
     const double* vol = P.vol.data();
     const double* mass = P.mass.data();
     const int* mat = P.mat.data();
     const MaterialParams* mats = model.mats.data();
     const int np = P.np;
+    const double* ie = P.ie.data();
     int bad = np;  // the lowest deck number of a particle out of bounds
-#pragma omp parallel for schedule(static) reduction(min : bad)
+#pragma omp parallel for schedule(static) reduction(min : bad, ie_min)
     for (int p = 0; p < np; ++p) {
       const double r0v = mats[mat[p]].rho0 * vol[p];
       const bool ok = vol[p] > 0.0 && mass[p] >= kDensityRatioMin * r0v && mass[p] <= kDensityRatioMax * r0v;
       if (!ok && P.deck_number(p) < bad) bad = P.deck_number(p);
+      if (ie[p] < ie_min) ie_min = ie[p];
     }
     if (bad < np) {
       const int p = stored_index(P)[size_t(bad)];
@@ -435,8 +439,10 @@ void Simulation::health_check() {
     // the work of the external forces (sum of |f . v| dt per particle with the end-of-step
     // velocities; the factor two leaves room for that approximation).
     const double total = kinetic + internal;
-    if (std::fabs(total) <= 2.0 * (std::fabs(initial_total_energy) + std::fabs(external_work)) + 1e-300)
+    if (std::fabs(total) <= 2.0 * (std::fabs(initial_total_energy) + std::fabs(external_work)) + 1e-300) {
+      energy_check(ie_min);
       return;
+    }
     int worst = 0;
     double vmax = -1.0;
     for (int p = 0; p < P.np; ++p) {
@@ -457,6 +463,47 @@ void Simulation::health_check() {
   throw HealthError("numerical breakdown at step " + std::to_string(steps) + ": non-finite energy");
 }
 
+// Energy bounds that a run can break silently, with its total still conserved: a body's
+// internal energy below -kEnergyWarnFraction (|E0| + |W|), or the kinetic energy above
+// E0 + |W| by more than that (both seen when a body starts pre-compressed under an EOS, or
+// an EOS releases more work than it stored). ie_min, the lowest particle internal energy
+// (0 if none is negative), is exact whatever the thread count: the per-body sums (serial,
+// in storage order, so their figures do not depend on the threads either) are formed only
+// when np * ie_min could reach the bound.
+void Simulation::energy_check(double ie_min) {
+  const double bound = kEnergyWarnFraction * (std::fabs(initial_total_energy) + std::fabs(external_work));
+  const Particles& P = model.particles;
+  std::vector<std::string> found;
+  if (ie_min < 0.0 && double(P.np) * ie_min < -bound) {
+    std::vector<double> body_ie(model.bodies.size(), 0.0);
+    for (int p = 0; p < P.np; ++p) body_ie[size_t(P.body[p])] += P.ie[p];
+    body_ie_warned_.resize(body_ie.size(), 0);
+    for (size_t b = 0; b < body_ie.size(); ++b) {
+      if (body_ie_warned_[b] || !(body_ie[b] < -bound)) continue;
+      body_ie_warned_[b] = 1;
+      std::ostringstream os;
+      os << "energy: the internal energy of body " << b + 1 << " is " << body_ie[b] << " at step " << steps
+         << " (t = " << time << "), below -" << 100.0 * kEnergyWarnFraction << "% of the initial total energy "
+         << initial_total_energy << " plus the external work " << external_work
+         << " (its stress work releases more than it stored: check the EOS and that the particle cards' densities "
+            "are the materials')";
+      found.push_back(os.str());
+    }
+  }
+  if (!kinetic_warned_ && kinetic > (initial_total_energy + std::fabs(external_work)) + bound) {
+    kinetic_warned_ = true;
+    std::ostringstream os;
+    os << "energy: the kinetic energy " << kinetic << " at step " << steps << " (t = " << time
+       << ") exceeds the initial total energy " << initial_total_energy << " plus the external work " << external_work
+       << " by " << kinetic - (initial_total_energy + std::fabs(external_work)) << " (internal energy " << internal
+       << ")";
+    found.push_back(os.str());
+  }
+  if (found.empty()) return;
+  if (strict_energy) throw HealthError(found.front() + " (stopped: --strict-energy)");
+  for (auto& w : found) new_energy_warnings.push_back(std::move(w));
+}
+
 // ---------------------------------------------------------------- command line
 
 namespace {
@@ -468,7 +515,8 @@ const char* kUsage =
     "  --threads N        OpenMP threads (default: OMP_NUM_THREADS or all cores)\n"
     "  --steps N          stop after N steps\n"
     "  --end-time T       stop at time T instead of the deck's end time\n"
-    "  --out-dir DIR      where result files go (default: the current directory)\n"
+    "  --out-dir DIR      where result files go, created if missing (default: the current\n"
+    "                     directory)\n"
     "  --no-output        no animation, curve or log files\n"
     "  --summary F.json   write a summary of the run\n"
     "  --state F.h5       write the final particle state (HDF5)\n"
@@ -487,6 +535,9 @@ const char* kUsage =
     "  --kernel cxx|fortran       take every step stage from one language\n"
     "  --kernels STAGE=LANG,...   take single stages from a language (see --list-stages)\n"
     "  --list-stages      print the stage names, one per line\n"
+    "  --strict-energy    stop (exit 3) at the first energy warning: a body's internal energy\n"
+    "                     below -0.1% of the initial total energy plus the external work, or\n"
+    "                     the kinetic energy above that total by more than 0.1%\n"
     "  --quiet            no progress lines\n"
     "  --help, --version\n";
 
@@ -498,7 +549,7 @@ struct Options {
   long regrid_every = -1;  // -1: the deck's
   std::string scatter = "patches";
   std::string particle_order = "blocks";
-  bool no_output = false, quiet = false, hdf5 = false, patch_given = false;
+  bool no_output = false, quiet = false, hdf5 = false, patch_given = false, strict_energy = false;
 };
 
 // SIGINT/SIGTERM: the time loop finishes the current step, writes a checkpoint and exits
@@ -591,6 +642,8 @@ Options parse_args(int argc, char** argv, bool& exit_now) {
       for (const char* n : kStageNames) std::cout << n << "\n";
       exit_now = true;
       return o;
+    } else if (a == "--strict-energy") {
+      o.strict_energy = true;
     } else if (a == "--quiet" || a == "-q") {
       o.quiet = true;
     } else if (!a.empty() && a[0] == '-') {
@@ -661,6 +714,11 @@ int run_main(int argc, char** argv) {
   try {
     Model model = read_deck(opt.deck);
     if (opt.regrid_every >= 0) model.regrid_every = int(opt.regrid_every);
+    {  // --out-dir: created (with its parents) when missing
+      std::error_code ec;
+      std::filesystem::create_directories(opt.out_dir, ec);
+      if (ec) throw std::runtime_error("cannot create output directory '" + opt.out_dir + "': " + ec.message());
+    }
     if (!dir_writable(opt.out_dir)) throw std::runtime_error("output directory '" + opt.out_dir + "' is not writable");
     // A checkpoint is written with --checkpoint, --checkpoint-every or on a signal; the
     // default file is name_checkpoint.h5 in the output directory.
@@ -684,6 +742,7 @@ int run_main(int argc, char** argv) {
     const int patch_cells = opt.restart.empty() ? opt.patch_cells : checkpoint_patch_cells(opt.restart);
     Simulation sim(std::move(model), patch_cells,
                    opt.particle_order == "deck" ? ParticleOrder::deck : ParticleOrder::blocks);
+    sim.strict_energy = opt.strict_energy;
     {
       StageTable t = cxx_stages();
       if (!opt.kernel.empty()) select_stages(t, opt.kernel, false);
@@ -737,6 +796,7 @@ int run_main(int argc, char** argv) {
     if (!restarted && out.animates()) out.frame(m, 0.0, 0);
     const double eps = 1e-9 * m.dt;
     std::string failure;
+    std::vector<std::string> energy_warnings;  // printed when raised, listed in the summary
     long steps_run = 0, last_ckpt = restarted ? sim.steps : -1;
     std::string last_ckpt_path = restarted ? opt.restart : std::string();
     auto save_checkpoint = [&](const std::string& path) {
@@ -759,6 +819,12 @@ int run_main(int argc, char** argv) {
       ++steps_run;
       step_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       log_regrid();
+      for (const auto& w : sim.new_energy_warnings) {
+        out.log("warning: " + w);
+        if (!opt.quiet) std::cerr << "mpm3d: warning: " << w << std::endl;
+        energy_warnings.push_back(w);
+      }
+      sim.new_energy_warnings.clear();
       if (!failure.empty()) break;
       out.step(m, sim.time, sim.kinetic, sim.internal, sim.momentum);
       if (m.contact) out.contact(sim.time, sim.contact_force);
@@ -805,6 +871,8 @@ int run_main(int argc, char** argv) {
     std::vector<std::string> warnings = m.warnings;
     if (sim.outside > 0)
       warnings.push_back(std::to_string(sim.outside) + " particles left the grid and were frozen");
+    const size_t printed_already = energy_warnings.size();  // the energy warnings come first
+    warnings.insert(warnings.begin() + long(m.warnings.size()), energy_warnings.begin(), energy_warnings.end());
     if (!failure.empty()) warnings.push_back(failure);
     std::string stop_note;
     if (interrupted) {
@@ -857,8 +925,11 @@ int run_main(int argc, char** argv) {
                   sim.time, wall, ns);
     out.log(tail);
     if (!opt.quiet) std::cout << tail << std::endl;
-    for (const auto& w : warnings)
-      if (!opt.quiet && w != failure && w != stop_note) std::cerr << "mpm3d: warning: " << w << "\n";
+    for (size_t i = 0; i < warnings.size(); ++i) {
+      const std::string& w = warnings[i];
+      const bool printed = i >= m.warnings.size() && i < m.warnings.size() + printed_already;
+      if (!opt.quiet && !printed && w != failure && w != stop_note) std::cerr << "mpm3d: warning: " << w << "\n";
+    }
     if (!stop_note.empty() || !failure.empty()) out.log(stop_note.empty() ? failure : stop_note);
     out.close();
     if (!failure.empty()) {

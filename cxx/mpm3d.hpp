@@ -14,6 +14,11 @@ namespace mpm3d {
 // Bounds of the per-step health check on the density: rho / rho0 must stay within them.
 constexpr double kDensityRatioMin = 1.0e-3, kDensityRatioMax = 1.0e3;
 
+// The energy warnings of the health check fire when a body's internal energy falls below
+// -kEnergyWarnFraction (|E0| + |W|), or the kinetic energy rises above E0 + |W| by more than
+// that (E0 the initial total energy, W the bound of the external work).
+constexpr double kEnergyWarnFraction = 1.0e-3;
+
 // A numerical breakdown found by the per-step health check.
 class HealthError : public std::runtime_error {
  public:
@@ -51,6 +56,11 @@ class Simulation {
   double initial_total_energy = 0.0;
   double external_work = 0.0;  // bound of the work of gravity and loads so far: sum |f.v| dt (health check)
   int outside = 0;  // particles outside the grid after the last step
+  // Energy warnings of the health check (health_check), each raised once per run (per
+  // body for the internal energy); the driver prints and clears new_energy_warnings. With
+  // strict_energy the first one stops the run as a HealthError instead.
+  bool strict_energy = false;
+  std::vector<std::string> new_energy_warnings;
   double stage_seconds[ST_COUNT] = {};  // wall time spent in each stage (regrids count as bin)
 
   // Adaptive background grid (model.regrid_every > 0): the grid window is redefined from
@@ -86,6 +96,9 @@ class Simulation {
   void ensure_expansion_buffers();
   void ensure_patch_buffers();
   void health_check();
+  void energy_check(double ie_min);
+  std::vector<char> body_ie_warned_;
+  bool kinetic_warned_ = false;
   double dt_work_of_body_forces() const;
 };
 

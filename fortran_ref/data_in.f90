@@ -699,8 +699,10 @@ contains
       dpp = ts%real('the particle spacing')
       if (.not. (rho > 0.0_dp) .or. .not. (dpp > 0.0_dp)) &
         call ts%fail(kind%line, 'density and spacing must be positive')
-      vol = (dpp * dpp) * dpp
-      mass = rho * vol
+      ! The card's density gives the mass; the volume is mass over the material's
+      ! density, as in the book version (the two densities may differ in a deck).
+      mass = rho * ((dpp * dpp) * dpp)
+      vol = mass / m%mats(mat + 1)%rho0
       m%bodies(m%nbodies)%spacing = dpp
       if (.not. (vol > 0.0_dp) .or. .not. (mass > 0.0_dp) .or. .not. is_finite(mass)) &
         call ts%fail(kind%line, 'particle volume (spacing^3) or mass (density * volume) out of range')

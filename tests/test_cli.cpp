@@ -1,6 +1,7 @@
 // The mpm3d program: bad input is refused with one line on stderr naming the file, the
 // line and the problem, with a non-zero exit code and no output files; a good run writes
 // the documented summary JSON and HDF5 state (DESIGN.md section 6).
+#include <filesystem>
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
@@ -171,8 +172,16 @@ TEST_F(Cli, UnwritableOutputDirectory) {
   const std::string file = tmp / "plainfile";
   testutil::write_file(file, "x");
   const std::string bad = file + "/sub";
-  expect_refused(run({"--quiet", "--out-dir", bad, d}), d + ": ", {bad, "not writable"});
-  expect_refused(run({"--quiet", "--out-dir", tmp / "nonexistent/dir", d}), d + ": ", {"nonexistent/dir"});
+  expect_refused(run({"--quiet", "--out-dir", bad, d}), d + ": ", {"cannot create output directory", bad});
+}
+
+TEST_F(Cli, MissingOutputDirectoryIsCreated) {
+  const std::string d = deck_file("good.mpm", kGood);
+  const std::filesystem::path dir = std::filesystem::path(tmp / "new") / "nested";
+  ASSERT_FALSE(std::filesystem::exists(tmp / "new"));
+  const RunResult r = run({"--quiet", "--out-dir", dir.string(), d});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::is_regular_file(dir / "EnergyPlot.dat"));
 }
 
 TEST_F(Cli, UnwritableSummaryAndStateFiles) {

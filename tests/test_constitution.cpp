@@ -381,9 +381,10 @@ TEST(Eos, LinearPolynomial) {
 }
 
 TEST(Eos, MieGruneisen) {
-  // rho0 = 2, c0 = 3, s = 1.5, gamma0 = 1: rho0 c0^2 = 18.
-  // Compression mu = 0.1: a = 18 * 0.1 * (1 + (1 - 0.5) * 0.1) / (1 - 0.5 * 0.1)^2
-  //                         = 1.89 / 0.9025; b = gamma0 = 1.
+  // The book's form. rho0 = 2, c0 = 3, s = 1.5, gamma0 = 1: C1 = rho0 c0^2 = 18,
+  // C2 = C1 (2s - 1) = 36, C3 = C1 (s - 1)(3s - 1) = 31.5.
+  // Compression mu = 0.1: Hugoniot 1.8 + 0.36 + 0.0315 = 2.1915, times
+  // 1 - gamma0 mu / (2 (1 + mu)) = 1 - 0.05 / 1.1 = 21/22; b = gamma0 = 1.
   MaterialParams m = base_material(MAT_SJC);
   m.rho0 = 2.0;
   m.eos_type = EOS_MIE_GRUNEISEN;
@@ -392,22 +393,35 @@ TEST(Eos, MieGruneisen) {
   m.eos[2] = 1.0;
   double a = 0, b = 0;
   mpm3d::eos_coefficients(m, 0.1, &a, &b);
-  EXPECT_NEAR(a, 1.89 / 0.9025, 1e-14);
+  EXPECT_NEAR(a, 2.1915 * 21.0 / 22.0, 1e-14);
   EXPECT_EQ(b, 1.0);
-  // Tension mu = -0.1: a = rho0 c0^2 mu = -1.8.
+  // Tension mu = -0.1: a = C1 mu = -1.8 and no energy term, b = 0.
   mpm3d::eos_coefficients(m, -0.1, &a, &b);
   EXPECT_NEAR(a, -1.8, 1e-15);
-  EXPECT_EQ(b, 1.0);
+  EXPECT_EQ(b, 0.0);
   // Copper of the Taylor deck: rho0 8.93e-3, c0 3940, s 1.49, gamma0 1.96, mu = 0.05:
-  // a = 8.93e-3 * 3940^2 * 0.05 * (1 + 0.02 * 0.05) / (1 - 0.49 * 0.05)^2.
+  // C1 = 8.93e-3 * 3940^2, C2 = 1.98 C1, C3 = 0.49 * 3.47 C1 = 1.7003 C1;
+  // a = C1 (0.05 + 1.98 * 0.0025 + 1.7003 * 0.000125) (1 - 0.049 / 1.05).
   m.rho0 = 8.93e-3;
   m.eos[0] = 3940.0;
   m.eos[1] = 1.49;
   m.eos[2] = 1.96;
   mpm3d::eos_coefficients(m, 0.05, &a, &b);
-  const double expect = 8.93e-3 * 15523600.0 * 0.05 * 1.001 / (0.9755 * 0.9755);
+  const double expect = 8.93e-3 * 15523600.0 * 0.0551625375 * (1.0 - 0.049 / 1.05);
   EXPECT_NEAR(a, expect, 1e-13 * expect);
   EXPECT_EQ(b, 1.96);
+  // Lead of the public hypervelocity deck (rho0 11.35e-3, c0 2092, s 1.45, gamma0 2) at
+  // mu = 0.9, about the compression of its 6.58 km/s impact: C1 = 49672.8664,
+  // Hugoniot C1 (0.9 + 1.9 * 0.81 + 0.45 * 3.35 * 0.729) = 3.5379675 C1, times
+  // 1 - 0.9 / 1.9 (the Hugoniot of the linear Us-up fit itself is 4.83 C1 there).
+  m.rho0 = 11.35e-3;
+  m.eos[0] = 2092.0;
+  m.eos[1] = 1.45;
+  m.eos[2] = 2.0;
+  mpm3d::eos_coefficients(m, 0.9, &a, &b);
+  const double lead = 49672.8664 * 3.5379675 * (1.0 - 0.9 / 1.9);
+  EXPECT_NEAR(a, lead, 1e-9 * lead);
+  EXPECT_EQ(b, 2.0);
 }
 
 TEST(Eos, StressUpdateWithLinearBulkEos) {
@@ -436,7 +450,7 @@ TEST(Eos, StressUpdateWithMieGruneisenEnergyCoupling) {
   // Hydrostatic compression of a Mie-Gruneisen material from e = 0, p = 0:
   // rho0 = 2, mass 2 (vol0 = 1), volume 1 -> 1/1.1 so mu = 0.1 and dv = 1/1.1 - 1.
   // The energy equation e1 = -(p0 + p1) dv / 2 with p1 = a + b e1 (b = gamma0 = 1) gives
-  // p1 = a / (1 + b dv / 2), a = 1.89 / 0.9025 (Eos.MieGruneisen), e1 = -p1 dv / 2.
+  // p1 = a / (1 + b dv / 2), a = 2.1915 * 21/22 (Eos.MieGruneisen), e1 = -p1 dv / 2.
   MaterialParams m = base_material(MAT_SJC);
   m.rho0 = 2.0;
   m.yield0 = 1e6;
@@ -451,17 +465,18 @@ TEST(Eos, StressUpdateWithMieGruneisenEnergyCoupling) {
   const double de[6] = {d, d, d, 0, 0, 0};
   mpm3d::stress_update(m, de, kZeroSpin, 1e-3, 2.0, 1.0, vnew, p.state());
   const double dv = vnew - 1.0;
-  const double a = 1.89 / 0.9025;
+  const double a = 2.1915 * 21.0 / 22.0;
   const double p1 = a / (1.0 + 0.5 * dv);
   expect_stress(p.sig, -p1, -p1, -p1, 0, 0, 0, p1, 1e-12);
   EXPECT_NEAR(p.ie, -0.5 * p1 * dv, 1e-12);
-  // Tension from rest: volume 1 -> 1.1: mu = 1/1.1 - 1, a = 18 mu, dv = 0.1,
-  // p1 = a / (1 + 0.05), negative (tension).
+  // Tension from rest: volume 1 -> 1.1: mu = 1/1.1 - 1, p1 = a = 18 mu (b = 0 in
+  // tension), negative; e1 = -p1 dv / 2 with dv = 0.1.
   Particle t;
   const double dt3 = 0.1 / 3.0;
   const double det[6] = {dt3, dt3, dt3, 0, 0, 0};
   mpm3d::stress_update(m, det, kZeroSpin, 1e-3, 2.0, 1.0, 1.1, t.state());
   const double mu = 1.0 / 1.1 - 1.0;
-  const double pt = (18.0 * mu) / 1.05;
+  const double pt = 18.0 * mu;
   expect_stress(t.sig, -pt, -pt, -pt, 0, 0, 0, 2.0, 1e-12);
+  EXPECT_NEAR(t.ie, -0.5 * pt * 0.1, 1e-12);
 }

@@ -130,6 +130,42 @@ TEST(Health, DensityOutsideTheBoundsStopsTheRun) {
   EXPECT_NO_THROW(sim.step());
 }
 
+TEST_F(Reliability, EnergyWarningsNameTheStepTheBodyAndTheFigures) {
+  // prestressed.mpm: body 2 starts at rest under its EOS's C0 = 1 and expands; body 1 flies
+  // freely (E0 = 4). By step 2 body 2's internal energy is about -0.036 (bound -0.004) and
+  // the kinetic energy 4.10 (bound 4.004); the total stays near 4, far from the runaway
+  // stop at twice E0.
+  const std::string deck = kDecks + "/prestressed.mpm";
+  const RunResult r = run({"--no-output", "--summary", tmp / "s.json", deck});  // warnings print unless --quiet
+  EXPECT_EQ(r.code, 0) << r.err;
+  const auto lines = testutil::split_lines(r.err);
+  ASSERT_EQ(lines.size(), 2u) << r.err;
+  for (const char* w : {"mpm3d: warning: energy: the internal energy of body 2 is -0.03", "at step 2 (t = ",
+                        "below -0.1% of the initial total energy 4 plus the external work 0"})
+    EXPECT_NE(lines[0].find(w), std::string::npos) << w << " not in " << lines[0];
+  for (const char* w : {"mpm3d: warning: energy: the kinetic energy 4.1", "at step 2",
+                        "exceeds the initial total energy 4 plus the external work 0 by 0.1"})
+    EXPECT_NE(lines[1].find(w), std::string::npos) << w << " not in " << lines[1];
+  EXPECT_EQ(r.err.find("body 1"), std::string::npos) << r.err;  // the free body is left alone
+  // Raised once: the run goes on to its end (3 steps) without repeating them.
+  const auto js = testutil::parse_json(testutil::read_file(tmp / "s.json"));
+  EXPECT_EQ(js["steps"].num, 3.0);
+  ASSERT_EQ(js["warnings"].arr.size(), 2u);
+  EXPECT_EQ("mpm3d: warning: " + js["warnings"].arr[0].str, lines[0]);
+  // --strict-energy: the first warning stops the run, exit status 3.
+  const RunResult s = run({"--quiet", "--no-output", "--strict-energy", deck});
+  EXPECT_EQ(s.code, 3);
+  const auto sl = testutil::split_lines(s.err);
+  ASSERT_EQ(sl.size(), 1u) << s.err;
+  EXPECT_NE(sl[0].find("mpm3d: energy: the internal energy of body 2"), std::string::npos) << sl[0];
+  EXPECT_NE(sl[0].find("(stopped: --strict-energy)"), std::string::npos) << sl[0];
+  // In process: the same stop at step 2 as a HealthError.
+  mpm3d::Simulation sim(mpm3d::read_deck(deck));
+  sim.strict_energy = true;
+  EXPECT_NO_THROW(sim.step());
+  EXPECT_THROW(sim.step(), mpm3d::HealthError);
+}
+
 // ---------------------------------------------------------------- checkpoint files
 
 TEST_F(Reliability, CheckpointHoldsEveryParticleArrayAndRestoresInProcess) {
