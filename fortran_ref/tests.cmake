@@ -80,6 +80,14 @@ if(TARGET mpm3d AND TARGET mpm3d_ref)
   fref_deck(gimp_contact ${_fref_own}/gimp_contact_usf.mpm contact recontact)
   # GIMP with the adaptive grid (halo patches on the deck's patch lattice).
   fref_adaptive(two_blocks_gimp ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks_gimp.mpm)
+  # Hypervelocity lead sphere: every variant over the first 60 steps, and the whole run
+  # (2,118 steps, into the EOS's tension branch) with every stage from Fortran.
+  fref_deck(lead_sphere_small ${CMAKE_SOURCE_DIR}/inputs/impact/lead_sphere_small.mpm)
+  add_test(NAME fref_lead_sphere_small_kernel_fortran_to_end
+           COMMAND sh ${_fref_script} kernels ${_fref_out}/fref_lead_sphere_small_kernel_fortran_to_end
+                   ${CMAKE_SOURCE_DIR}/inputs/impact/lead_sphere_small.mpm $<TARGET_FILE:mpm3d>
+                   $<TARGET_FILE:mpm3d_ref> ${MPM3D_H5DIFF} 2118 --threads 2 --kernel fortran)
+  set_tests_properties(fref_lead_sphere_small_kernel_fortran_to_end PROPERTIES TIMEOUT 300 LABELS fortran_ref)
   fref_add(fref_quirks_crlf crlf ${_fref_own}/quirks.mpm)
   fref_add(fref_usl_blocks_unstable unstable ${_fref_own}/usl_blocks.mpm)
   fref_add(fref_h5diff_detects detect ${_fref_own}/musl_sjcf.mpm)

@@ -17,6 +17,9 @@ mpm3d_thread_test(slab_small ${CMAKE_SOURCE_DIR}/inputs/explosives/slab_small.mp
 mpm3d_thread_test(slope ${CMAKE_SOURCE_DIR}/inputs/granular/slope.mpm 200)
 mpm3d_thread_test(legacy_deto1k ${CMAKE_SOURCE_DIR}/../shared/decks/Deto1k.mpm 60)
 mpm3d_thread_test(legacy_tnt3d ${CMAKE_SOURCE_DIR}/../shared/decks/TNT3D.mpm 30)
+# Hypervelocity (sjcf with failure, Mie-Gruneisen in compression and tension), run to its
+# end: the EOS's tension branch is reached after the shock has crossed the plate.
+mpm3d_thread_test(lead_sphere_small ${CMAKE_SOURCE_DIR}/inputs/impact/lead_sphere_small.mpm 2118)
 # The adaptive background grid (regrids every 5 steps; the rising block also forces one).
 mpm3d_thread_test(two_blocks_adaptive ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks.mpm 207 --regrid-every 5)
 mpm3d_thread_test(taylor_coarse_adaptive ${CMAKE_SOURCE_DIR}/inputs/taylor/taylor_coarse.mpm 40 --regrid-every 5)
