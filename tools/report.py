@@ -34,6 +34,7 @@ import matplotlib  # noqa: E402
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+import hypervelocity as H  # noqa: E402
 import verification as V  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -98,6 +99,7 @@ class Suite:
             sys.exit(f"report: no mpm3d_verify in {build} (build the project first: make build)")
         self.driver = os.path.abspath(cand[0])
         self.work = os.path.join(os.path.abspath(build), "report")
+        self.build = os.path.abspath(build)
         self.threads, self.quick, self.fine = threads, quick, fine
         self.vdir = os.path.join(ROOT, "docs", "verification")
         self.sdir = os.path.join(ROOT, "docs", "stability")
@@ -785,6 +787,8 @@ class Suite:
             msg = next((why for c, why in self.skipped if c.startswith("Sod")), "")
             L += [f"Not run: the program refuses the deck (`{msg}`)."]
         L += [""]
+        # Hypervelocity (tools/hypervelocity.py: its files in docs/verification/)
+        L += H.section_lines()
         # Taylor
         L += ["## Taylor bar", ""]
         if self.legacy:
@@ -1026,6 +1030,9 @@ def main():
     s.sod()
     s.stability()
     s.taylor()
+    s.log("hypervelocity: inputs/impact/lead_sphere_small.mpm")
+    H.run_small(s.build, s.threads)
+    H.make_plot()
     s.orders()
     load1 = loadavg()
     save_results(s, load0, load1, time.time() - s.t0)
