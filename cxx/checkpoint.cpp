@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "h5_quiet.hpp"
-#include "mpm3d.hpp"
+#include "simulation.hpp"
 
 namespace mpm3d {
 

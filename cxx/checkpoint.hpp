@@ -1,5 +1,5 @@
 // Checkpoint and restart (HDF5): everything a step needs to continue a run bit for bit.
-// Not a module of the original MPM3D (it has none); used by the driver (mpm3d.cpp) and
+// Not a module of the original MPM3D (it has none); used by the driver (cli.cpp) and
 // the C API.
 #pragma once
 #include <string>

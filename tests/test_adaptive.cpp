@@ -309,7 +309,7 @@ TEST(Adaptive, ThreadSharesFollowEachLoopsMeasuredSpeed) {
 #endif
 }
 
-// The load-balance arrays and range words the program binds (bind_balance in mpm3d.cpp),
+// The load-balance arrays and range words the program binds (bind_balance in simulation.cpp),
 // bound to a context over the patch lists `start` (one particle per list entry).
 struct BalanceArrays {
   std::vector<double> balance = std::vector<double>(mpm3d::kBalanceValues, 0.0);

@@ -1,0 +1,499 @@
+// The simulation (cxx/simulation.hpp): set-up and binding of the step contexts, one step
+// through the stage table, the adaptive regrid, the energy measure, the health and energy
+// checks.
+#include "simulation.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <sstream>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace mpm3d {
+namespace {
+
+// The first 64-byte boundary in v (which has 8 words to spare), so that each thread's
+// patch range word has a cache line of its own.
+uint64_t* line_aligned(std::vector<uint64_t>& v) {
+  const auto at = reinterpret_cast<std::uintptr_t>(v.data());
+  return v.data() + ((64 - at % 64) % 64) / sizeof(uint64_t);
+}
+
+// Points c's load-balance arrays (thread shares, busy times, particles done, patch range
+// words) at fresh storage in balance and ranges; the first binning sets equal shares.
+void bind_balance(StepContext& c, std::vector<double>& balance, std::vector<uint64_t>& ranges) {
+  balance.assign(kBalanceValues, 0.0);
+  c.thread_share = balance.data();
+  c.thread_busy = balance.data() + kBalanceValues / 3;
+  c.thread_done = balance.data() + 2 * (kBalanceValues / 3);
+  ranges.assign(kPatchRangeWords + 8, 0);
+  c.patch_ranges = line_aligned(ranges);
+  c.nshare = 0;
+}
+
+}  // namespace
+
+Simulation::Simulation(Model m, int patch_cells, ParticleOrder order) : model(std::move(m)), stages_(cxx_stages()) {
+  if (patch_cells < 1) throw std::invalid_argument("patch size must be at least one cell");
+  // A GIMP stencil reaches one node beyond its patch's cells; the node loops find every
+  // node a patch's particles touch among its own and its neighbours' nodes only when a
+  // patch is at least two cells wide.
+  if (model.gimp && patch_cells < 2) throw std::invalid_argument("GIMP needs patches of at least two cells");
+  double hi[3];
+  for (int a = 0; a < 3; ++a) hi[a] = model.box_hi[a];
+  const int halo = model.gimp ? 1 : 0;  // GIMP stencils reach one node beyond a patch's cells
+  grid.define(model.box_lo, hi, model.dcell, patch_cells, halo);
+  for (int f = 0; f < 6; ++f) grid.fix[f] = model.fix[f];
+  grid.mass_cutoff = model.mass_cutoff;
+  const size_t np = size_t(model.particles.np);
+  if (order == ParticleOrder::blocks) {
+    order_by_blocks(model.particles, model.box_lo, model.dcell, grid.deck_nc, patch_cells);
+  } else {
+    model.particles.id.resize(np);  // deck order, recorded too (the checkpoint stores it)
+    for (size_t p = 0; p < np; ++p) model.particles.id[p] = int32_t(p);
+  }
+  regrid_every = model.regrid_every;
+  if (model.contact && regrid_every > 0) {
+    // The two contact grids share one node numbering; the adaptive window is not applied.
+    regrid_every = 0;
+    model.warnings.push_back("adaptive grid ignored: 'cont' (multi-velocity contact) keeps the deck's box");
+  }
+  // The first window (the whole box without the adaptive grid); the node arrays are
+  // allocated at the window's size only.
+  int off[3] = {0, 0, 0}, nc[3] = {grid.deck_nc[0], grid.deck_nc[1], grid.deck_nc[2]};
+  if (regrid_every > 0)
+    adaptive_window(grid, model.particles.x.data(), model.particles.v.data(), model.particles.np, regrid_every,
+                    model.dt, off, nc);
+  grid.set_window(off, nc);
+  lx_.assign(3 * np, 0.0);
+  cell_.assign(np, -1);
+  grid.patch_part.assign(np, 0);
+  if (model.contact) {
+    grid2.setup(model.box_lo, hi, model.dcell, patch_cells, halo);
+    for (int f = 0; f < 6; ++f) grid2.fix[f] = model.fix[f];
+    grid2.mass_cutoff = model.mass_cutoff;
+    grid2.patch_part.assign(np, 0);
+  }
+  bind();
+  measure();
+  initial_total_energy = kinetic + internal;
+  // Binning of the initial state, for the patch statistics before the first step (every
+  // step bins again).
+  stages_.fn[ST_BIN](&ctx);
+  stats = patch_stats(grid, ctx.patch_start);
+  // The patch buffers for these lists now, with the set-up, rather than in the first step:
+  // their zero-filling and first touch (1.5 MB on taylor_coarse, 22 us a step averaged over
+  // 200 steps at 1 thread) is no part of a step's cost.
+  ensure_patch_buffers();
+  if (regrid_every > 0) {
+    regrids = 1;
+    note_regrid(0);
+  }
+}
+
+void Simulation::bind() {
+  Particles& P = model.particles;
+  StepContext& c = ctx;
+  c.x = P.x.data();
+  c.v = P.v.data();
+  c.sig = P.sig.data();
+  c.mass = P.mass.data();
+  c.vol = P.vol.data();
+  c.epeff = P.epeff.data();
+  c.ie = P.ie.data();
+  c.temp = P.temp.empty() ? nullptr : P.temp.data();
+  c.fext = P.fext.empty() ? nullptr : P.fext.data();
+  c.tlight = P.tlight.empty() ? nullptr : P.tlight.data();
+  c.qv = P.qv.empty() ? nullptr : P.qv.data();
+  c.bulk_q1 = model.bulk_q1;
+  c.bulk_q2 = model.bulk_q2;
+  c.lx = lx_.data();
+  c.mat = P.mat.data();
+  c.body = P.body.data();
+  c.cell = cell_.data();
+  pscratch_.assign(size_t(P.np), 0);
+  c.pscratch = pscratch_.data();
+  bind_balance(c, balance_, ranges_);
+  std::vector<double>& grav = gravity_;
+  grav.assign(3 * model.bodies.size(), 0.0);
+  for (size_t b = 0; b < model.bodies.size(); ++b)
+    for (int a = 0; a < 3; ++a) grav[3 * b + a] = model.bodies[b].gravity[a];
+  c.gravity = grav.data();
+  c.mats = model.mats.data();
+  c.patch_part = grid.patch_part.data();
+  c.patch_buf = grid.patch_buf.data();
+  c.reduce_block = 4096;
+  partials_.assign(size_t(kReduceFields) * (P.np / c.reduce_block + 1), 0.0);
+  c.partials = partials_.data();
+  c.h = grid.h;
+  c.inv_h = 1.0 / grid.h;
+  c.dt = model.dt;
+  c.dt_int = model.dt;
+  c.mass_cutoff = grid.mass_cutoff;
+  c.np = P.np;
+  c.nbody = int(model.bodies.size());
+  c.nmat = int(model.mats.size());
+  c.patch_cells = grid.patch_cells;
+  for (int f = 0; f < 6; ++f) c.fix[f] = grid.fix[f];
+  c.scheme = model.scheme;
+  c.has_body_force = (model.has_gravity || model.has_loads) ? 1 : 0;
+  // GIMP: 27-node stencils, patch buffers with a halo of one node layer.
+  c.psize = model.gimp ? P.psize.data() : nullptr;
+  c.shape = model.gimp ? 1 : 0;
+  c.patch_halo = grid.patch_halo;
+  c.body_comp = nullptr;
+  c.other = nullptr;
+  c.gnormal = nullptr;
+  c.cpartials = nullptr;
+  c.only_comp = 0;
+  bind_grid();  // before the contact copy: ctx2 starts as a copy of ctx
+  if (model.contact) {
+    // Two contexts over the same particles: each bins, scatters and updates the particles
+    // of its component on its own grid; the contact stage (in ctx) couples the two grids.
+    body_comp_.assign(model.bodies.size(), 1);
+    for (size_t b = 0; b < model.bodies.size(); ++b) body_comp_[b] = model.bodies[b].component;
+    gnormal1_.assign(3 * size_t(grid.nnode()), 0.0);
+    gnormal2_.assign(3 * size_t(grid.nnode()), 0.0);
+    cpartials_.assign(3 * size_t(grid.npatch), 0.0);
+    c.body_comp = body_comp_.data();
+    c.contact_mu = model.contact_mu;
+    c.contact_normbody = model.contact_normbody;
+    c.cpartials = cpartials_.data();
+    ctx2 = c;
+    c.only_comp = 1;
+    c.gnormal = gnormal1_.data();
+    c.other = &ctx2;
+    ctx2.only_comp = 2;
+    ctx2.gnormal = gnormal2_.data();
+    ctx2.gmass = grid2.mass.data();
+    ctx2.gmom = grid2.mom.data();
+    ctx2.gforce = grid2.force.data();
+    ctx2.patch_start = grid2.patch_start.data();
+    ctx2.patch_part = grid2.patch_part.data();
+    ctx2.patch_slot = grid2.patch_slot.data();
+    ctx2.patch_buf = grid2.patch_buf.data();
+    bind_balance(ctx2, balance2_, ranges2_);
+  }
+}
+
+void Simulation::bind_grid() {
+  StepContext& c = ctx;
+  c.gmass = grid.mass.data();
+  c.gmom = grid.mom.data();
+  c.gforce = grid.force.data();
+  c.patch_start = grid.patch_start.data();
+  c.patch_slot = grid.patch_slot.data();
+  for (int a = 0; a < 3; ++a) {
+    c.origin[a] = grid.origin[a];
+    c.nc[a] = grid.nc[a];
+    c.nn[a] = grid.nn[a];
+    c.npd[a] = grid.npd[a];
+    c.cell_off[a] = grid.off[a];
+  }
+  c.nnode = grid.nnode();
+  c.npatch = grid.npatch;
+}
+
+void Simulation::regrid(int escaped) {
+  int off[3], nc[3];
+  const Particles& P = model.particles;
+  adaptive_window(grid, P.x.data(), P.v.data(), P.np, regrid_every > 0 ? regrid_every : 1, model.dt, off, nc);
+  grid.set_window(off, nc);
+  bind_grid();
+  ++regrids;
+  if (escaped > 0) ++regrids_forced;
+}
+
+void Simulation::note_regrid(int escaped) {
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "regrid step %ld window %d %d %d %d %d %d cells %d x %d x %d, patches %d, empty %d, "
+                "particles per patch max %d mean %.1f, imbalance %.3f",
+                steps, grid.off[0], grid.off[0] + grid.nc[0], grid.off[1], grid.off[1] + grid.nc[1], grid.off[2],
+                grid.off[2] + grid.nc[2], grid.nc[0], grid.nc[1], grid.nc[2], stats.patches, stats.empty, stats.max,
+                stats.mean, stats.imbalance);
+  regrid_note = line;
+  if (escaped > 0) regrid_note += " (forced: " + std::to_string(escaped) + " particles had left the window)";
+}
+
+void Simulation::use_expansion_scatter() {
+  stages_.fn[ST_P2G] = mpm3d_cxx_p2g_expansion;
+  stages_.fn[ST_FORCES] = mpm3d_cxx_forces_expansion;
+  stages_.fn[ST_G2P] = mpm3d_cxx_g2p_expansion;
+  expansion_ = true;
+}
+
+void Simulation::ensure_expansion_buffers() {
+  int threads = 1;
+#ifdef _OPENMP
+  threads = omp_get_max_threads();
+#endif
+  const size_t need = size_t(threads) * size_t(grid.nnode()) * kNodeFields;
+  if (tgrid_.size() != need) std::vector<double>(need).swap(tgrid_);  // each thread zeroes its own copy
+  ctx.tgrid = tgrid_.data();
+  ctx.ntgrid = threads;
+}
+
+void Simulation::set_grid(const double origin[3], double h, const int deck_nc[3], int patch_cells, const int off[3],
+                          const int nc[3]) {
+  if (patch_cells < 1) throw std::invalid_argument("patch size must be at least one cell");
+  double hi[3];
+  for (int a = 0; a < 3; ++a) hi[a] = origin[a] + double(deck_nc[a]) * h;
+  grid.define(origin, hi, h, patch_cells, model.gimp ? 1 : 0);
+  for (int a = 0; a < 3; ++a)
+    if (grid.deck_nc[a] != deck_nc[a]) throw std::runtime_error("grid: cannot rebuild the stored grid");
+  grid.set_window(off, nc);
+  for (int f = 0; f < 6; ++f) grid.fix[f] = model.fix[f];
+  grid.mass_cutoff = model.mass_cutoff;
+  grid.patch_part.assign(size_t(model.particles.np), 0);
+  bind();
+}
+
+void Simulation::ensure_patch_buffers() {
+  const size_t need = size_t(ctx.nslot) * size_t(grid.patch_nodes) * kNodeFields;
+  if (grid.patch_buf.size() < need) {
+    grid.patch_buf.resize(need + need / 4);
+    ctx.patch_buf = grid.patch_buf.data();
+  }
+  if (model.contact) {
+    const size_t need2 = size_t(ctx2.nslot) * size_t(grid2.patch_nodes) * kNodeFields;
+    if (grid2.patch_buf.size() < need2) {
+      grid2.patch_buf.resize(need2 + need2 / 4);
+      ctx2.patch_buf = grid2.patch_buf.data();
+    }
+  }
+}
+
+void Simulation::step() {
+  StepContext* c = &ctx;
+  c->dt = model.dt;
+  c->dt_int = steps == 0 ? 0.5 * model.dt : model.dt;  // first step: momentum with dt/2
+  c->time = time + model.dt;  // the end of this step (programmed burn)
+  const bool contact = model.contact;
+  if (contact) {
+    ctx2.dt = c->dt;
+    ctx2.dt_int = c->dt_int;
+    ctx2.time = c->time;
+  }
+  // A stage on one context; with contact, the particle and grid stages run on both
+  // components' contexts in turn (component 1 first).
+  auto run1 = [&](int s, StepContext* x) {
+    const auto t0 = std::chrono::steady_clock::now();
+    stages_.fn[s](x);
+    stage_seconds[s] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  auto run = [&](int s) {
+    run1(s, c);
+    if (contact) run1(s, &ctx2);
+  };
+  const bool scheduled = regrid_every > 0 && steps > 0 && steps % regrid_every == 0;
+  if (scheduled) {
+    const auto t0 = std::chrono::steady_clock::now();
+    regrid(0);
+    stage_seconds[ST_BIN] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+  run(ST_BIN);
+  int escaped = 0;
+  if (c->noutside > 0 && !grid.window_is_box()) {
+    // A particle inside the deck's box has left the window: widen it now and bin again,
+    // so that the window never freezes a particle the box would not have frozen.
+    escaped = count_escaped(grid, c->x, c->cell, c->np);
+    if (escaped > 0) {
+      const auto t0 = std::chrono::steady_clock::now();
+      regrid(escaped);
+      stage_seconds[ST_BIN] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      run(ST_BIN);
+    }
+  }
+  stats = patch_stats(grid, c->patch_start);
+  if (scheduled || escaped > 0) note_regrid(escaped);
+  ensure_patch_buffers();
+  if (expansion_) ensure_expansion_buffers();
+  run(ST_P2G);
+  if (c->scheme == SCHEME_USF) {
+    // The P2G momenta of the nodes in contact at the end of the previous step corrected
+    // again before the strain rates read them (their velocities moved the particles).
+    if (contact) run1(ST_RECONTACT, c);
+    run(ST_STRESS);
+    run(ST_FORCES);
+  }
+  run(ST_INTEGRATE);
+  if (contact) {  // both grids integrated: correct the momenta and forces of the pair
+    run1(ST_CONTACT, c);
+    for (int a = 0; a < 3; ++a) contact_force[a] = c->result[5 + a];
+    contact_nodes = c->ncontact;
+  }
+  run(ST_G2P);
+  // MUSL: the remapped momenta of the nodes in contact are corrected again before the
+  // strain rates (the stress stage) read them.
+  if (contact && c->scheme == SCHEME_MUSL) run1(ST_RECONTACT, c);
+  if (c->scheme != SCHEME_USF) run(ST_STRESS);
+  run1(ST_ENERGY, c);
+  outside = c->noutside + (contact ? ctx2.noutside : 0);
+  kinetic = c->result[0];
+  internal = c->result[1];
+  for (int a = 0; a < 3; ++a) momentum[a] = c->result[2 + a];
+  ++steps;
+  time += model.dt;
+  if (ctx.has_body_force) external_work += dt_work_of_body_forces();
+  health_check();
+}
+
+double Simulation::dt_work_of_body_forces() const {
+  const Particles& P = model.particles;
+  // An upper bound of the energy the external forces can have put in: |f . v| per particle,
+  // so forces that change sign (vibrations, manufactured solutions) do not cancel out.
+  double w = 0.0;
+  for (int p = 0; p < P.np; ++p) {
+    const double* g = &gravity_[3 * size_t(P.body[p])];
+    const double* v = &P.v[3 * size_t(p)];
+    double pw = 0.0;
+    for (int a = 0; a < 3; ++a) {
+      const double f = P.mass[p] * g[a] + (P.fext.empty() ? 0.0 : P.fext[3 * size_t(p) + a]);
+      pw += f * v[a];
+    }
+    w += std::fabs(pw);
+  }
+  return w * model.dt;
+}
+
+void Simulation::measure() {
+  stages_.fn[ST_ENERGY](&ctx);
+  kinetic = ctx.result[0];
+  internal = ctx.result[1];
+  for (int a = 0; a < 3; ++a) momentum[a] = ctx.result[2 + a];
+}
+
+// After every step: non-finite values (when an energy sum is not finite), then one pass
+// over the particles for a non-positive volume or a density outside
+// [kDensityRatioMin, kDensityRatioMax] rho0 (parallel, the lowest such deck number is
+// reported, whatever the thread count), then runaway energy. The pass reads two doubles and
+// one int per particle: about 1% of a step.
+void Simulation::health_check() {
+  const Particles& P = model.particles;
+  if (!(std::isfinite(kinetic) && std::isfinite(internal))) {
+    const std::vector<int> at = stored_index(P);
+    for (int i = 0; i < P.np; ++i) {
+      const int p = at[size_t(i)];
+      const char* what = nullptr;
+      for (int a = 0; a < 3 && !what; ++a) {
+        if (!std::isfinite(P.x[3 * size_t(p) + a])) what = "position";
+        else if (!std::isfinite(P.v[3 * size_t(p) + a])) what = "velocity";
+      }
+      for (int s = 0; s < 6 && !what; ++s)
+        if (!std::isfinite(P.sig[6 * size_t(p) + s])) what = "stress";
+      if (!what && !std::isfinite(P.ie[p])) what = "internal energy";
+      if (!what && !std::isfinite(P.vol[p])) what = "volume";
+      if (what) {
+        std::ostringstream os;
+        os << "numerical breakdown at step " << steps << " (t = " << time << "): particle " << i + 1 << " (body "
+           << P.body[p] + 1 << ") has a non-finite " << what;
+        throw HealthError(os.str());
+      }
+    }
+  }
+  double ie_min = 0.0;  // the lowest particle internal energy, if negative (a min is exact)
+  {
+    const double* vol = P.vol.data();
+    const double* mass = P.mass.data();
+    const int* mat = P.mat.data();
+    const MaterialParams* mats = model.mats.data();
+    const int np = P.np;
+    const double* ie = P.ie.data();
+    int bad = np;  // the lowest deck number of a particle out of bounds
+#pragma omp parallel for schedule(static) reduction(min : bad, ie_min)
+    for (int p = 0; p < np; ++p) {
+      const double r0v = mats[mat[p]].rho0 * vol[p];
+      const bool ok = vol[p] > 0.0 && mass[p] >= kDensityRatioMin * r0v && mass[p] <= kDensityRatioMax * r0v;
+      if (!ok && P.deck_number(p) < bad) bad = P.deck_number(p);
+      if (ie[p] < ie_min) ie_min = ie[p];
+    }
+    if (bad < np) {
+      const int p = stored_index(P)[size_t(bad)];
+      std::ostringstream os;
+      os << "numerical breakdown at step " << steps << " (t = " << time << "): particle " << bad + 1 << " (body "
+         << P.body[p] + 1 << ") has ";
+      const double rho0 = mats[mat[p]].rho0;
+      if (!(vol[p] > 0.0))
+        os << "a non-positive volume " << vol[p] << " (crushed: reduce dtscale, or the impact speed is too high for the grid)";
+      else
+        os << "density " << mass[p] / vol[p] << " = " << (mass[p] / vol[p]) / rho0 << " rho0 (rho0 = " << rho0
+           << "), outside the bounds [" << kDensityRatioMin << ", " << kDensityRatioMax << "] rho0";
+      throw HealthError(os.str());
+    }
+  }
+  if (std::isfinite(kinetic) && std::isfinite(internal)) {
+    // Runaway energy: the total may not exceed twice the initial energy plus the bound of
+    // the work of the external forces (sum of |f . v| dt per particle with the end-of-step
+    // velocities; the factor two leaves room for that approximation).
+    const double total = kinetic + internal;
+    if (std::fabs(total) <= 2.0 * (std::fabs(initial_total_energy) + std::fabs(external_work)) + 1e-300) {
+      energy_check(ie_min);
+      return;
+    }
+    int worst = 0;
+    double vmax = -1.0;
+    for (int p = 0; p < P.np; ++p) {
+      const double* v = &P.v[3 * size_t(p)];
+      const double s = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+      if (s > vmax || (s == vmax && P.deck_number(p) < P.deck_number(worst))) {
+        vmax = s;
+        worst = p;
+      }
+    }
+    std::ostringstream os;
+    os << "numerical instability at step " << steps << " (t = " << time << "): total energy " << total
+       << " exceeds twice the initial energy " << initial_total_energy << " plus the external work "
+       << external_work << "; fastest particle " << P.deck_number(worst) + 1 << " (body " << P.body[worst] + 1 << ") at speed "
+       << std::sqrt(vmax) << " (reduce dtscale, or use MUSL)";
+    throw HealthError(os.str());
+  }
+  throw HealthError("numerical breakdown at step " + std::to_string(steps) + ": non-finite energy");
+}
+
+// Energy bounds that a run can break silently, with its total still conserved: a body's
+// internal energy below -kEnergyWarnFraction (|E0| + |W|), or the kinetic energy above
+// E0 + |W| by more than that (both seen when a body starts pre-compressed under an EOS, or
+// an EOS releases more work than it stored). ie_min, the lowest particle internal energy
+// (0 if none is negative), is exact whatever the thread count: the per-body sums (serial,
+// in storage order, so their figures do not depend on the threads either) are formed only
+// when np * ie_min could reach the bound.
+void Simulation::energy_check(double ie_min) {
+  const double bound = kEnergyWarnFraction * (std::fabs(initial_total_energy) + std::fabs(external_work));
+  const Particles& P = model.particles;
+  std::vector<std::string> found;
+  if (ie_min < 0.0 && double(P.np) * ie_min < -bound) {
+    std::vector<double> body_ie(model.bodies.size(), 0.0);
+    for (int p = 0; p < P.np; ++p) body_ie[size_t(P.body[p])] += P.ie[p];
+    body_ie_warned_.resize(body_ie.size(), 0);
+    for (size_t b = 0; b < body_ie.size(); ++b) {
+      if (body_ie_warned_[b] || !(body_ie[b] < -bound)) continue;
+      body_ie_warned_[b] = 1;
+      std::ostringstream os;
+      os << "energy: the internal energy of body " << b + 1 << " is " << body_ie[b] << " at step " << steps
+         << " (t = " << time << "), below -" << 100.0 * kEnergyWarnFraction << "% of the initial total energy "
+         << initial_total_energy << " plus the external work " << external_work
+         << " (its stress work releases more than it stored: check the EOS and that the particle cards' densities "
+            "are the materials')";
+      found.push_back(os.str());
+    }
+  }
+  if (!kinetic_warned_ && kinetic > (initial_total_energy + std::fabs(external_work)) + bound) {
+    kinetic_warned_ = true;
+    std::ostringstream os;
+    os << "energy: the kinetic energy " << kinetic << " at step " << steps << " (t = " << time
+       << ") exceeds the initial total energy " << initial_total_energy << " plus the external work " << external_work
+       << " by " << kinetic - (initial_total_energy + std::fabs(external_work)) << " (internal energy " << internal
+       << ")";
+    found.push_back(os.str());
+  }
+  if (found.empty()) return;
+  if (strict_energy) throw HealthError(found.front() + " (stopped: --strict-energy)");
+  for (auto& w : found) new_energy_warnings.push_back(std::move(w));
+}
+
+}  // namespace mpm3d

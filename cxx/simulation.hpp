@@ -1,0 +1,106 @@
+// The simulation: a Simulation owns the model, the grid and the step context, and advances
+// the model one step at a time with a table of stage kernels (set-up, step, regrid,
+// measure, health and energy checks); HealthError and the bounds of the health check.
+#pragma once
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "data_in.hpp"
+#include "grid.hpp"
+#include "update_step.hpp"
+
+namespace mpm3d {
+
+// Bounds of the per-step health check on the density: rho / rho0 must stay within them.
+constexpr double kDensityRatioMin = 1.0e-3, kDensityRatioMax = 1.0e3;
+
+// The energy warnings of the health check fire when a body's internal energy falls below
+// -kEnergyWarnFraction (|E0| + |W|), or the kinetic energy rises above E0 + |W| by more than
+// that (E0 the initial total energy, W the bound of the external work).
+constexpr double kEnergyWarnFraction = 1.0e-3;
+
+// A numerical breakdown found by the per-step health check.
+class HealthError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class Simulation {
+ public:
+  // order: the particles' storage order (order_by_blocks, cxx/particle.hpp; deck: as read).
+  explicit Simulation(Model model, int patch_cells = 4, ParticleOrder order = ParticleOrder::blocks);
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  void step();  // one explicit step; throws HealthError (see health_check)
+  void set_stages(const StageTable& t) { stages_ = t; }
+  // --scatter expansion: P2G, forces and G2P from the per-thread grid copies
+  // (cxx/update_step_expansion.cpp) instead of the patches. Call after set_stages.
+  void use_expansion_scatter();
+  bool expansion_scatter() const { return expansion_; }
+  // Redefines the background grid (restart): the lattice (origin, cell h, deck_nc cells,
+  // patch size) and the window of cells off .. off + nc - 1 on it.
+  void set_grid(const double origin[3], double h, const int deck_nc[3], int patch_cells, const int off[3],
+                const int nc[3]);
+
+  Model model;
+  Grid grid;
+  StepContext ctx{};  // every particle; with contact: component 1 (ctx.other = &ctx2)
+  Grid grid2;         // contact only: component 2's grid
+  StepContext ctx2{};  // contact only: component 2's context
+  double contact_force[3] = {0, 0, 0};  // contact: force on component 1 in the last step
+  int contact_nodes = 0;                // contact: nodes corrected in the last step
+  long steps = 0;
+  double time = 0.0;
+  double kinetic = 0.0, internal = 0.0, momentum[3] = {0, 0, 0};
+  double initial_total_energy = 0.0;
+  double external_work = 0.0;  // bound of the work of gravity and loads so far: sum |f.v| dt (health check)
+  int outside = 0;  // particles outside the grid after the last step
+  // Energy warnings of the health check (health_check), each raised once per run (per
+  // body for the internal energy); the driver prints and clears new_energy_warnings. With
+  // strict_energy the first one stops the run as a HealthError instead.
+  bool strict_energy = false;
+  std::vector<std::string> new_energy_warnings;
+  double stage_seconds[ST_COUNT] = {};  // wall time spent in each stage (regrids count as bin)
+
+  // Adaptive background grid (model.regrid_every > 0): the grid window is redefined from
+  // the particles before steps 0, N, 2N, ... and whenever a particle inside the deck's box
+  // has left the window (a forced regrid, then binning again).
+  int regrid_every = 0;
+  long regrids = 0, regrids_forced = 0;
+  PatchStats stats;         // particles per patch after the last binning
+  std::string regrid_note;  // the log line of a regrid in the set-up or the last step; the
+                            // driver prints and clears it
+
+  // Energies and momentum of the current state (the energy stage on its own).
+  void measure();
+
+ private:
+  StageTable stages_;
+  std::vector<double> lx_, partials_;
+  std::vector<int> cell_, pscratch_;
+  std::vector<double> gravity_;
+  std::vector<int> body_comp_;                        // contact: component of each body
+  std::vector<double> gnormal1_, gnormal2_, cpartials_;  // contact only
+  void bind();       // points ctx at the arrays
+  void bind_grid();  // ... and at the grid's (again after a regrid)
+  void regrid(int escaped);
+  void note_regrid(int escaped);
+  bool expansion_ = false;
+  std::vector<double> tgrid_;
+  // Thread shares and busy times of the patch stages (StepContext::thread_share), one set
+  // per context, for up to kMaxBalancedThreads threads.
+  std::vector<double> balance_, balance2_;
+  // Behind StepContext::patch_ranges (kPatchRangeWords from a 64-byte boundary).
+  std::vector<uint64_t> ranges_, ranges2_;
+  void ensure_expansion_buffers();
+  void ensure_patch_buffers();
+  void health_check();
+  void energy_check(double ie_min);
+  std::vector<char> body_ie_warned_;
+  bool kinetic_warned_ = false;
+  double dt_work_of_body_forces() const;
+};
+
+}  // namespace mpm3d
