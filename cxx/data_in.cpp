@@ -1,12 +1,17 @@
+// The deck reader (data_in.hpp): the cards, their checks, and the set-up after 'endi'
+// (lighting times, initial energies, GIMP sizes, dt, mass cut-off); the particles of the
+// 'part' cards come from particle_gen.cpp.
 #include "data_in.hpp"
 
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
 #include "ffi.hpp"
+#include "particle_gen.hpp"
 
 namespace mpm3d {
 
@@ -19,12 +24,15 @@ bool is_output_variable(const std::string& name) {
   return false;
 }
 
-static double g_memory_budget = 0.0;
+// The process-wide default of the memory budget (set_deck_memory_budget): the one piece of
+// state this file keeps; each read takes its budget once, as a parameter of the Reader.
+static std::atomic<double> g_memory_budget{0.0};
 
-void set_deck_memory_budget(double bytes) { g_memory_budget = bytes; }
+void set_deck_memory_budget(double bytes) { g_memory_budget.store(bytes); }
 
 double deck_memory_budget() {
-  if (g_memory_budget > 0.0) return g_memory_budget;
+  const double set = g_memory_budget.load();
+  if (set > 0.0) return set;
   const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
   return pages > 0 && page > 0 ? double(pages) * double(page) : 1.0e18;
 }
@@ -35,13 +43,15 @@ std::string megabytes(double bytes) { return std::to_string(long(bytes / 1048576
 
 class Reader {
  public:
-  Reader(TokenStream ts) : ts_(std::move(ts)) {}
+  Reader(TokenStream ts, double memory_budget)
+      : ts_(std::move(ts)), memory_budget_(memory_budget), parts_(m_.particles, ts_.name()) {}
   Model read();
 
  private:
   TokenStream ts_;
+  const double memory_budget_;  // bytes (deck_memory_budget)
   Model m_;
-  int nparticles_ = 0;  // particles read so far
+  ParticleAppender parts_;  // appends the particle cards' particles to m_.particles
   bool ended_ = false;
   int box_line_[3] = {0, 0, 0}, dcell_line_ = 0;  // where the box and the cell size were set
 
@@ -50,8 +60,6 @@ class Reader {
   void need_counts(const Token& key, bool particles, bool materials, bool bodies);
   void read_materials(const Token& key);
   void read_particles(const Token& key);
-  void add_particle(int line, int mat, double mass, double vol, double x, double y, double z);
-  void check_room(int line, double count, const char* what);
   void read_velocities(const Token& key);
   void read_loads(const Token& key);
   void read_eos(const Token& key);
@@ -89,12 +97,13 @@ Model Reader::read() {
         fail(key.line, "'" + key.text + "' must be a count in 1.." + std::to_string(kMaxParticles) + ", got " + std::to_string(n));
       if (k == "nbmp") {
         if (m_.nbmp >= 0) fail(key.line, "'nbmp' given twice");
-        const double need = double(n) * kBytesPerParticle, budget = deck_memory_budget();
+        const double need = double(n) * kBytesPerParticle, budget = memory_budget_;
         if (need > budget)
           fail(key.line, "'nbmp' = " + std::to_string(n) + " particles need about " + megabytes(need) +
                              ", more than the " + megabytes(budget) + " of memory available");
         m_.nbmp = int(n);
         m_.particles.resize(0);  // grows as the particle cards generate particles
+        parts_.set_limit(m_.nbmp);
       } else if (k == "nbco") {
         if (n > 2) fail(key.line, "'nbco' must be 1 or 2");
         m_.nbco = int(n);
@@ -179,10 +188,10 @@ Model Reader::read() {
       c.var = output_var(key.line);
       double xyz[3];
       for (double& v : xyz) v = ts_.real("a curve position");
-      if (nparticles_ == 0) fail(key.line, "'curx' must follow the particle cards");
+      if (parts_.count() == 0) fail(key.line, "'curx' must follow the particle cards");
       const double tol = 0.25 * m_.dcell;
       int found = -1;
-      for (int p = 0; p < nparticles_ && found < 0; ++p) {
+      for (int p = 0; p < parts_.count() && found < 0; ++p) {
         const double* x = &m_.particles.x[3 * size_t(p)];
         if (std::fabs(x[0] - xyz[0]) <= tol && std::fabs(x[1] - xyz[1]) <= tol && std::fabs(x[2] - xyz[2]) <= tol)
           found = p;
@@ -371,39 +380,6 @@ void Reader::read_eos(const Token& key) {
   mp.eos_type = int(et);
 }
 
-// Refuses a particle card that would generate at least `count` more particles than 'nbmp'
-// leaves room for (checked before generating, so that no card loops for long).
-void Reader::check_room(int line, double count, const char* what) {
-  if (double(nparticles_) + count > double(m_.nbmp))
-    fail(line, std::string(what) + " of at least " + std::to_string(long(count)) + " particles exceeds 'nbmp' = " +
-                   std::to_string(m_.nbmp));
-}
-
-void Reader::add_particle(int line, int mat, double mass, double vol, double x, double y, double z) {
-  if (nparticles_ >= m_.nbmp)
-    fail(line, "more particles than 'nbmp' = " + std::to_string(m_.nbmp));
-  if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) fail(line, "particle position out of range");
-  Particles& P = m_.particles;
-  if (nparticles_ >= P.np) {  // grow the arrays (contents kept) up to 'nbmp'
-    const int n = int(std::min<long>(m_.nbmp, std::max<long>(1024, 2L * P.np)));
-    P.np = n;
-    P.x.resize(3 * size_t(n), 0.0);
-    P.v.resize(3 * size_t(n), 0.0);
-    if (!P.fext.empty()) P.fext.resize(3 * size_t(n), 0.0);
-    P.sig.resize(6 * size_t(n), 0.0);
-    for (auto* v : {&P.mass, &P.vol, &P.epeff, &P.ie}) v->resize(size_t(n), 0.0);
-    for (auto* v : {&P.mat, &P.body}) v->resize(size_t(n), 0);
-  }
-  const int p = nparticles_++;
-  P.mass[p] = mass;
-  P.vol[p] = vol;
-  P.x[3 * size_t(p)] = x;
-  P.x[3 * size_t(p) + 1] = y;
-  P.x[3 * size_t(p) + 2] = z;
-  P.mat[p] = mat;
-  P.body[p] = int(m_.bodies.size()) - 1;
-}
-
 void Reader::read_particles(const Token& key) {
   need_counts(key, true, true, true);
   if (int(m_.bodies.size()) >= m_.nbbo)
@@ -414,7 +390,7 @@ void Reader::read_particles(const Token& key) {
   const long comp = ts_.integer("a component number");
   if (comp < 1 || comp > m_.nbco) fail(ct.line, "component " + std::to_string(comp) + " out of range 1.." + std::to_string(m_.nbco));
   Body b;
-  b.first = nparticles_;
+  b.first = parts_.count();
   b.component = int(comp);
   m_.bodies.push_back(b);
   auto material = [&]() {
@@ -428,8 +404,7 @@ void Reader::read_particles(const Token& key) {
     const Token& nt = ts_.peek();
     const long n = ts_.integer("the number of points");
     if (n < 1) fail(nt.line, "number of points must be positive");
-    if (nparticles_ + n > m_.nbmp)
-      fail(nt.line, "'part poin' with " + std::to_string(n) + " points exceeds 'nbmp' = " + std::to_string(m_.nbmp));
+    check_points_room(parts_, nt.line, n);
     long last = 0;
     for (long i = 0; i < n; ++i) {
       const Token& pt = ts_.peek();
@@ -442,7 +417,7 @@ void Reader::read_particles(const Token& key) {
       const double vol = mass / m_.mats[size_t(mat)].rho0;
       if (!(vol > 0.0) || !std::isfinite(vol)) fail(pt.line, "particle volume (mass / density) out of range");
       const double x = ts_.real("x"), y = ts_.real("y"), z = ts_.real("z");
-      add_particle(pt.line, mat, mass, vol, x, y, z);
+      parts_.add(pt.line, int(m_.bodies.size()) - 1, mat, mass, vol, x, y, z);
     }
   } else if (k == "bloc" || k == "sphe" || k == "cyli") {
     const int mat = material();
@@ -456,6 +431,13 @@ void Reader::read_particles(const Token& key) {
     m_.bodies.back().spacing = dp;
     if (!(vol > 0.0) || !(mass > 0.0) || !std::isfinite(mass))
       fail(kind.line, "particle volume (spacing^3) or mass (density * volume) out of range");
+    LatticeCard card;
+    card.line = kind.line;
+    card.body = int(m_.bodies.size()) - 1;
+    card.mat = mat;
+    card.mass = mass;
+    card.vol = vol;
+    card.dp = dp;
     if (k == "bloc") {
       double o[3];
       long n[3];
@@ -464,30 +446,13 @@ void Reader::read_particles(const Token& key) {
         v = ts_.integer("a block count");
         if (v < 1 || v > 100000) fail(kind.line, "block counts must be positive");
       }
-      if (nparticles_ + n[0] * n[1] * n[2] > m_.nbmp)
-        fail(kind.line, "block of " + std::to_string(n[0] * n[1] * n[2]) + " particles exceeds 'nbmp' = " + std::to_string(m_.nbmp));
-      // Book version: x outermost, z index fastest.
-      for (long i = 0; i < n[0]; ++i)
-        for (long j = 0; j < n[1]; ++j)
-          for (long l = 0; l < n[2]; ++l)
-            add_particle(kind.line, mat, mass, vol, o[0] + (double(i) + 0.5) * dp,
-                         o[1] + (double(j) + 0.5) * dp, o[2] + (double(l) + 0.5) * dp);
+      generate_block(parts_, card, o, n);
     } else if (k == "sphe") {
       double c[3];
       for (double& v : c) v = ts_.real("the sphere centre");
       const long nr = ts_.integer("the sphere radius in spacings");
       if (nr < 1 || nr > 10000) fail(kind.line, "sphere radius (in spacings) must lie in 1..10000");
-      // At least the lattice points within nr - sqrt(3)/2 of the centre lie inside.
-      const double rin = double(nr) - 0.8660254;
-      if (rin > 0.0) check_room(kind.line, std::floor(4.18879 * rin * rin * rin), "sphere");
-      const double r2 = double(nr * nr);
-      for (long i = -nr; i < nr; ++i)
-        for (long j = -nr; j < nr; ++j)
-          for (long l = -nr; l < nr; ++l) {
-            const double a = double(i) + 0.5, bb = double(j) + 0.5, cc = double(l) + 0.5;
-            if ((a * a + bb * bb) + cc * cc > r2) continue;
-            add_particle(kind.line, mat, mass, vol, c[0] + a * dp, c[1] + bb * dp, c[2] + cc * dp);
-          }
+      generate_sphere(parts_, card, c, nr);
     } else {
       // Extension: 'part cyli comID matID density dp cx cy z0 R L' - a cylinder along z,
       // axis through (cx, cy), from z0 to z0 + L, radius R, on the lattice of spacing dp.
@@ -495,28 +460,13 @@ void Reader::read_particles(const Token& key) {
       const double z0 = ts_.real("the cylinder base z");
       const double radius = ts_.real("the cylinder radius"), length = ts_.real("the cylinder length");
       if (!(radius > 0.0) || !(length > 0.0)) fail(kind.line, "cylinder radius and length must be positive");
-      const double rs = radius / dp, zs = std::floor(length / dp + 0.5);
-      if (!(rs <= 100000.0) || !(zs <= 1000000.0)) fail(kind.line, "cylinder too large for its spacing");
-      if (!(zs >= 1.0)) fail(kind.line, "cylinder shorter than half a spacing");
-      const long nr = long(std::ceil(rs));
-      const long nz = long(zs);
-      // At least the columns within R/dp - sqrt(2)/2 of the axis lie inside.
-      const double rin = rs - 0.7071068;
-      if (rin > 0.0) check_room(kind.line, std::floor(3.14159 * rin * rin) * double(nz), "cylinder");
-      const double r2 = (radius / dp) * (radius / dp) * (1.0 + 1e-12);
-      for (long i = -nr; i < nr; ++i)
-        for (long j = -nr; j < nr; ++j) {
-          const double a = double(i) + 0.5, bb = double(j) + 0.5;
-          if (a * a + bb * bb > r2) continue;
-          for (long l = 0; l < nz; ++l)
-            add_particle(kind.line, mat, mass, vol, cx + a * dp, cy + bb * dp, z0 + (double(l) + 0.5) * dp);
-        }
+      generate_cylinder(parts_, card, cx, cy, z0, radius, length);
     }
   } else {
     fail(kind.line, "unknown particle card '" + kind.text + "' (poin, bloc, sphe or cyli)");
   }
   Body& back = m_.bodies.back();
-  back.count = nparticles_ - back.first;
+  back.count = parts_.count() - back.first;
   if (back.count == 0) fail(kind.line, "particle card generated no particles");
 }
 
@@ -530,7 +480,7 @@ void Reader::read_velocities(const Token& key) {
     if (k == "node") {
       const long pid = ts_.integer("a particle id");
       const int p = particle_index(t, pid);
-      if (p >= nparticles_) fail(t.line, "velocity for particle " + std::to_string(pid) + " before it is defined");
+      if (p >= parts_.count()) fail(t.line, "velocity for particle " + std::to_string(pid) + " before it is defined");
       for (double& c : v) c = ts_.real("a velocity");
       for (int a = 0; a < 3; ++a) m_.particles.v[3 * size_t(p) + a] = v[a];
     } else if (k == "body") {
@@ -560,7 +510,7 @@ void Reader::read_loads(const Token& key) {
       if (k == "node") {
         const long pid = ts_.integer("a particle id");
         first = particle_index(t, pid);
-        if (first >= nparticles_) fail(t.line, "load on particle " + std::to_string(pid) + " before it is defined");
+        if (first >= parts_.count()) fail(t.line, "load on particle " + std::to_string(pid) + " before it is defined");
         count = 1;
       } else {
         const Body& b = m_.bodies[size_t(body_index(t, ts_.integer("a body number")))];
@@ -584,8 +534,8 @@ void Reader::read_loads(const Token& key) {
 void Reader::finish(int line) {
   if (m_.nbmp < 0) fail(line, "no 'nbmp' (number of particles) before 'endi'");
   if (m_.nmat < 0) fail(line, "no 'nmat' (number of materials) before 'endi'");
-  if (nparticles_ != m_.nbmp)
-    fail(line, "'nbmp' = " + std::to_string(m_.nbmp) + " but the particle cards define " + std::to_string(nparticles_));
+  if (parts_.count() != m_.nbmp)
+    fail(line, "'nbmp' = " + std::to_string(m_.nbmp) + " but the particle cards define " + std::to_string(parts_.count()));
   if (m_.nbbo >= 0 && int(m_.bodies.size()) != m_.nbbo)
     fail(line, "'nbbo' = " + std::to_string(m_.nbbo) + " but " + std::to_string(m_.bodies.size()) + " particle cards were read");
   for (int i = 0; i < m_.nmat; ++i)
@@ -612,7 +562,7 @@ void Reader::finish(int line) {
     const int at = std::max({box_line_[0], box_line_[1], box_line_[2], dcell_line_});
     if (nodes > kMaxNodes)
       fail(at, "grid of " + std::to_string(long(nodes)) + " nodes exceeds the limit of " + std::to_string(long(kMaxNodes)));
-    const double need = nodes * kBytesPerNode + double(m_.nbmp) * kBytesPerParticle, budget = deck_memory_budget();
+    const double need = nodes * kBytesPerNode + double(m_.nbmp) * kBytesPerParticle, budget = memory_budget_;
     if (need > budget)
       fail(at, "grid of " + std::to_string(long(nodes)) + " nodes and " + std::to_string(m_.nbmp) +
                    " particles need about " + megabytes(need) + ", more than the " + megabytes(budget) +
@@ -722,10 +672,12 @@ void Reader::finish(int line) {
 
 }  // namespace
 
-Model read_deck(const std::string& path) { return Reader(TokenStream::from_file(path)).read(); }
+Model read_deck(const std::string& path, double memory_budget) {
+  return Reader(TokenStream::from_file(path), memory_budget).read();
+}
 
-Model read_deck_text(const std::string& text, const std::string& name) {
-  return Reader(TokenStream::from_string(text, name)).read();
+Model read_deck_text(const std::string& text, const std::string& name, double memory_budget) {
+  return Reader(TokenStream::from_string(text, name), memory_budget).read();
 }
 
 }  // namespace mpm3d
