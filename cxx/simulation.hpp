@@ -36,7 +36,7 @@ class Simulation {
   void step();  // one explicit step; throws HealthError (see health_check)
   void set_stages(const StageTable& t) { stages_ = t; }
   // --scatter expansion: P2G, forces and G2P from the per-thread grid copies
-  // (cxx/update_step_expansion.cpp) instead of the patches. Call after set_stages.
+  // (cxx/scatter_expansion.cpp) instead of the patches. Call after set_stages.
   void use_expansion_scatter();
   bool expansion_scatter() const { return expansion_; }
   // Redefines the background grid (restart): the lattice (origin, cell h, deck_nc cells,

@@ -9,13 +9,14 @@
 //   starts at +0.0 never holds -0.0 under round-to-nearest, so x + 0.0 == x);
 // - scatters into the patch buffers stay one particle after the other, in list order,
 //   so every node sums its contributions in the canonical order.
-// update_step.cpp instantiates these for the baseline instruction set,
-// update_step_avx2.cpp for AVX2; both have their own copies (internal linkage).
+// The stage files (stage_bin, stage_p2g, stage_g2p, stage_stress.cpp) instantiate these for
+// the baseline instruction set, transfer_lanes_avx2.cpp for AVX2 (the *_avx2 functions
+// declared at the end); each unit has its own copies (internal linkage).
 #pragma once
 #include "constitution.hpp"
 #include "constitution_lanes.hpp"
 #include "lanes.hpp"
-#include "update_step_detail.hpp"
+#include "stage_common.hpp"
 
 namespace mpm3d {
 namespace {
@@ -81,11 +82,6 @@ int bin_range(const StepContext* c, int lo, int hi, int* patch_of) {
   return outside;
 }
 
-// Offset of local node k from the base node in the global node array.
-inline int node_offset(const StepContext* c, int k) {
-  return (k & 1) + c->nn[0] * (((k >> 1) & 1) + c->nn[1] * ((k >> 2) & 1));
-}
-
 template <class TL>
 inline void load_lx(const StepContext* c, const int* part, decltype(TL::splat(0.0)) lx[3]) {
   int i3[kLanes];
@@ -141,7 +137,7 @@ void g2p_values(StepContext* c, const CellDecoder& dec, const int* part, bool re
   const T zero = TL::splat(0.0);
   T ax = zero, ay = zero, az = zero, ux = zero, uy = zero, uz = zero;
   for (int k = 0; k < 8; ++k) {
-    const int off = node_offset(c, k);
+    const int off = node_of(c, 0, k);  // local node k from the base node
     for (int i = 0; i < TL::W; ++i) n1[i] = base[i] + off, n3[i] = 3 * n1[i];
     const T m = TL::gather(c->gmass, n1);
     const auto heavy = m > cutoff;
@@ -179,9 +175,7 @@ void g2p_patch(StepContext* c, const CellDecoder& dec, int q, bool remap) {
   int q3[3];
   patch_coords(c, q, q3);
   double* buf = patch_buffer(c, c->patch_slot[q]);
-  if (remap)
-    for (int ln = 0; ln < pn; ++ln)
-      for (int f = 1; f <= 3; ++f) buf[size_t(ln) * kNodeFields + f] = 0.0;
+  if (remap) zero_fields(buf, pn, 1, 3);
   int local[8];
   for (int k = 0; k < 8; ++k) local[k] = patch_local(P, k);
   double rm[3][8][kLanes];
@@ -222,7 +216,7 @@ void gradient_values(const StepContext* c, const CellDecoder& dec, const int* pa
   T l[9];
   for (int r = 0; r < 9; ++r) l[r] = zero;
   for (int k = 0; k < 8; ++k) {
-    const int off = node_offset(c, k);
+    const int off = node_of(c, 0, k);  // local node k from the base node
     for (int i = 0; i < TL::W; ++i) n1[i] = base[i] + off, n3[i] = 3 * n1[i];
     const auto heavy = TL::gather(c->gmass, n1) > cutoff;
     const T v[3] = {TL::gather(gvel, n3), TL::gather(gvel + 1, n3), TL::gather(gvel + 2, n3)};
@@ -290,4 +284,13 @@ void stress_list(StepContext* c, const CellDecoder& dec, const int* list, int co
 }
 
 }  // namespace
+
+// transfer_lanes_avx2.cpp: the kernels above compiled for AVX2, for the CPUs where
+// lanes_use_avx2() (constitution.cpp) says so.
+int bin_range_avx2(const StepContext* c, int lo, int hi, int* patch_of);
+void p2g_patch_avx2(const StepContext* c, int q, bool with_mass_mom, bool with_forces);
+void g2p_patch_avx2(StepContext* c, int q, bool remap);
+void stress_list_avx2(StepContext* c, const int* list, int count, const double* gvel,
+                      const StressBlockArgs& args);
+
 }  // namespace mpm3d

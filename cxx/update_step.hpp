@@ -1,6 +1,8 @@
 // update_step: the stages of one explicit MPM time step.
 // Every stage takes one StepContext, a plain C struct of pointers and sizes, so the
 // same stage can come from C++ or from the Fortran reference (bind(C)), in any mix.
+// The C++ stages are one file each (stage_bin, stage_p2g, stage_grid, stage_g2p,
+// stage_stress, stage_energy.cpp); the stage table is in stages.cpp.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -63,7 +65,7 @@ struct StepContext {
   int *pscratch;       // (np) patch of each particle during binning
   double *tgrid;       // --scatter expansion: per-thread grid copies (kNodeFields, nnode, ntgrid)
   int ntgrid;          // copies in tgrid
-  // Load balance of the trilinear patch stages (update_step_detail.hpp), one set per
+  // Load balance of the trilinear patch stages (thread_balance.hpp), one set per
   // PatchLoop: in loop l, thread t of nshare takes about share[balance_index(l, t)]
   // of the binned particles (each loop's shares sum to 1) and adds the seconds it spends
   // there to busy[balance_index(l, t)]; the bin stage turns the busy times into
@@ -81,18 +83,18 @@ struct StepContext {
 
 typedef void (*StageFn)(StepContext*);
 
-// The C++ stages.
-void mpm3d_cxx_bin(StepContext* c);        // shape cache, patch lists, buffer slots
-void mpm3d_cxx_p2g(StepContext* c);        // mass, momentum (+ forces unless USF); BC on momentum
-void mpm3d_cxx_forces(StepContext* c);     // USF: internal and body forces after the stress update
-void mpm3d_cxx_integrate(StepContext* c);  // p += f dt_int; boundary conditions
-void mpm3d_cxx_g2p(StepContext* c);        // v, x from the grid; MUSL: momentum remap and BC
-void mpm3d_cxx_stress(StepContext* c);     // strain and spin increments, volume, stress
-void mpm3d_cxx_energy(StepContext* c);     // kinetic, internal energy, momentum
-void mpm3d_cxx_contact(StepContext* c);    // multi-velocity contact correction (c->other: comp. 2)
-void mpm3d_cxx_recontact(StepContext* c);  // contact again at the marked nodes (MUSL remap, USF P2G)
+// The C++ stages, by file.
+void mpm3d_cxx_bin(StepContext* c);        // stage_bin: shape cache, patch lists, buffer slots
+void mpm3d_cxx_p2g(StepContext* c);        // stage_p2g: mass, momentum (+ forces unless USF); BC on momentum
+void mpm3d_cxx_forces(StepContext* c);     // stage_p2g: USF: internal and body forces after the stress update
+void mpm3d_cxx_integrate(StepContext* c);  // stage_grid: p += f dt_int; boundary conditions
+void mpm3d_cxx_g2p(StepContext* c);        // stage_g2p: v, x from the grid; MUSL: momentum remap and BC
+void mpm3d_cxx_stress(StepContext* c);     // stage_stress: strain and spin increments, volume, stress
+void mpm3d_cxx_energy(StepContext* c);     // stage_energy: kinetic, internal energy, momentum
+void mpm3d_cxx_contact(StepContext* c);    // stage_grid: multi-velocity contact (c->other: comp. 2)
+void mpm3d_cxx_recontact(StepContext* c);  // stage_grid: contact again at the marked nodes (MUSL remap, USF P2G)
 
-// Benchmark alternative to the patch scheme (cxx/update_step_expansion.cpp): per-thread
+// Benchmark alternative to the patch scheme (cxx/scatter_expansion.cpp): per-thread
 // copies of the grid ("array expansion"), reduced node by node in thread order. Correct,
 // but the node sums depend on the thread count. C++ only.
 void mpm3d_cxx_p2g_expansion(StepContext* c);
@@ -144,10 +146,10 @@ constexpr size_t kPatchRangeWords = 8 * size_t(kMaxBalancedThreads);
 // Where thread t's value of loop `loop` lies in thread_share, thread_busy and thread_done.
 constexpr size_t balance_index(int loop, int t) { return size_t(loop) * size_t(kMaxBalancedThreads) + size_t(t); }
 // New thread shares of every PatchLoop from the busy times since the last call (the bin
-// stage calls it first; cxx/update_step.cpp). Equal shares when the team size changed.
+// stage calls it first; cxx/thread_balance.cpp). Equal shares when the team size changed.
 void rebalance_threads(StepContext* c);
 
-// The stage table: which implementation each stage uses.
+// The stage table: which implementation each stage uses (cxx/stages.cpp).
 struct StageTable {
   StageFn fn[ST_COUNT];
 };

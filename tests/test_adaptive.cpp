@@ -19,7 +19,7 @@
 #include "ffi.hpp"
 #include "mpm3d.hpp"
 #include "test_util.hpp"
-#include "update_step_detail.hpp"
+#include "thread_balance.hpp"
 
 using testutil::RunResult;
 using testutil::TempDir;

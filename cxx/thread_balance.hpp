@@ -1,6 +1,7 @@
-// Index helpers of the step stages (update_step.cpp and the lane kernels of
-// transfer_lanes.hpp): cell decoding, node and patch-buffer indices. Internal linkage, so
-// the AVX2 unit (update_step_avx2.cpp) compiles its own copies (see lanes.hpp).
+// The thread balancer of the patch stages: each thread's range of patches, list chunks or
+// particles from its measured share, the timing of the loops, and the work stealing of
+// for_thread_items (rebalance_threads, which sets the shares, is in thread_balance.cpp).
+// Internal linkage, so the AVX2 unit compiles its own copies (see lanes.hpp).
 #pragma once
 #include <algorithm>
 #include <cstddef>
@@ -10,131 +11,10 @@
 #include <omp.h>
 #endif
 
-#include "grid.hpp"
 #include "update_step.hpp"
 
 namespace mpm3d {
 namespace {
-
-// Exact division of a non-negative 32-bit integer by a fixed divisor with one 128-bit
-// multiply (Lemire, Kaser & Kurz 2019): the integer index decoding of the hot loops.
-// The multiplier ceil(2^64 / d) does not fit 64 bits for d = 1 (it wrapped to 0, so a grid
-// with one cell along y decoded every cell to k = 0): d = 1 is the identity.
-struct FastDiv {
-  uint64_t m;
-  bool one;
-  explicit FastDiv(uint32_t d) : m(d == 1 ? 0 : UINT64_C(0xFFFFFFFFFFFFFFFF) / d + 1), one(d == 1) {}
-  uint32_t operator()(uint32_t n) const { return one ? n : uint32_t((__uint128_t(m) * n) >> 64); }
-};
-
-// Cell index -> (i, j, k).
-struct CellDecoder {
-  FastDiv div0, div1;
-  int nc0, nc1;
-  explicit CellDecoder(const StepContext* c)
-      : div0(uint32_t(c->nc[0])), div1(uint32_t(c->nc[1])), nc0(c->nc[0]), nc1(c->nc[1]) {}
-  void operator()(int cell, int& i, int& j, int& k) const {
-    const int r = int(div0(uint32_t(cell)));
-    i = cell - r * nc0;
-    k = int(div1(uint32_t(r)));
-    j = r - k * nc1;
-  }
-};
-
-// Global node index of the base node of a cell.
-inline int base_node(const StepContext* c, const CellDecoder& dec, int cell) {
-  int i, j, k;
-  dec(cell, i, j, k);
-  return i + c->nn[0] * (j + c->nn[1] * k);
-}
-
-// Global node index of local node k (offsets a, b, c) relative to a base node.
-inline int node_of(const StepContext* c, int base, int k) {
-  return base + (k & 1) + c->nn[0] * (((k >> 1) & 1) + c->nn[1] * ((k >> 2) & 1));
-}
-
-// Nodes in one patch buffer: (patch_cells + 1 + 2 halo)^3.
-inline int patch_nodes(const StepContext* c) {
-  const int Q = c->patch_cells + 1 + 2 * c->patch_halo;
-  return Q * Q * Q;
-}
-
-inline double* patch_buffer(const StepContext* c, int slot) {
-  return c->patch_buf + size_t(slot) * size_t(patch_nodes(c)) * kNodeFields;
-}
-
-// Local node index, in the buffer of patch (qx, qy, qz), of the base node of a cell.
-inline int patch_base(const StepContext* c, const CellDecoder& dec, const int q3[3], int cell) {
-  const int P = c->patch_cells, Q = P + 1;
-  int i, j, k;
-  dec(cell, i, j, k);
-  return (i - q3[0] * P) + Q * ((j - q3[1] * P) + Q * (k - q3[2] * P));
-}
-
-inline void patch_coords(const StepContext* c, int q, int q3[3]) {
-  q3[0] = q % c->npd[0];
-  q3[1] = (q / c->npd[0]) % c->npd[1];
-  q3[2] = q / (c->npd[0] * c->npd[1]);
-}
-
-inline int patch_local(int P, int k) {
-  const int Q = P + 1;
-  return (k & 1) + Q * (((k >> 1) & 1) + Q * ((k >> 2) & 1));
-}
-
-// True when particle p belongs to another component than the context's (contact).
-inline bool other_component(const StepContext* c, int p) {
-  return c->only_comp > 0 && c->body_comp[c->body[p]] != c->only_comp;
-}
-
-// P2G contributions of particle p (weights N, gradients G) added to its kNodes nodes (8
-// trilinear, 27 GIMP), node(k) the 7 fields of stencil node k: mass and momentum (with_mass_mom) and the force
-// -V sigma G + N (m g + f_ext) (with_forces; body forces with has_body_force). Used by the
-// trilinear patch scatter (constant flags, so the loop unrolls), the GIMP scatter and the
-// array-expansion scatter.
-template <int kNodes, class NodeOf>
-__attribute__((always_inline)) inline void p2g_particle(const StepContext* c, int p, const double* N,
-                                                        const double* G, bool with_mass_mom, bool with_forces,
-                                                        bool with_body, NodeOf node) {
-  const double mp = c->mass[p];
-  const double* vp = c->v + 3 * p;
-  double vs[6] = {0, 0, 0, 0, 0, 0}, fb[3] = {0, 0, 0};
-  if (with_forces) {
-    const double volp = c->vol[p];
-    for (int s = 0; s < 6; ++s) vs[s] = c->sig[6 * p + s] * volp;
-    if (with_body) {
-      const double* g = c->gravity + 3 * c->body[p];
-      for (int a = 0; a < 3; ++a) {
-        fb[a] = mp * g[a];
-        if (c->fext) fb[a] = fb[a] + c->fext[3 * p + a];
-      }
-    }
-  }
-  for (int k = 0; k < kNodes; ++k) {
-    double* b = node(k);
-    if (with_mass_mom) {
-      const double mn = mp * N[k];
-      b[0] += mn;
-      b[1] += mn * vp[0];
-      b[2] += mn * vp[1];
-      b[3] += mn * vp[2];
-    }
-    if (with_forces) {
-      const double gx = G[3 * k], gy = G[3 * k + 1], gz = G[3 * k + 2];
-      double fx = -((vs[0] * gx + vs[5] * gy) + vs[4] * gz);
-      double fy = -((vs[5] * gx + vs[1] * gy) + vs[3] * gz);
-      double fz = -((vs[4] * gx + vs[3] * gy) + vs[2] * gz);
-      if (with_body) {
-        fx = N[k] * fb[0] + fx;
-        fy = N[k] * fb[1] + fy;
-        fz = N[k] * fb[2] + fz;
-      }
-      b[4] += fx;
-      b[5] += fy;
-      b[6] += fz;
-    }
-  }
-}
 
 // Where the items of threads 0 .. u-1 of T end among total items in loop `loop`: the sum
 // of their shares of total (equal shares without c->thread_share for T threads).

@@ -1,0 +1,100 @@
+// The bin stage: each particle's cell, local coordinates and patch (the lane kernel
+// bin_range), then a stable counting sort into the per-patch particle lists and the buffer
+// slots of the non-empty patches.
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "thread_balance.hpp"
+#include "transfer_lanes.hpp"
+#include "update_step.hpp"
+
+using namespace mpm3d;
+
+extern "C" void mpm3d_cxx_bin(StepContext* c) {
+  rebalance_threads(c);  // the last step's busy times, before the patch lists change
+  const int npatch = c->npatch;
+  int* patch_of = c->pscratch;  // patch of each particle, -1 outside
+  int outside = 0, nslot = 0;
+  int team = 1;
+#ifdef _OPENMP
+  team = omp_get_max_threads();
+#endif
+  // One row of patch counts per thread, each zeroed by its thread.
+  std::unique_ptr<int[]> counts(new int[size_t(team) * size_t(npatch)]);
+  // Particles and non-empty patches of each thread's run of patches (own cache lines).
+  struct alignas(64) RunSums {
+    int particles, nonempty;
+  };
+  std::vector<RunSums> run_sums(static_cast<size_t>(team), RunSums{0, 0});
+  const bool avx2 = lanes_use_avx2();
+  // One team for the whole stage: each thread bins a run of particles sized by its share
+  // (in the block storage order (order_by_blocks) about the particles its patch range
+  // holds) and counts them by patch; then a stable counting sort with those runs as its
+  // chunks. The runs are consecutive and ascending, so each patch lists its particles in
+  // ascending index whatever the number of threads: the lists do not depend on it.
+#pragma omp parallel num_threads(team) reduction(+ : outside)
+  {
+    int t, T, lo, hi;
+    team_position(t, T);
+    thread_particles(c, t, T, lo, hi);
+    const bool timed = balance_timed(c, T);
+    const double t0 = timed ? busy_clock() : 0.0;
+    int* cnt = counts.get() + size_t(t) * size_t(npatch);
+    std::fill(cnt, cnt + npatch, 0);
+    // Cells, local coordinates, patches (transfer_lanes.hpp).
+    outside += avx2 ? bin_range_avx2(c, lo, hi, patch_of) : bin_range<VectorLane<kLanes>>(c, lo, hi, patch_of);
+    for (int p = lo; p < hi; ++p)
+      if (patch_of[p] >= 0) ++cnt[patch_of[p]];
+    if (timed) add_busy(c, LOOP_BIN, t, t0);
+#pragma omp barrier
+    // Patch starts, buffer slots, and each run's fill pointer into every patch's list: a
+    // prefix sum over the patches in two passes, each thread over an equal run of patches
+    // (a serial pass would cost T x npatch steps on one thread, about 1 % of a step of the
+    // fine model at 16 threads): the run's particle and non-empty patch totals, then,
+    // once every run has its totals, the run's own entries.
+    const int q0 = int(int64_t(npatch) * t / T), q1 = int(int64_t(npatch) * (t + 1) / T);
+    auto count_of = [&](int u, int q) -> int& { return counts[size_t(u) * size_t(npatch) + size_t(q)]; };
+    {
+      int particles = 0, nonempty = 0;
+      for (int q = q0; q < q1; ++q) {
+        int total = 0;
+        for (int u = 0; u < T; ++u) total += count_of(u, q);
+        particles += total;
+        nonempty += total > 0;
+      }
+      run_sums[size_t(t)] = {particles, nonempty};
+    }
+#pragma omp barrier
+    {
+      int offset = 0, slot = 0;
+      for (int u = 0; u < t; ++u) {
+        offset += run_sums[size_t(u)].particles;
+        slot += run_sums[size_t(u)].nonempty;
+      }
+      for (int q = q0; q < q1; ++q) {
+        c->patch_start[q] = offset;
+        int total = 0;
+        for (int u = 0; u < T; ++u) {
+          int& n = count_of(u, q);
+          const int here = n;
+          n = offset + total;
+          total += here;
+        }
+        c->patch_slot[q] = total > 0 ? slot++ : -1;
+        offset += total;
+      }
+      if (t == T - 1) {
+        c->patch_start[npatch] = offset;
+        nslot = slot;
+      }
+    }
+#pragma omp barrier
+    for (int p = lo; p < hi; ++p)
+      if (patch_of[p] >= 0) c->patch_part[cnt[patch_of[p]]++] = p;
+  }
+  c->nslot = nslot;
+  c->noutside = outside;
+}

@@ -1,0 +1,163 @@
+// What several step stages share: the scalar P2G and G2P of one particle, the patch and
+// buffer loops, and the canonical assembly and boundary conditions (defined in
+// stage_p2g.cpp and stage_grid.cpp).
+#pragma once
+#include <cstddef>
+
+#include "grid.hpp"
+#include "patch_index.hpp"
+#include "thread_balance.hpp"
+#include "update_step.hpp"
+
+namespace mpm3d {
+
+// Canonical assembly (DESIGN.md section 4): each node's value is 0.0 plus the values of
+// the non-empty patches holding it, in ascending patch index (x fastest, then y, z).
+// Fields first..first+count-1 of the buffers go to dst_mass (field 0), dst_mom (1-3)
+// and dst_force (4-6). Every node is written by exactly one owner patch, so owners run in
+// parallel (trilinear: the thread ranges of loop `loop`). stage_p2g.cpp.
+void assemble(const StepContext* c, PatchLoop loop, int first, int count, double* dst_mass, double* dst_mom,
+              double* dst_force);
+
+// Boundary conditions of the box faces on a nodal vector field (3,nnode): 1 fixed (all
+// components zero), 2 symmetry (normal component zero). stage_grid.cpp.
+void apply_bc(const StepContext* c, double* a);
+
+namespace {
+
+// True when particle p belongs to another component than the context's (contact).
+inline bool other_component(const StepContext* c, int p) {
+  return c->only_comp > 0 && c->body_comp[c->body[p]] != c->only_comp;
+}
+
+// Fields first..first+count-1 of the pn nodes of a patch buffer set to zero.
+inline void zero_fields(double* buf, int pn, int first, int count) {
+  for (int ln = 0; ln < pn; ++ln)
+    for (int f = first; f < first + count; ++f) buf[size_t(ln) * kNodeFields + f] = 0.0;
+}
+
+// The node sums sum[0..count) of fields first.. into node n of the grid arrays (field 0
+// mass, 1-3 momentum, 4-6 force): the last step of every assembly and reduction.
+__attribute__((always_inline)) inline void store_node_fields(int first, int count, const double* sum, int n,
+                                                             double* dst_mass, double* dst_mom, double* dst_force) {
+  for (int f = 0; f < count; ++f) {
+    const int field = first + f;
+    if (field == 0) dst_mass[n] = sum[f];
+    else if (field <= 3) dst_mom[3 * n + field - 1] = sum[f];
+    else dst_force[3 * n + field - 4] = sum[f];
+  }
+}
+
+// f(q, q3, buf) for every non-empty patch q (coordinates q3, buffer buf), dealt out to the
+// threads one patch at a time: the GIMP stages and the contact's mass gradients (the
+// trilinear stages take the balanced ranges of thread_balance.hpp).
+template <class F>
+inline void for_filled_patches(const StepContext* c, F&& f) {
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int q = 0; q < c->npatch; ++q) {
+    const int slot = c->patch_slot[q];
+    if (slot < 0) continue;
+    int q3[3];
+    patch_coords(c, q, q3);
+    f(q, q3, patch_buffer(c, slot));
+  }
+}
+
+// P2G contributions of particle p (weights N, gradients G) added to its kNodes nodes (8
+// trilinear, 27 GIMP), node(k) the 7 fields of stencil node k: mass and momentum
+// (with_mass_mom) and the force -V sigma G + N (m g + f_ext) (with_forces; body forces with
+// has_body_force). Used by the trilinear patch scatter (constant flags, so the loop
+// unrolls), the GIMP scatter and the array-expansion scatter.
+template <int kNodes, class NodeOf>
+__attribute__((always_inline)) inline void p2g_particle(const StepContext* c, int p, const double* N,
+                                                        const double* G, bool with_mass_mom, bool with_forces,
+                                                        bool with_body, NodeOf node) {
+  const double mp = c->mass[p];
+  const double* vp = c->v + 3 * p;
+  double vs[6] = {0, 0, 0, 0, 0, 0}, fb[3] = {0, 0, 0};
+  if (with_forces) {
+    const double volp = c->vol[p];
+    for (int s = 0; s < 6; ++s) vs[s] = c->sig[6 * p + s] * volp;
+    if (with_body) {
+      const double* g = c->gravity + 3 * c->body[p];
+      for (int a = 0; a < 3; ++a) {
+        fb[a] = mp * g[a];
+        if (c->fext) fb[a] = fb[a] + c->fext[3 * p + a];
+      }
+    }
+  }
+  for (int k = 0; k < kNodes; ++k) {
+    double* b = node(k);
+    if (with_mass_mom) {
+      const double mn = mp * N[k];
+      b[0] += mn;
+      b[1] += mn * vp[0];
+      b[2] += mn * vp[1];
+      b[3] += mn * vp[2];
+    }
+    if (with_forces) {
+      const double gx = G[3 * k], gy = G[3 * k + 1], gz = G[3 * k + 2];
+      double fx = -((vs[0] * gx + vs[5] * gy) + vs[4] * gz);
+      double fy = -((vs[5] * gx + vs[1] * gy) + vs[3] * gz);
+      double fz = -((vs[4] * gx + vs[3] * gy) + vs[2] * gz);
+      if (with_body) {
+        fx = N[k] * fb[0] + fx;
+        fy = N[k] * fb[1] + fy;
+        fz = N[k] * fb[2] + fz;
+      }
+      b[4] += fx;
+      b[5] += fy;
+      b[6] += fz;
+    }
+  }
+}
+
+// G2P of particle p over its kNodes nodes (grid node node(k) of stencil node k):
+// v_p += dt_int sum_k N_k f_k / m_k and x_p += dt sum_k N_k p_k / m_k over the nodes above
+// the mass cut-off. The GIMP stage and the array-expansion one; the trilinear stage runs
+// the same sums in lanes (g2p_values, transfer_lanes.hpp).
+template <int kNodes, class NodeOf>
+__attribute__((always_inline)) inline void g2p_particle(StepContext* c, int p, const double* N, NodeOf node) {
+  const double cutoff = c->mass_cutoff, dt = c->dt, dt_int = c->dt_int;
+  double ax = 0.0, ay = 0.0, az = 0.0, ux = 0.0, uy = 0.0, uz = 0.0;
+  for (int k = 0; k < kNodes; ++k) {
+    const int n = node(k);
+    const double m = c->gmass[n];
+    if (!(m > cutoff)) continue;
+    const double r = N[k] / m;
+    const double* f = c->gforce + 3 * n;
+    const double* pm = c->gmom + 3 * n;
+    ax += f[0] * r;
+    ay += f[1] * r;
+    az += f[2] * r;
+    ux += pm[0] * r;
+    uy += pm[1] * r;
+    uz += pm[2] * r;
+  }
+  double* vp = c->v + 3 * p;
+  double* xp = c->x + 3 * p;
+  vp[0] = vp[0] + ax * dt_int;
+  vp[1] = vp[1] + ay * dt_int;
+  vp[2] = vp[2] + az * dt_int;
+  xp[0] = xp[0] + ux * dt;
+  xp[1] = xp[1] + uy * dt;
+  xp[2] = xp[2] + uz * dt;
+}
+
+// MUSL remap of particle p: its momentum m_p N_k v_p added to fields 1-3 of node(k).
+template <int kNodes, class NodeOf>
+__attribute__((always_inline)) inline void remap_particle(const StepContext* c, int p, const double* N,
+                                                          NodeOf node) {
+  const double mp = c->mass[p];
+  const double* vp = c->v + 3 * p;
+  for (int k = 0; k < kNodes; ++k) {
+    double* b = node(k);
+    const double mn = mp * N[k];
+    b[1] += mn * vp[0];
+    b[2] += mn * vp[1];
+    b[3] += mn * vp[2];
+  }
+}
+
+}  // namespace
+}  // namespace mpm3d

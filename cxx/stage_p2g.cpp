@@ -1,0 +1,194 @@
+// The p2g and forces stages: the scatter of mass, momentum and forces into the patch
+// buffers (trilinear in the lane kernels' patch loop, or 27-node GIMP), and the canonical
+// assembly of the buffers into the nodes, also used by the g2p remap and the contact.
+#include <cstddef>
+#include <cstring>
+#include <stdexcept>
+
+#include "stage_common.hpp"
+#include "transfer_lanes.hpp"
+#include "update_step.hpp"
+
+namespace mpm3d {
+namespace {
+
+// The trilinear assembly (no halo): owner patch q gathers each of its nodes from its own
+// buffer and those of its seven lower neighbours. The field range is a compile-time
+// constant, so the per-node loops unroll.
+template <int first, int count>
+void assemble_fields(const StepContext* c, PatchLoop loop, double* dst_mass, double* dst_mom, double* dst_force) {
+  const int P = c->patch_cells, Q = P + 1;
+  const int npd0 = c->npd[0], npd1 = c->npd[1], npd2 = c->npd[2];
+  const int pn = Q * Q * Q;
+  for_thread_patches(c, loop, [&](int q) {
+    const int qx = q % npd0, qy = (q / npd0) % npd1, qz = q / (npd0 * npd1);
+    // Slots of the patch and its lower neighbours: nb[cz][cy][cx], c = 0 lower, 1 self.
+    const double* nb[2][2][2];
+    bool any = false;
+    for (int cz = 0; cz < 2; ++cz)
+      for (int cy = 0; cy < 2; ++cy)
+        for (int cx = 0; cx < 2; ++cx) {
+          const int px = qx - 1 + cx, py = qy - 1 + cy, pz = qz - 1 + cz;
+          const double* b = nullptr;
+          if (px >= 0 && py >= 0 && pz >= 0) {
+            const int slot = c->patch_slot[px + npd0 * (py + npd1 * pz)];
+            if (slot >= 0) b = c->patch_buf + size_t(slot) * size_t(pn) * kNodeFields;
+          }
+          nb[cz][cy][cx] = b;
+          any = any || b;
+        }
+    if (!any) return;  // inactive: no stage reads these nodes
+    const int i0 = qx * P, j0 = qy * P, k0 = qz * P;
+    const int i1 = qx == npd0 - 1 ? c->nn[0] : i0 + P;
+    const int j1 = qy == npd1 - 1 ? c->nn[1] : j0 + P;
+    const int k1 = qz == npd2 - 1 ? c->nn[2] : k0 + P;
+    for (int k = k0; k < k1; ++k)
+      for (int j = j0; j < j1; ++j) {
+        // Row pointers of the contributing buffers, in ascending patch order: (cz, cy)
+        // ascending, and within each the lower x patch (cx = 0) before the own one.
+        const double* row[8];
+        int cxs[8], nrow = 0;
+        const int czlo = (k == k0 && qz > 0) ? 0 : 1;
+        const int cylo = (j == j0 && qy > 0) ? 0 : 1;
+        for (int cz = czlo; cz < 2; ++cz)
+          for (int cy = cylo; cy < 2; ++cy)
+            for (int cx = 0; cx < 2; ++cx) {
+              const double* b = nb[cz][cy][cx];
+              if (!b) continue;
+              const int lj = j - (qy - 1 + cy) * P, lk = k - (qz - 1 + cz) * P;
+              // Buffer node of x index i is at (i - (qx - 1 + cx) P) + Q (lj + Q lk).
+              row[nrow] = b + std::ptrdiff_t(Q * (lj + Q * lk) - (qx - 1 + cx) * P) * kNodeFields;
+              cxs[nrow++] = cx;
+            }
+        const int nbase = c->nn[0] * (j + c->nn[1] * k);
+        for (int i = i0; i < i1; ++i) {
+          const bool lower_x = (i == i0 && qx > 0);
+          double sum[kNodeFields] = {0, 0, 0, 0, 0, 0, 0};
+          for (int r = 0; r < nrow; ++r) {
+            if (cxs[r] == 0 && !lower_x) continue;
+            const double* v = row[r] + size_t(i) * kNodeFields + first;
+            for (int f = 0; f < count; ++f) sum[f] += v[f];
+          }
+          store_node_fields(first, count, sum, i + nbase, dst_mass, dst_mom, dst_force);
+        }
+      }
+  });
+}
+
+// Patches whose buffers (halo H) hold node n along one axis: [lo, hi].
+inline void patch_range(int n, int P, int H, int npd, int& lo, int& hi) {
+  const int t = n - P - H;
+  lo = t <= 0 ? 0 : (t + P - 1) / P;
+  hi = (n + H) / P;
+  if (hi > npd - 1) hi = npd - 1;
+}
+
+// The assembly for buffers with a halo (GIMP): the owner patch of each node gathers it
+// from every non-empty patch whose buffer holds it, in ascending patch index.
+void assemble_wide(const StepContext* c, int first, int count, double* dst_mass, double* dst_mom,
+                   double* dst_force) {
+  const int P = c->patch_cells, H = c->patch_halo, Q = P + 1 + 2 * H;
+  const size_t pn = size_t(Q) * size_t(Q) * size_t(Q);
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int q = 0; q < c->npatch; ++q) {
+    const OwnedNodes o = owned_nodes(c, q);
+    if (!o.active) continue;
+    for (int k = o.lo[2]; k < o.hi[2]; ++k) {
+      int zlo, zhi;
+      patch_range(k, P, H, c->npd[2], zlo, zhi);
+      for (int j = o.lo[1]; j < o.hi[1]; ++j) {
+        int ylo, yhi;
+        patch_range(j, P, H, c->npd[1], ylo, yhi);
+        for (int i = o.lo[0]; i < o.hi[0]; ++i) {
+          int xlo, xhi;
+          patch_range(i, P, H, c->npd[0], xlo, xhi);
+          double sum[kNodeFields] = {0, 0, 0, 0, 0, 0, 0};
+          for (int qz = zlo; qz <= zhi; ++qz)
+            for (int qy = ylo; qy <= yhi; ++qy)
+              for (int qx = xlo; qx <= xhi; ++qx) {
+                const int slot = c->patch_slot[qx + c->npd[0] * (qy + c->npd[1] * qz)];
+                if (slot < 0) continue;
+                const int ln = (i - qx * P + H) + Q * ((j - qy * P + H) + Q * (k - qz * P + H));
+                const double* v = c->patch_buf + (size_t(slot) * pn + size_t(ln)) * kNodeFields + first;
+                for (int f = 0; f < count; ++f) sum[f] += v[f];
+              }
+          store_node_fields(first, count, sum, i + c->nn[0] * (j + c->nn[1] * k), dst_mass, dst_mom, dst_force);
+        }
+      }
+    }
+  }
+}
+
+// The scatter with the 27-node GIMP stencils (buffers with a halo of one node layer).
+void scatter_p2g_gimp(StepContext* c, bool with_mass_mom, bool with_forces) {
+  const int Q = c->patch_cells + 1 + 2 * c->patch_halo;
+  const int pn = patch_nodes(c);
+  const CellDecoder dec(c);
+  for_filled_patches(c, [&](int q, const int q3[3], double* buf) {
+    std::memset(buf, 0, sizeof(double) * size_t(pn) * kNodeFields);
+    for (int idx = c->patch_start[q]; idx < c->patch_start[q + 1]; ++idx) {
+      const int p = c->patch_part[idx];
+      GimpStencil st;
+      gimp_stencil(c, dec, p, st);
+      const int base = gimp_patch_corner(c, q3, st);
+      p2g_particle<27>(c, p, st.N, st.G, with_mass_mom, with_forces, c->has_body_force != 0,
+                       [&](int k) { return buf + size_t(base + stencil_offset(k, Q, Q)) * kNodeFields; });
+    }
+  });
+}
+
+// Scatter of mass, momentum and (optionally) forces of every particle into its patch
+// buffer, one particle after the other in list order (the canonical order of each node's
+// sum); trilinear: each thread over its balanced range of patches.
+void scatter_p2g(StepContext* c, bool with_mass_mom, bool with_forces) {
+  if (c->shape == 1) {
+    scatter_p2g_gimp(c, with_mass_mom, with_forces);
+    return;
+  }
+  const bool avx2 = lanes_use_avx2();
+  for_thread_patches(c, with_mass_mom ? LOOP_P2G : LOOP_FORCES, [&](int q) {
+    if (c->patch_slot[q] < 0) return;
+    if (avx2)
+      p2g_patch_avx2(c, q, with_mass_mom, with_forces);
+    else
+      p2g_patch<VectorLane<kLanes>>(c, CellDecoder(c), q, with_mass_mom, with_forces);
+  });
+}
+
+}  // namespace
+
+void assemble(const StepContext* c, PatchLoop loop, int first, int count, double* dst_mass, double* dst_mom,
+              double* dst_force) {
+  if (c->patch_halo > 0)
+    assemble_wide(c, first, count, dst_mass, dst_mom, dst_force);
+  else if (first == 0 && count == 7)
+    assemble_fields<0, 7>(c, loop, dst_mass, dst_mom, dst_force);
+  else if (first == 0 && count == 4)
+    assemble_fields<0, 4>(c, loop, dst_mass, dst_mom, dst_force);
+  else if (first == 1 && count == 3)
+    assemble_fields<1, 3>(c, loop, dst_mass, dst_mom, dst_force);
+  else if (first == 4 && count == 3)
+    assemble_fields<4, 3>(c, loop, dst_mass, dst_mom, dst_force);
+  else
+    throw std::logic_error("assemble: unexpected field range");
+}
+
+}  // namespace mpm3d
+
+using namespace mpm3d;
+
+// m_i = sum_p m_p N_ip, p_i = sum_p m_p v_p N_ip and, unless USF (forces after the stress
+// update), f_i = sum_p (-V_p sigma_p G_ip + N_ip (m_p g + f_ext,p)); then the boundary
+// conditions on the momenta.
+extern "C" void mpm3d_cxx_p2g(StepContext* c) {
+  const bool forces = c->scheme != SCHEME_USF;
+  scatter_p2g(c, true, forces);
+  assemble(c, LOOP_P2G_ASSEMBLY, 0, forces ? 7 : 4, c->gmass, c->gmom, c->gforce);
+  apply_bc(c, c->gmom);
+}
+
+// USF: f_i with the updated stresses.
+extern "C" void mpm3d_cxx_forces(StepContext* c) {
+  scatter_p2g(c, false, true);
+  assemble(c, LOOP_FORCES_ASSEMBLY, 4, 3, c->gmass, c->gmom, c->gforce);
+}

@@ -1,0 +1,136 @@
+// The stress stage: node velocities, each particle's velocity gradient (trilinear in lanes,
+// or 27-node GIMP), and the constitutive update of strain and spin increments, volume,
+// stress and internal energy (stress_block, constitution.cpp).
+#include <algorithm>
+
+#include "constitution.hpp"
+#include "stage_common.hpp"
+#include "transfer_lanes.hpp"
+#include "update_step.hpp"
+
+namespace mpm3d {
+namespace {
+
+// Velocity gradient L[3a+b] = d v_a / d x_b of particle p from the node velocities gvel,
+// summed over the 27 GIMP stencil nodes in stencil order (the trilinear one:
+// gradient_values in transfer_lanes.hpp).
+inline void velocity_gradient_gimp(const StepContext* c, const CellDecoder& dec, int p, const double* gvel,
+                                   double L[9]) {
+  double l0 = 0, l1 = 0, l2 = 0, l3 = 0, l4 = 0, l5 = 0, l6 = 0, l7 = 0, l8 = 0;
+  GimpStencil st;
+  gimp_stencil(c, dec, p, st);
+  const int base = gimp_corner(c, st);
+  for (int k = 0; k < 27; ++k) {
+    const int n = base + stencil_offset(k, c->nn[0], c->nn[1]);
+    if (!(c->gmass[n] > c->mass_cutoff)) continue;
+    const double vx = gvel[3 * n], vy = gvel[3 * n + 1], vz = gvel[3 * n + 2];
+    const double gx = st.G[3 * k], gy = st.G[3 * k + 1], gz = st.G[3 * k + 2];
+    l0 += vx * gx;
+    l1 += vx * gy;
+    l2 += vx * gz;
+    l3 += vy * gx;
+    l4 += vy * gy;
+    l5 += vy * gz;
+    l6 += vz * gx;
+    l7 += vz * gy;
+    l8 += vz * gz;
+  }
+  L[0] = l0, L[1] = l1, L[2] = l2, L[3] = l3, L[4] = l4, L[5] = l5, L[6] = l6, L[7] = l7, L[8] = l8;
+}
+
+// What the constitutive update takes from the context besides the particles.
+inline StressBlockArgs stress_args(const StepContext* c) {
+  return StressBlockArgs{c->dt, c->temp != nullptr, c->qv != nullptr, c->bulk_q1, c->bulk_q2, c->h};
+}
+
+// The particle loop with the trilinear shape functions: chunks of the patch lists, each
+// thread over its balanced range; the velocity gradients (gradient_values) and the update
+// of kLanes consecutive particles of one material at a time (stress_list,
+// transfer_lanes.hpp). Each particle's update is its own, so the chunks cross patch ends.
+void stress_trilinear(StepContext* c, const double* gvel) {
+  const CellDecoder dec(c);
+  const StressBlockArgs args = stress_args(c);
+  const bool avx2 = lanes_use_avx2();
+  for_thread_list_chunks(c, LOOP_STRESS, [&](int first, int count) {
+    const int* list = c->patch_part + first;
+    if (avx2)
+      stress_list_avx2(c, list, count, gvel, args);
+    else
+      stress_list<VectorLane<kLanes>>(c, dec, list, count, gvel, args);
+  });
+}
+
+// The particle loop with the GIMP stencils: fixed particle chunks; velocity gradients one
+// particle at a time, the update of kStressLanes consecutive particles of one material at
+// a time (stress_block; a shorter run lane by lane).
+void stress_gimp(StepContext* c, const double* gvel) {
+  const CellDecoder dec(c);
+  const StressBlockArgs args = stress_args(c);
+  const bool filter = c->only_comp > 0;
+  constexpr int kChunk = 256;
+  const int nchunk = (c->np + kChunk - 1) / kChunk;
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int ch = 0; ch < nchunk; ++ch) {
+    StressBlock b;
+    int part[kStressLanes];
+    int n = 0, mat = -1;
+    auto flush = [&]() {
+      const MaterialParams& mp = c->mats[mat];
+      if (n == kStressLanes)
+        stress_block(mp, b, args);
+      else
+        for (int i = 0; i < n; ++i) stress_block_lane(mp, b, i, args);
+      for (int i = 0; i < n; ++i) stress_block_store(c, part[i], i, b);
+      n = 0;
+    };
+    const int hi = std::min(c->np, (ch + 1) * kChunk);
+    for (int p = ch * kChunk; p < hi; ++p) {
+      if (c->cell[p] < 0) continue;
+      if (filter && other_component(c, p)) continue;
+      if (n > 0 && c->mat[p] != mat) flush();
+      mat = c->mat[p];
+      double L[9];
+      velocity_gradient_gimp(c, dec, p, gvel, L);
+      for (int r = 0; r < 9; ++r) b.L[r][n] = L[r];
+      stress_block_load(c, c->mats[mat], p, n, b);
+      part[n++] = p;
+      if (n == kStressLanes) flush();
+    }
+    if (n > 0) flush();
+  }
+}
+
+// Node velocities v_i = p_i / m_i at the nodes above the mass cut-off, once per node (the
+// same division as per particle, so the same bits). They are kept in the force array,
+// which no stage reads again before the next p2g or forces stage overwrites it (USF:
+// stress runs before forces).
+double* node_velocities(StepContext* c) {
+  const double cutoff = c->mass_cutoff;
+  double* gvel = c->gforce;
+  for_thread_patches(c, LOOP_NODE_VELOCITY, [&](int q) {
+    const OwnedNodes o = owned_nodes(c, q);
+    if (!o.active) return;
+    for_owned_nodes(c, o, [&](int n) {
+      const double m = c->gmass[n];
+      if (!(m > cutoff)) return;
+      for (int a = 0; a < 3; ++a) gvel[3 * n + a] = c->gmom[3 * n + a] / m;
+    });
+  });
+  return gvel;
+}
+
+}  // namespace
+}  // namespace mpm3d
+
+using namespace mpm3d;
+
+// Node velocities; per particle L = sum_i v_i (x) G_ip over the nodes above the mass
+// cut-off, then the constitutive update: strain and spin increments, volume, Jaumann
+// rotation, stress return, EOS, bulk viscosity, internal energy.
+extern "C" void mpm3d_cxx_stress(StepContext* c) {
+  const double* gvel = node_velocities(c);
+  if (c->shape == 1)
+    stress_gimp(c, gvel);
+  else
+    stress_trilinear(c, gvel);
+}
