@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <cstdio>
 #include <sstream>
+#include <stdexcept>
+#include <string>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -279,60 +281,23 @@ void Simulation::step() {
     ctx2.dt_int = c->dt_int;
     ctx2.time = c->time;
   }
-  // A stage on one context; with contact, the particle and grid stages run on both
-  // components' contexts in turn (component 1 first).
-  auto run1 = [&](int s, StepContext* x) {
-    const auto t0 = std::chrono::steady_clock::now();
-    stages_.fn[s](x);
-    stage_seconds[s] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  };
-  auto run = [&](int s) {
-    run1(s, c);
-    if (contact) run1(s, &ctx2);
-  };
-  const bool scheduled = regrid_every > 0 && steps > 0 && steps % regrid_every == 0;
-  if (scheduled) {
-    const auto t0 = std::chrono::steady_clock::now();
-    regrid(0);
-    stage_seconds[ST_BIN] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  }
-  run(ST_BIN);
-  int escaped = 0;
-  if (c->noutside > 0 && !grid.window_is_box()) {
-    // A particle inside the deck's box has left the window: widen it now and bin again,
-    // so that the window never freezes a particle the box would not have frozen.
-    escaped = count_escaped(grid, c->x, c->cell, c->np);
-    if (escaped > 0) {
-      const auto t0 = std::chrono::steady_clock::now();
-      regrid(escaped);
-      stage_seconds[ST_BIN] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      run(ST_BIN);
+  // The scheme's row of the step table (step_order.c), walked as the Fortran driver does.
+  int order[MPM3D_MAX_STEP_STAGES];
+  const int nstage = mpm3d_step_order(c->scheme, order);
+  if (nstage < 0) throw std::logic_error("unknown update scheme " + std::to_string(c->scheme));
+  for (int k = 0; k < nstage; ++k) {
+    const int s = order[k];
+    if (mpm3d_stage_needs_contact(s) && !contact) continue;
+    if (s == ST_BIN) {
+      bin_stage();
+      continue;
+    }
+    run_stage(s);
+    if (s == ST_CONTACT) {  // both grids integrated: the pair's momenta and forces corrected
+      for (int a = 0; a < 3; ++a) contact_force[a] = c->result[5 + a];
+      contact_nodes = c->ncontact;
     }
   }
-  stats = patch_stats(grid, c->patch_start);
-  if (scheduled || escaped > 0) note_regrid(escaped);
-  ensure_patch_buffers();
-  if (expansion_) ensure_expansion_buffers();
-  run(ST_P2G);
-  if (c->scheme == SCHEME_USF) {
-    // The P2G momenta of the nodes in contact at the end of the previous step corrected
-    // again before the strain rates read them (their velocities moved the particles).
-    if (contact) run1(ST_RECONTACT, c);
-    run(ST_STRESS);
-    run(ST_FORCES);
-  }
-  run(ST_INTEGRATE);
-  if (contact) {  // both grids integrated: correct the momenta and forces of the pair
-    run1(ST_CONTACT, c);
-    for (int a = 0; a < 3; ++a) contact_force[a] = c->result[5 + a];
-    contact_nodes = c->ncontact;
-  }
-  run(ST_G2P);
-  // MUSL: the remapped momenta of the nodes in contact are corrected again before the
-  // strain rates (the stress stage) read them.
-  if (contact && c->scheme == SCHEME_MUSL) run1(ST_RECONTACT, c);
-  if (c->scheme != SCHEME_USF) run(ST_STRESS);
-  run1(ST_ENERGY, c);
   outside = c->noutside + (contact ? ctx2.noutside : 0);
   kinetic = c->result[0];
   internal = c->result[1];
@@ -341,6 +306,44 @@ void Simulation::step() {
   time += model.dt;
   if (ctx.has_body_force) external_work += dt_work_of_body_forces();
   health_check();
+}
+
+void Simulation::run_stage(int s) {
+  auto run1 = [&](StepContext* x) {
+    const auto t0 = std::chrono::steady_clock::now();
+    stages_.fn[s](x);
+    stage_seconds[s] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  run1(&ctx);
+  if (model.contact && mpm3d_stage_per_component(s)) run1(&ctx2);
+}
+
+void Simulation::bin_stage() {
+  StepContext* c = &ctx;
+  // The adaptive window: a scheduled regrid before binning; a regrid and a second binning
+  // when a particle inside the deck's box has left the window, so that the window never
+  // freezes a particle the box would not have frozen.
+  const bool scheduled = regrid_every > 0 && steps > 0 && steps % regrid_every == 0;
+  if (scheduled) {
+    const auto t0 = std::chrono::steady_clock::now();
+    regrid(0);
+    stage_seconds[ST_BIN] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+  run_stage(ST_BIN);
+  int escaped = 0;
+  if (c->noutside > 0 && !grid.window_is_box()) {
+    escaped = count_escaped(grid, c->x, c->cell, c->np);
+    if (escaped > 0) {
+      const auto t0 = std::chrono::steady_clock::now();
+      regrid(escaped);
+      stage_seconds[ST_BIN] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      run_stage(ST_BIN);
+    }
+  }
+  stats = patch_stats(grid, c->patch_start);
+  if (scheduled || escaped > 0) note_regrid(escaped);
+  ensure_patch_buffers();
+  if (expansion_) ensure_expansion_buffers();
 }
 
 double Simulation::dt_work_of_body_forces() const {

@@ -85,6 +85,11 @@ class Simulation {
   std::vector<double> gnormal1_, gnormal2_, cpartials_;  // contact only
   void bind();       // points ctx at the arrays
   void bind_grid();  // ... and at the grid's (again after a regrid)
+  // Stage s of the table (stages_), timed, on component 1's context and, with contact and
+  // when the stage runs per component, on component 2's.
+  void run_stage(int s);
+  // The bin stage with the adaptive window around it (regrids), then the patch buffers.
+  void bin_stage();
   void regrid(int escaped);
   void note_regrid(int escaped);
   bool expansion_ = false;

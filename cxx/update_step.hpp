@@ -8,10 +8,9 @@
 #include <string>
 
 #include "material.hpp"
+#include "step_order.h"
 
 extern "C" {
-
-enum UpdateScheme { SCHEME_MUSL = 0, SCHEME_USL = 1, SCHEME_USF = 2 };
 
 struct StepContext {
   // Particles (np): x, v (3,np); sig (6,np); lx (3,np) local cell coordinates.
@@ -116,7 +115,6 @@ void mpm3d_f_recontact(StepContext* c);
 
 namespace mpm3d {
 
-enum Stage { ST_BIN, ST_P2G, ST_FORCES, ST_INTEGRATE, ST_G2P, ST_STRESS, ST_ENERGY, ST_CONTACT, ST_RECONTACT, ST_COUNT };
 extern const char* const kStageNames[ST_COUNT];
 constexpr int kReduceFields = 5;
 // Capacity of StepContext::thread_share and thread_busy; more threads run with equal shares.

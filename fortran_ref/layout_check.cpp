@@ -1,5 +1,6 @@
 // Checks that the Fortran bind(C) types step_context and material_params have the layout
-// of struct StepContext and struct MaterialParams (cxx/update_step.hpp, cxx/material.hpp).
+// of struct StepContext and struct MaterialParams (cxx/update_step.hpp, cxx/material.hpp),
+// and that the Fortran stage and scheme identifiers are those of cxx/step_order.h.
 #include <cstddef>
 #include <cstdio>
 
@@ -8,6 +9,7 @@
 // The Fortran mirror stops after ncontact: later fields are C++-internal scratch.
 
 extern "C" void mpm3d_f_context_layout(size_t out[13]);
+extern "C" void mpm3d_f_step_constants(int out[14]);
 
 int main() {
   size_t f[13];
@@ -37,5 +39,16 @@ int main() {
     std::printf("%-24s C %4zu  Fortran %4zu%s\n", what[i], c[i], f[i], ok ? "" : "  MISMATCH");
     if (!ok) bad = 1;
   }
+  int fk[14];
+  mpm3d_f_step_constants(fk);
+  const int ck[14] = {ST_BIN,       ST_P2G,    ST_FORCES,   ST_INTEGRATE, ST_G2P,     ST_STRESS, ST_ENERGY,
+                      ST_CONTACT,   ST_RECONTACT, ST_COUNT, SCHEME_MUSL,  SCHEME_USL, SCHEME_USF,
+                      MPM3D_MAX_STEP_STAGES};
+  for (int i = 0; i < 14; ++i)
+    if (fk[i] != ck[i]) {
+      std::printf("step constant %d: C %d  Fortran %d  MISMATCH\n", i, ck[i], fk[i]);
+      bad = 1;
+    }
+  if (!bad) std::printf("stage and scheme identifiers: the same\n");
   return bad;
 }

@@ -1,6 +1,7 @@
 ! MPM3D (the program): the Fortran reference driver. Reads a deck with its own reader
 ! (mpm3d_data_in), runs the time loop of Simulation::step in cxx/mpm3d.cpp with the
-! Fortran stage kernels (mpm3d_update_step) and writes the HDF5 state file.
+! Fortran stage kernels (stage_*.f90, called by identifier through mpm3d_update_step) and
+! writes the HDF5 state file.
 !
 ! usage: mpm3d_ref [--steps N] [--end-time T] [--state F.h5] [--init-state F.h5]
 !                  [--energies F.txt] [--patch-cells N] [--regrid-every N] [--particle-order blocks|deck] [--quiet] DECK.mpm
@@ -21,6 +22,8 @@ program mpm3d_ref
   implicit none
 
   integer, parameter :: REDUCE_BLOCK = 4096
+  integer(c_int) :: step_order(MPM3D_MAX_STEP_STAGES)   ! the deck's scheme's row of the step table
+  integer :: nstage                            ! stages in step_order
   type(model_t), target :: model
   type(grid_t), target :: grid, grid2          ! grid2, ctx2: contact only (component 2)
   type(step_context), target :: ctx, ctx2
@@ -142,6 +145,8 @@ program mpm3d_ref
   allocate(partials(REDUCE_FIELDS, np / REDUCE_BLOCK + 1))
   partials = 0.0_dp
   call bind_context()
+  nstage = mpm3d_step_order(int(model%scheme, c_int), step_order)
+  if (nstage < 0) call fatal(deck // ': unknown update scheme')
 
   ! Energies of the initial state (as the C++ Simulation constructor).
   call mpm3d_f_energy(ctx)
@@ -409,10 +414,10 @@ contains
     end if
   end subroutine note_regrid
 
-  ! One explicit step, stage order of Simulation::step.
+  ! One explicit step (Simulation::step): the dt of this step, then the stages of the
+  ! scheme's order.
   subroutine step()
-    integer :: escaped
-    logical :: scheduled
+    integer :: s
     ctx%dt = model%dt
     if (steps == 0) then
       ctx%dt_int = 0.5_dp * model%dt      ! first step: momentum with dt/2
@@ -421,58 +426,48 @@ contains
     end if
     ctx%time = time + model%dt      ! the end of this step (programmed burn)
     if (model%contact) then
-      ! With contact every particle and grid stage runs on both components' contexts.
       ctx2%dt = ctx%dt
       ctx2%dt_int = ctx%dt_int
       ctx2%time = ctx%time
-      call mpm3d_f_bin(ctx)
-      call mpm3d_f_bin(ctx2)
-      call ensure_patch_buffers()
-      call mpm3d_f_p2g(ctx)
-      call mpm3d_f_p2g(ctx2)
-      if (ctx%scheme == SCHEME_USF) then
-        call mpm3d_f_recontact(ctx)   ! the nodes in contact at the end of the previous step
-        call mpm3d_f_stress(ctx)
-        call mpm3d_f_stress(ctx2)
-        call mpm3d_f_forces(ctx)
-        call mpm3d_f_forces(ctx2)
-      end if
-      call mpm3d_f_integrate(ctx)
-      call mpm3d_f_integrate(ctx2)
-      call mpm3d_f_contact(ctx)
-      call mpm3d_f_g2p(ctx)
-      call mpm3d_f_g2p(ctx2)
-      if (ctx%scheme == SCHEME_MUSL) call mpm3d_f_recontact(ctx)   ! contact on the remapped momenta
-      if (ctx%scheme /= SCHEME_USF) then
-        call mpm3d_f_stress(ctx)
-        call mpm3d_f_stress(ctx2)
-      end if
-      call mpm3d_f_energy(ctx)
-      return
     end if
+    do s = 1, nstage
+      if (mpm3d_stage_needs_contact(step_order(s)) /= 0 .and. .not. model%contact) cycle
+      if (step_order(s) == ST_BIN) then
+        call bin_stage()
+      else
+        call run_each(step_order(s))
+      end if
+    end do
+  end subroutine step
+
+  ! A stage on component 1's context and, with contact, on component 2's in turn when the
+  ! stage runs per component (stage_per_component).
+  subroutine run_each(id)
+    integer, intent(in) :: id
+    call run_stage(id, ctx)
+    if (model%contact .and. mpm3d_stage_per_component(id) /= 0) call run_stage(id, ctx2)
+  end subroutine run_each
+
+  ! The bin stage and what the driver does around it: the adaptive window (a scheduled
+  ! regrid before; a regrid and a second binning when a particle has left the window; never
+  ! with contact, which keeps the box), then buffers for the non-empty patches.
+  subroutine bin_stage()
+    integer :: escaped
+    logical :: scheduled
     scheduled = regrid_every > 0 .and. steps > 0 .and. mod(steps, int(max(regrid_every, 1), int64)) == 0
     if (scheduled) call regrid()
-    call mpm3d_f_bin(ctx)
+    call run_each(ST_BIN)
     escaped = 0
     if (ctx%noutside > 0 .and. .not. grid_window_is_box(grid)) then
       ! A particle inside the deck's box has left the window: widen it and bin again.
       escaped = grid_count_escaped(grid, model%particles%x, cell, np)
       if (escaped > 0) then
         call regrid()
-        call mpm3d_f_bin(ctx)
+        call run_each(ST_BIN)
       end if
     end if
     if (scheduled .or. escaped > 0) call note_regrid(escaped)
     call ensure_patch_buffers()
-    call mpm3d_f_p2g(ctx)
-    if (ctx%scheme == SCHEME_USF) then
-      call mpm3d_f_stress(ctx)
-      call mpm3d_f_forces(ctx)
-    end if
-    call mpm3d_f_integrate(ctx)
-    call mpm3d_f_g2p(ctx)
-    if (ctx%scheme /= SCHEME_USF) call mpm3d_f_stress(ctx)
-    call mpm3d_f_energy(ctx)
-  end subroutine step
+  end subroutine bin_stage
 
 end program mpm3d_ref

@@ -1,0 +1,100 @@
+! stage_bin: the bin stage (bind(C) mpm3d_f_bin): particles to cells and patches, the
+! patch particle lists and the buffer slots of the non-empty patches.
+module mpm3d_stage_bin
+  use, intrinsic :: iso_c_binding
+  use mpm3d_material, only: dp
+  use mpm3d_stage_common
+  implicit none
+  private
+
+  public :: mpm3d_f_bin
+
+contains
+
+  ! Bin: local coordinates, base cells, patch particle lists (ascending particle index
+  ! within each patch) and buffer slots of the non-empty patches.
+  subroutine mpm3d_f_bin(c) bind(C, name='mpm3d_f_bin')
+    type(step_context), intent(inout) :: c
+    real(dp), pointer :: x(:,:), lx(:,:)
+    integer(c_int), pointer :: start(:), ppart(:), slots(:), cell(:), body(:), bcomp(:)
+    integer :: pc, q, p, a, outside, nslot, i, j, k, cl
+    integer :: idx(3)
+    real(dp) :: t, fl, f0
+    logical :: inside, filter
+    pc = c%patch_cells
+    filter = c%only_comp > 0     ! contact: this context's component only
+    if (filter) then
+      call c_f_pointer(c%body, body, [c%np])
+      call c_f_pointer(c%body_comp, bcomp, [max(c%nbody, 1)])
+    end if
+    call c_f_pointer(c%x, x, [3, c%np])
+    call c_f_pointer(c%lx, lx, [3, c%np])
+    call c_f_pointer(c%patch_start, start, [c%npatch + 1])
+    call c_f_pointer(c%patch_part, ppart, [c%np])
+    call c_f_pointer(c%patch_slot, slots, [c%npatch])
+    call c_f_pointer(c%cell, cell, [c%np])
+    ! start(q + 1) is C's start[q].
+    do q = 0, c%npatch
+      start(q + 1) = 0
+    end do
+    outside = 0
+    do p = 1, c%np
+      if (filter) then
+        if (other_component(c, p, body, bcomp)) cycle
+      end if
+      inside = .true.
+      do a = 1, 3
+        ! Cell on the deck's lattice, then in the window (the same bits for any window).
+        t = (x(a, p) - c%origin(a)) / c%h
+        fl = aint(t)                      ! floor(t) as a double, exactly (NaN stays NaN)
+        if (fl > t) fl = fl - 1.0_dp
+        f0 = real(c%cell_off(a), dp)
+        if (.not. (fl >= f0 .and. fl < f0 + real(c%nc(a), dp))) then   ! also catches NaN
+          inside = .false.
+          exit
+        end if
+        idx(a) = int(fl) - c%cell_off(a)
+        lx(a, p) = t - fl
+      end do
+      if (.not. inside) then
+        cell(p) = -1
+        outside = outside + 1
+        cycle
+      end if
+      cell(p) = idx(1) + c%nc(1) * (idx(2) + c%nc(2) * idx(3))
+      q = idx(1) / pc + c%npd(1) * (idx(2) / pc + c%npd(2) * (idx(3) / pc))
+      start(q + 2) = start(q + 2) + 1
+    end do
+    nslot = 0
+    do q = 0, c%npatch - 1
+      if (start(q + 2) > 0) then
+        slots(q + 1) = nslot
+        nslot = nslot + 1
+      else
+        slots(q + 1) = -1
+      end if
+      start(q + 2) = start(q + 2) + start(q + 1)
+    end do
+    c%nslot = nslot
+    c%noutside = outside
+    ! Second pass: a stable counting sort; the end offsets serve as fill pointers.
+    do q = c%npatch, 1, -1
+      start(q + 1) = start(q)
+    end do
+    start(1) = 0
+    do p = 1, c%np
+      if (filter) then
+        if (other_component(c, p, body, bcomp)) cycle
+      end if
+      cl = cell(p)
+      if (cl < 0) cycle
+      i = mod(cl, c%nc(1))
+      j = mod(cl / c%nc(1), c%nc(2))
+      k = cl / (c%nc(1) * c%nc(2))
+      q = i / pc + c%npd(1) * (j / pc + c%npd(2) * (k / pc))
+      ppart(start(q + 2) + 1) = p - 1
+      start(q + 2) = start(q + 2) + 1
+    end do
+  end subroutine mpm3d_f_bin
+
+end module mpm3d_stage_bin

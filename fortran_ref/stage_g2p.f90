@@ -1,0 +1,117 @@
+! stage_g2p: grid to particle (bind(C) mpm3d_f_g2p): particle velocities and positions from
+! the nodes, trilinear or GIMP; MUSL also remaps the momenta to the nodes.
+module mpm3d_stage_g2p
+  use, intrinsic :: iso_c_binding
+  use mpm3d_material, only: dp
+  use mpm3d_grid, only: shape_linear
+  use mpm3d_stage_common
+  use mpm3d_stage_p2g, only: assemble
+  implicit none
+  private
+
+  public :: mpm3d_f_g2p
+
+contains
+
+  ! G2P: particle velocity and position from the grid; MUSL: momentum remap and BC.
+  subroutine mpm3d_f_g2p(c) bind(C, name='mpm3d_f_g2p')
+    type(step_context), intent(inout) :: c
+    real(dp), pointer :: buf(:,:,:), lx(:,:), v(:,:), x(:,:), mass(:)
+    real(dp), pointer :: gmass(:), gmom(:,:), gforce(:,:), psize(:)
+    integer(c_int), pointer :: pstart(:), ppart(:), slots(:), cell(:)
+    real(dp) :: sn(27), sg(3, 27), acc(3), vel(3), m, r, mp, mn
+    integer :: pc, qq, pn, q, slot, idx, p, base, pbase, k, n, a, ln, nk
+    integer :: ci(3), o(3)
+    logical :: remap, gimp
+    remap = c%scheme == SCHEME_MUSL
+    pc = c%patch_cells
+    qq = pc + 1 + 2 * c%patch_halo
+    pn = qq * qq * qq
+    gimp = c%shape == 1
+    if (gimp) call c_f_pointer(c%psize, psize, [c%np])
+    call c_f_pointer(c%gmass, gmass, [c%nnode])
+    call c_f_pointer(c%gmom, gmom, [3, c%nnode])
+    call c_f_pointer(c%gforce, gforce, [3, c%nnode])
+    if (c%nslot > 0) then
+      call view_buffers(c, buf)
+      call c_f_pointer(c%patch_start, pstart, [c%npatch + 1])
+      call c_f_pointer(c%patch_part, ppart, [c%np])
+      call c_f_pointer(c%patch_slot, slots, [c%npatch])
+      call c_f_pointer(c%cell, cell, [c%np])
+      call c_f_pointer(c%lx, lx, [3, c%np])
+      call c_f_pointer(c%v, v, [3, c%np])
+      call c_f_pointer(c%x, x, [3, c%np])
+      call c_f_pointer(c%mass, mass, [c%np])
+      do q = 0, c%npatch - 1
+        slot = slots(q + 1)
+        if (slot < 0) cycle
+        if (remap) then
+          do ln = 1, pn
+            buf(2, ln, slot + 1) = 0.0_dp
+            buf(3, ln, slot + 1) = 0.0_dp
+            buf(4, ln, slot + 1) = 0.0_dp
+          end do
+        end if
+        do idx = pstart(q + 1), pstart(q + 2) - 1
+          p = ppart(idx + 1) + 1
+          if (gimp) then
+            call gimp_stencil(c, cell(p), lx(:, p), psize(p), ci, o, sn, sg)
+            base = gimp_corner(c, ci, o)
+            nk = 27
+          else
+            call shape_linear(lx(:, p), c%inv_h, sn(1:8), sg(:, 1:8))
+            base = base_node(c, cell(p))
+            nk = 8
+          end if
+          acc = 0.0_dp
+          vel = 0.0_dp
+          do k = 0, nk - 1
+            if (gimp) then
+              n = base + stencil_offset(k, c%nn(1), c%nn(2)) + 1
+            else
+              n = node_of(c, base, k) + 1
+            end if
+            m = gmass(n)
+            if (.not. (m > c%mass_cutoff)) cycle
+            r = sn(k + 1) / m
+            do a = 1, 3
+              acc(a) = acc(a) + (gforce(a, n) * r)
+              vel(a) = vel(a) + (gmom(a, n) * r)
+            end do
+          end do
+          do a = 1, 3
+            v(a, p) = v(a, p) + (acc(a) * c%dt_int)
+            x(a, p) = x(a, p) + (vel(a) * c%dt)
+          end do
+          if (remap) then
+            if (gimp) then
+              pbase = gimp_patch_corner(c, q, ci, o)
+            else
+              pbase = patch_base(c, q, cell(p))
+            end if
+            mp = mass(p)
+            do k = 0, nk - 1
+              if (gimp) then
+                ln = pbase + stencil_offset(k, qq, qq) + 1
+              else
+                ln = pbase + patch_local(pc, k) + 1
+              end if
+              mn = mp * sn(k + 1)
+              buf(2, ln, slot + 1) = buf(2, ln, slot + 1) + (mn * v(1, p))
+              buf(3, ln, slot + 1) = buf(3, ln, slot + 1) + (mn * v(2, p))
+              buf(4, ln, slot + 1) = buf(4, ln, slot + 1) + (mn * v(3, p))
+            end do
+          end if
+        end do
+      end do
+    end if
+    if (remap) then
+      call assemble(c, 1, 3, gmass, gmom, gforce)
+      call apply_bc(c, gmom)
+    end if
+  end subroutine mpm3d_f_g2p
+
+  ! The node and buffer index helpers, a copy in this module so that its loops inline them.
+  include 'stage_index.inc'
+
+end module mpm3d_stage_g2p

@@ -1,0 +1,124 @@
+! stage_stress: the stress stage (bind(C) mpm3d_f_stress): strain rate and spin from the
+! nodal velocities, the new volume, and the constitutive update (mpm3d_constitution).
+module mpm3d_stage_stress
+  use, intrinsic :: iso_c_binding
+  use mpm3d_material
+  use mpm3d_grid, only: shape_linear
+  use mpm3d_constitution, only: stress_update, burn_fraction
+  use mpm3d_stage_common
+  implicit none
+  private
+
+  public :: mpm3d_f_stress
+
+contains
+
+  ! Stress: strain and spin increments from the grid velocity, volume, stress update.
+  subroutine mpm3d_f_stress(c) bind(C, name='mpm3d_f_stress')
+    type(step_context), intent(inout) :: c
+    real(dp), pointer :: lx(:,:), sig(:,:), mass(:), vol(:), epeff(:), ie(:), temp(:)
+    real(dp), pointer :: tlight(:), qv(:)
+    real(dp), pointer :: gmass(:), gmom(:,:), psize(:)
+    integer(c_int), pointer :: cell(:), mat(:), body(:), bcomp(:)
+    type(material_params), pointer :: mats(:)
+    real(dp) :: sn(27), sg(3, 27), lg(0:8), de(6), dw(3), dt, m, va, vol_old, vol_new, tdummy
+    real(dp) :: burn, qdummy
+    integer :: p, cl, base, k, n, a, b, nk
+    integer :: ci(3), o(3)
+    logical :: has_temp, has_tl, has_q, gimp, filter
+    dt = c%dt
+    gimp = c%shape == 1
+    if (gimp) call c_f_pointer(c%psize, psize, [c%np])
+    filter = c%only_comp > 0
+    if (filter) then
+      call c_f_pointer(c%body, body, [c%np])
+      call c_f_pointer(c%body_comp, bcomp, [max(c%nbody, 1)])
+    end if
+    call c_f_pointer(c%lx, lx, [3, c%np])
+    call c_f_pointer(c%sig, sig, [6, c%np])
+    call c_f_pointer(c%mass, mass, [c%np])
+    call c_f_pointer(c%vol, vol, [c%np])
+    call c_f_pointer(c%epeff, epeff, [c%np])
+    call c_f_pointer(c%ie, ie, [c%np])
+    call c_f_pointer(c%cell, cell, [c%np])
+    call c_f_pointer(c%mat, mat, [c%np])
+    call c_f_pointer(c%gmass, gmass, [c%nnode])
+    call c_f_pointer(c%gmom, gmom, [3, c%nnode])
+    call c_f_pointer(c%mats, mats, [c%nmat])
+    has_temp = c_associated(c%temp)
+    if (has_temp) then
+      call c_f_pointer(c%temp, temp, [c%np])
+    else
+      nullify(temp)
+    end if
+    has_tl = c_associated(c%tlight)
+    if (has_tl) call c_f_pointer(c%tlight, tlight, [c%np])
+    has_q = c_associated(c%qv)
+    if (has_q) call c_f_pointer(c%qv, qv, [c%np])
+    tdummy = 0.0_dp
+    qdummy = 0.0_dp
+    do p = 1, c%np
+      cl = cell(p)
+      if (cl < 0) cycle
+      if (filter) then
+        if (other_component(c, p, body, bcomp)) cycle
+      end if
+      if (gimp) then
+        call gimp_stencil(c, cl, lx(:, p), psize(p), ci, o, sn, sg)
+        base = gimp_corner(c, ci, o)
+        nk = 27
+      else
+        call shape_linear(lx(:, p), c%inv_h, sn(1:8), sg(:, 1:8))
+        base = base_node(c, cl)
+        nk = 8
+      end if
+      lg = 0.0_dp             ! lg(3a+b) = d v_a / d x_b (0-based a, b)
+      do k = 0, nk - 1
+        if (gimp) then
+          n = base + stencil_offset(k, c%nn(1), c%nn(2)) + 1
+        else
+          n = node_of(c, base, k) + 1
+        end if
+        m = gmass(n)
+        if (.not. (m > c%mass_cutoff)) cycle
+        do a = 0, 2
+          va = gmom(a + 1, n) / m
+          do b = 0, 2
+            lg(3 * a + b) = lg(3 * a + b) + (va * sg(b + 1, k + 1))
+          end do
+        end do
+      end do
+      de(1) = lg(0) * dt
+      de(2) = lg(4) * dt
+      de(3) = lg(8) * dt
+      de(4) = (0.5_dp * (lg(5) + lg(7))) * dt
+      de(5) = (0.5_dp * (lg(2) + lg(6))) * dt
+      de(6) = (0.5_dp * (lg(1) + lg(3))) * dt
+      dw(1) = (0.5_dp * (lg(5) - lg(7))) * dt
+      dw(2) = (0.5_dp * (lg(2) - lg(6))) * dt
+      dw(3) = (0.5_dp * (lg(1) - lg(3))) * dt
+      vol_old = vol(p)
+      vol_new = vol_old * (1.0_dp + ((de(1) + de(2)) + de(3)))
+      burn = 1.0_dp
+      if (has_tl) burn = burn_fraction(mats(mat(p) + 1), tlight(p), c%time)
+      if (has_temp .and. has_q) then
+        call stress_update(mats(mat(p) + 1), de, dw, dt, mass(p), vol_old, vol_new, sig(:, p), &
+                           epeff(p), ie(p), .true., temp(p), .true., qv(p), burn, c%bulk_q1, c%bulk_q2, c%h)
+      else if (has_temp) then
+        call stress_update(mats(mat(p) + 1), de, dw, dt, mass(p), vol_old, vol_new, sig(:, p), &
+                           epeff(p), ie(p), .true., temp(p), .false., qdummy, burn, c%bulk_q1, c%bulk_q2, c%h)
+      else if (has_q) then
+        call stress_update(mats(mat(p) + 1), de, dw, dt, mass(p), vol_old, vol_new, sig(:, p), &
+                           epeff(p), ie(p), .false., tdummy, .true., qv(p), burn, c%bulk_q1, c%bulk_q2, c%h)
+      else
+        call stress_update(mats(mat(p) + 1), de, dw, dt, mass(p), vol_old, vol_new, sig(:, p), &
+                           epeff(p), ie(p), .false., tdummy, .false., qdummy, burn, c%bulk_q1, c%bulk_q2, c%h)
+      end if
+      vol(p) = vol_new
+    end do
+  end subroutine mpm3d_f_stress
+
+  ! The node and buffer index helpers, a copy in this module so that its loops inline them.
+  include 'stage_index.inc'
+
+end module mpm3d_stage_stress
