@@ -45,8 +45,6 @@ const char* kUsage =
     "  --particle-order blocks|deck  storage order of the particles (default blocks: sorted by\n"
     "                     patch-sized blocks of cells, so each thread's patches hold a run of\n"
     "                     memory; deck: as read). Outputs are in deck order either way\n"
-    "  --scatter patches|expansion  grid scatter scheme (default patches: bit-identical for\n"
-    "                     any thread count; expansion: per-thread grid copies, a benchmark)\n"
     "  --hdf5             write the animation as an HDF5 + XDMF series (name_anim.h5/.xdmf)\n"
     "  --checkpoint F.h5  write a checkpoint when the run ends (and every N steps, below)\n"
     "  --checkpoint-every N   also write it every N steps (default file name_checkpoint.h5)\n"
@@ -66,7 +64,6 @@ struct Options {
   double end_time = -1.0;
   int threads = 0, patch_cells = 4;
   long regrid_every = -1;  // -1: the deck's
-  std::string scatter = "patches";
   std::string particle_order = "blocks";
   bool no_output = false, quiet = false, hdf5 = false, patch_given = false, strict_energy = false;
 };
@@ -150,9 +147,6 @@ Options parse_args(int argc, char** argv, bool& exit_now) {
     } else if (a == "--regrid-every") {
       o.regrid_every = to_long(a, value());
       if (o.regrid_every < 0 || o.regrid_every > 1000000000) throw UsageError("--regrid-every must lie in 0..1000000000");
-    } else if (a == "--scatter") {
-      o.scatter = value();
-      if (o.scatter != "patches" && o.scatter != "expansion") throw UsageError("--scatter takes patches or expansion");
     } else if (a == "--kernel") {
       o.kernel = value();
     } else if (a == "--kernels") {
@@ -174,8 +168,6 @@ Options parse_args(int argc, char** argv, bool& exit_now) {
     }
   }
   if (o.deck.empty()) throw UsageError("no deck given");
-  if (o.scatter == "expansion" && (!o.kernel.empty() || !o.kernels.empty()))
-    throw UsageError("--scatter expansion has C++ kernels only (no --kernel/--kernels with it)");
   return o;
 }
 
@@ -267,11 +259,6 @@ int run_main(int argc, char** argv) {
       if (!opt.kernel.empty()) select_stages(t, opt.kernel, false);
       if (!opt.kernels.empty()) select_stages(t, opt.kernels, true);
       sim.set_stages(t);
-      if (opt.scatter == "expansion") {
-        // The per-thread copies are a trilinear, single-grid benchmark.
-        if (sim.model.gimp || sim.model.contact) throw UsageError("--scatter expansion supports neither 'gimp' nor 'cont'");
-        sim.use_expansion_scatter();
-      }
     }
     OutputSchedule resume;
     const bool restarted = !opt.restart.empty();
@@ -288,7 +275,6 @@ int run_main(int argc, char** argv) {
          << sim.grid.deck_nc[1] << " x " << sim.grid.deck_nc[2] << " cells of " << m.dcell << ", patches of "
          << sim.grid.patch_cells << "^3 cells";
     if (sim.regrid_every > 0) head << ", adaptive: redefined every " << sim.regrid_every << " steps";
-    if (sim.expansion_scatter()) head << "\n  scatter: per-thread grid copies (expansion)";
     head << "\n  scheme "
          << (m.scheme == SCHEME_MUSL ? "MUSL" : m.scheme == SCHEME_USL ? "USL" : "USF") << ", dt " << m.dt
          << ", end time " << end_time << ", threads " << threads;
@@ -413,8 +399,7 @@ int run_main(int argc, char** argv) {
          << num(sim.momentum[0]) << ", " << num(sim.momentum[1]) << ", " << num(sim.momentum[2])
          << "],\n  \"bbox_min\": [" << num(lo[0]) << ", " << num(lo[1]) << ", " << num(lo[2]) << "],\n  \"bbox_max\": ["
          << num(hi[0]) << ", " << num(hi[1]) << ", " << num(hi[2]) << "],\n  \"max_epeff\": " << num(max_epeff)
-         << ",\n  \"particles_outside_grid\": " << sim.outside << ",\n  \"scatter\": \"" << opt.scatter
-         << "\",\n  \"regrid_every\": " << sim.regrid_every << ",\n  \"regrids\": " << sim.regrids
+         << ",\n  \"particles_outside_grid\": " << sim.outside << ",\n  \"regrid_every\": " << sim.regrid_every << ",\n  \"regrids\": " << sim.regrids
          << ",\n  \"regrids_forced\": " << sim.regrids_forced << ",\n  \"grid_window_offset\": [" << sim.grid.off[0]
          << ", " << sim.grid.off[1] << ", " << sim.grid.off[2] << "],\n  \"grid_window_cells\": [" << sim.grid.nc[0]
          << ", " << sim.grid.nc[1] << ", " << sim.grid.nc[2] << "],\n  \"patches\": " << sim.stats.patches

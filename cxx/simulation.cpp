@@ -18,25 +18,6 @@
 namespace mpm3d {
 namespace {
 
-// The first 64-byte boundary in v (which has 8 words to spare), so that each thread's
-// patch range word has a cache line of its own.
-uint64_t* line_aligned(std::vector<uint64_t>& v) {
-  const auto at = reinterpret_cast<std::uintptr_t>(v.data());
-  return v.data() + ((64 - at % 64) % 64) / sizeof(uint64_t);
-}
-
-// Points c's load-balance arrays (thread shares, busy times, particles done, patch range
-// words) at fresh storage in balance and ranges; the first binning sets equal shares.
-void bind_balance(StepContext& c, std::vector<double>& balance, std::vector<uint64_t>& ranges) {
-  balance.assign(kBalanceValues, 0.0);
-  c.thread_share = balance.data();
-  c.thread_busy = balance.data() + kBalanceValues / 3;
-  c.thread_done = balance.data() + 2 * (kBalanceValues / 3);
-  ranges.assign(kPatchRangeWords + 8, 0);
-  c.patch_ranges = line_aligned(ranges);
-  c.nshare = 0;
-}
-
 }  // namespace
 
 Simulation::Simulation(Model m, int patch_cells, ParticleOrder order) : model(std::move(m)), stages_(cxx_stages()) {
@@ -119,7 +100,6 @@ void Simulation::bind() {
   c.cell = cell_.data();
   pscratch_.assign(size_t(P.np), 0);
   c.pscratch = pscratch_.data();
-  bind_balance(c, balance_, ranges_);
   std::vector<double>& grav = gravity_;
   grav.assign(3 * model.bodies.size(), 0.0);
   for (size_t b = 0; b < model.bodies.size(); ++b)
@@ -178,7 +158,6 @@ void Simulation::bind() {
     ctx2.patch_part = grid2.patch_part.data();
     ctx2.patch_slot = grid2.patch_slot.data();
     ctx2.patch_buf = grid2.patch_buf.data();
-    bind_balance(ctx2, balance2_, ranges2_);
   }
 }
 
@@ -220,24 +199,6 @@ void Simulation::note_regrid(int escaped) {
                 stats.mean, stats.imbalance);
   regrid_note = line;
   if (escaped > 0) regrid_note += " (forced: " + std::to_string(escaped) + " particles had left the window)";
-}
-
-void Simulation::use_expansion_scatter() {
-  stages_.fn[ST_P2G] = mpm3d_cxx_p2g_expansion;
-  stages_.fn[ST_FORCES] = mpm3d_cxx_forces_expansion;
-  stages_.fn[ST_G2P] = mpm3d_cxx_g2p_expansion;
-  expansion_ = true;
-}
-
-void Simulation::ensure_expansion_buffers() {
-  int threads = 1;
-#ifdef _OPENMP
-  threads = omp_get_max_threads();
-#endif
-  const size_t need = size_t(threads) * size_t(grid.nnode()) * kNodeFields;
-  if (tgrid_.size() != need) std::vector<double>(need).swap(tgrid_);  // each thread zeroes its own copy
-  ctx.tgrid = tgrid_.data();
-  ctx.ntgrid = threads;
 }
 
 void Simulation::set_grid(const double origin[3], double h, const int deck_nc[3], int patch_cells, const int off[3],
@@ -343,7 +304,6 @@ void Simulation::bin_stage() {
   stats = patch_stats(grid, c->patch_start);
   if (scheduled || escaped > 0) note_regrid(escaped);
   ensure_patch_buffers();
-  if (expansion_) ensure_expansion_buffers();
 }
 
 double Simulation::dt_work_of_body_forces() const {

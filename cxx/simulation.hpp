@@ -35,10 +35,6 @@ class Simulation {
 
   void step();  // one explicit step; throws HealthError (see health_check)
   void set_stages(const StageTable& t) { stages_ = t; }
-  // --scatter expansion: P2G, forces and G2P from the per-thread grid copies
-  // (cxx/scatter_expansion.cpp) instead of the patches. Call after set_stages.
-  void use_expansion_scatter();
-  bool expansion_scatter() const { return expansion_; }
   // Redefines the background grid (restart): the lattice (origin, cell h, deck_nc cells,
   // patch size) and the window of cells off .. off + nc - 1 on it.
   void set_grid(const double origin[3], double h, const int deck_nc[3], int patch_cells, const int off[3],
@@ -92,14 +88,6 @@ class Simulation {
   void bin_stage();
   void regrid(int escaped);
   void note_regrid(int escaped);
-  bool expansion_ = false;
-  std::vector<double> tgrid_;
-  // Thread shares and busy times of the patch stages (StepContext::thread_share), one set
-  // per context, for up to kMaxBalancedThreads threads.
-  std::vector<double> balance_, balance2_;
-  // Behind StepContext::patch_ranges (kPatchRangeWords from a 64-byte boundary).
-  std::vector<uint64_t> ranges_, ranges2_;
-  void ensure_expansion_buffers();
   void ensure_patch_buffers();
   void health_check();
   void energy_check(double ie_min);

@@ -7,14 +7,16 @@
 #include <memory>
 #include <vector>
 
-#include "thread_balance.hpp"
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include "transfer_lanes.hpp"
 #include "update_step.hpp"
 
 using namespace mpm3d;
 
 extern "C" void mpm3d_cxx_bin(StepContext* c) {
-  rebalance_threads(c);  // the last step's busy times, before the patch lists change
   const int npatch = c->npatch;
   int* patch_of = c->pscratch;  // patch of each particle, -1 outside
   int outside = 0, nslot = 0;
@@ -30,25 +32,24 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
   };
   std::vector<RunSums> run_sums(static_cast<size_t>(team), RunSums{0, 0});
   const bool avx2 = lanes_use_avx2();
-  // One team for the whole stage: each thread bins a run of particles sized by its share
-  // (in the block storage order (order_by_blocks) about the particles its patch range
-  // holds) and counts them by patch; then a stable counting sort with those runs as its
-  // chunks. The runs are consecutive and ascending, so each patch lists its particles in
-  // ascending index whatever the number of threads: the lists do not depend on it.
+  // One team for the whole stage: each thread bins an equal run of particles and counts
+  // them by patch; then a stable counting sort with those runs as its chunks. The runs are
+  // consecutive and ascending, so each patch lists its particles in ascending index
+  // whatever the number of threads: the lists do not depend on it.
 #pragma omp parallel num_threads(team) reduction(+ : outside)
   {
-    int t, T, lo, hi;
-    team_position(t, T);
-    thread_particles(c, t, T, lo, hi);
-    const bool timed = balance_timed(c, T);
-    const double t0 = timed ? busy_clock() : 0.0;
+    int t = 0, T = 1;
+#ifdef _OPENMP
+    t = omp_get_thread_num();
+    T = omp_get_num_threads();
+#endif
+    const int lo = int(int64_t(c->np) * t / T), hi = int(int64_t(c->np) * (t + 1) / T);
     int* cnt = counts.get() + size_t(t) * size_t(npatch);
     std::fill(cnt, cnt + npatch, 0);
     // Cells, local coordinates, patches (transfer_lanes.hpp).
     outside += avx2 ? bin_range_avx2(c, lo, hi, patch_of) : bin_range<VectorLane<kLanes>>(c, lo, hi, patch_of);
     for (int p = lo; p < hi; ++p)
       if (patch_of[p] >= 0) ++cnt[patch_of[p]];
-    if (timed) add_busy(c, LOOP_BIN, t, t0);
 #pragma omp barrier
     // Patch starts, buffer slots, and each run's fill pointer into every patch's list: a
     // prefix sum over the patches in two passes, each thread over an equal run of patches

@@ -6,7 +6,7 @@
 
 #include "grid.hpp"
 #include "patch_index.hpp"
-#include "thread_balance.hpp"
+#include "patch_loops.hpp"
 #include "update_step.hpp"
 
 namespace mpm3d {
@@ -15,8 +15,8 @@ namespace mpm3d {
 // the non-empty patches holding it, in ascending patch index (x fastest, then y, z).
 // Fields first..first+count-1 of the buffers go to dst_mass (field 0), dst_mom (1-3)
 // and dst_force (4-6). Every node is written by exactly one owner patch, so owners run in
-// parallel (trilinear: the thread ranges of loop `loop`). stage_p2g.cpp.
-void assemble(const StepContext* c, PatchLoop loop, int first, int count, double* dst_mass, double* dst_mom,
+// parallel (for_patches). stage_p2g.cpp.
+void assemble(const StepContext* c, int first, int count, double* dst_mass, double* dst_mom,
               double* dst_force);
 
 // Boundary conditions of the box faces on a nodal vector field (3,nnode): 1 fixed (all
@@ -49,8 +49,7 @@ __attribute__((always_inline)) inline void store_node_fields(int first, int coun
 }
 
 // f(q, q3, buf) for every non-empty patch q (coordinates q3, buffer buf), dealt out to the
-// threads one patch at a time: the GIMP stages and the contact's mass gradients (the
-// trilinear stages take the balanced ranges of thread_balance.hpp).
+// threads one patch at a time: the GIMP stages and the contact's mass gradients.
 template <class F>
 inline void for_filled_patches(const StepContext* c, F&& f) {
 #pragma omp parallel for schedule(dynamic, 1)
@@ -67,7 +66,7 @@ inline void for_filled_patches(const StepContext* c, F&& f) {
 // trilinear, 27 GIMP), node(k) the 7 fields of stencil node k: mass and momentum
 // (with_mass_mom) and the force -V sigma G + N (m g + f_ext) (with_forces; body forces with
 // has_body_force). Used by the trilinear patch scatter (constant flags, so the loop
-// unrolls), the GIMP scatter and the array-expansion scatter.
+// unrolls) and the GIMP scatter.
 template <int kNodes, class NodeOf>
 __attribute__((always_inline)) inline void p2g_particle(const StepContext* c, int p, const double* N,
                                                         const double* G, bool with_mass_mom, bool with_forces,
@@ -114,7 +113,7 @@ __attribute__((always_inline)) inline void p2g_particle(const StepContext* c, in
 
 // G2P of particle p over its kNodes nodes (grid node node(k) of stencil node k):
 // v_p += dt_int sum_k N_k f_k / m_k and x_p += dt sum_k N_k p_k / m_k over the nodes above
-// the mass cut-off. The GIMP stage and the array-expansion one; the trilinear stage runs
+// the mass cut-off. The GIMP stage; the trilinear stage runs
 // the same sums in lanes (g2p_values, transfer_lanes.hpp).
 template <int kNodes, class NodeOf>
 __attribute__((always_inline)) inline void g2p_particle(StepContext* c, int p, const double* N, NodeOf node) {

@@ -13,7 +13,7 @@ namespace {
 // Trilinear: each thread over its balanced range of patches, 4 particles per vector.
 void g2p_trilinear(StepContext* c, bool remap) {
   const bool avx2 = lanes_use_avx2();
-  for_thread_patches(c, LOOP_G2P, [&](int q) {
+  for_patches(c, [&](int q) {
     if (c->patch_slot[q] < 0) return;
     if (avx2)
       g2p_patch_avx2(c, q, remap);
@@ -60,7 +60,7 @@ extern "C" void mpm3d_cxx_g2p(StepContext* c) {
   else
     g2p_trilinear(c, remap);
   if (remap) {
-    assemble(c, LOOP_REMAP_ASSEMBLY, 1, 3, c->gmass, c->gmom, c->gforce);
+    assemble(c, 1, 3, c->gmass, c->gmom, c->gforce);
     apply_bc(c, c->gmom);
   }
 }

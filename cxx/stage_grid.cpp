@@ -65,7 +65,7 @@ void scatter_mass_gradient(StepContext* c) {
       }
     }
   });
-  assemble(c, LOOP_NORMAL_ASSEMBLY, 4, 3, c->gmass, c->gmom, c->gnormal);
+  assemble(c, 4, 3, c->gmass, c->gmom, c->gnormal);
 }
 
 // Multi-velocity contact (Bardenhagen et al. 2000, 2001; Huang et al. 2011) between
@@ -197,7 +197,7 @@ extern "C" void mpm3d_cxx_integrate(StepContext* c) {
   const double dt = c->dt_int;
   double* mom = c->gmom;
   const double* f = c->gforce;
-  for_thread_patches(c, LOOP_INTEGRATE, [&](int q) {
+  for_patches(c, [&](int q) {
     const OwnedNodes o = owned_nodes(c, q);
     if (!o.active) return;
     // One node row as one run of 3 (hi - lo) values, which vectorises.

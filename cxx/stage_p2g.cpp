@@ -16,11 +16,11 @@ namespace {
 // buffer and those of its seven lower neighbours. The field range is a compile-time
 // constant, so the per-node loops unroll.
 template <int first, int count>
-void assemble_fields(const StepContext* c, PatchLoop loop, double* dst_mass, double* dst_mom, double* dst_force) {
+void assemble_fields(const StepContext* c, double* dst_mass, double* dst_mom, double* dst_force) {
   const int P = c->patch_cells, Q = P + 1;
   const int npd0 = c->npd[0], npd1 = c->npd[1], npd2 = c->npd[2];
   const int pn = Q * Q * Q;
-  for_thread_patches(c, loop, [&](int q) {
+  for_patches(c, [&](int q) {
     const int qx = q % npd0, qy = (q / npd0) % npd1, qz = q / (npd0 * npd1);
     // Slots of the patch and its lower neighbours: nb[cz][cy][cx], c = 0 lower, 1 self.
     const double* nb[2][2][2];
@@ -146,7 +146,7 @@ void scatter_p2g(StepContext* c, bool with_mass_mom, bool with_forces) {
     return;
   }
   const bool avx2 = lanes_use_avx2();
-  for_thread_patches(c, with_mass_mom ? LOOP_P2G : LOOP_FORCES, [&](int q) {
+  for_patches(c, [&](int q) {
     if (c->patch_slot[q] < 0) return;
     if (avx2)
       p2g_patch_avx2(c, q, with_mass_mom, with_forces);
@@ -157,18 +157,18 @@ void scatter_p2g(StepContext* c, bool with_mass_mom, bool with_forces) {
 
 }  // namespace
 
-void assemble(const StepContext* c, PatchLoop loop, int first, int count, double* dst_mass, double* dst_mom,
+void assemble(const StepContext* c, int first, int count, double* dst_mass, double* dst_mom,
               double* dst_force) {
   if (c->patch_halo > 0)
     assemble_wide(c, first, count, dst_mass, dst_mom, dst_force);
   else if (first == 0 && count == 7)
-    assemble_fields<0, 7>(c, loop, dst_mass, dst_mom, dst_force);
+    assemble_fields<0, 7>(c, dst_mass, dst_mom, dst_force);
   else if (first == 0 && count == 4)
-    assemble_fields<0, 4>(c, loop, dst_mass, dst_mom, dst_force);
+    assemble_fields<0, 4>(c, dst_mass, dst_mom, dst_force);
   else if (first == 1 && count == 3)
-    assemble_fields<1, 3>(c, loop, dst_mass, dst_mom, dst_force);
+    assemble_fields<1, 3>(c, dst_mass, dst_mom, dst_force);
   else if (first == 4 && count == 3)
-    assemble_fields<4, 3>(c, loop, dst_mass, dst_mom, dst_force);
+    assemble_fields<4, 3>(c, dst_mass, dst_mom, dst_force);
   else
     throw std::logic_error("assemble: unexpected field range");
 }
@@ -183,12 +183,12 @@ using namespace mpm3d;
 extern "C" void mpm3d_cxx_p2g(StepContext* c) {
   const bool forces = c->scheme != SCHEME_USF;
   scatter_p2g(c, true, forces);
-  assemble(c, LOOP_P2G_ASSEMBLY, 0, forces ? 7 : 4, c->gmass, c->gmom, c->gforce);
+  assemble(c, 0, forces ? 7 : 4, c->gmass, c->gmom, c->gforce);
   apply_bc(c, c->gmom);
 }
 
 // USF: f_i with the updated stresses.
 extern "C" void mpm3d_cxx_forces(StepContext* c) {
   scatter_p2g(c, false, true);
-  assemble(c, LOOP_FORCES_ASSEMBLY, 4, 3, c->gmass, c->gmom, c->gforce);
+  assemble(c, 4, 3, c->gmass, c->gmom, c->gforce);
 }

@@ -51,7 +51,7 @@ void stress_trilinear(StepContext* c, const double* gvel) {
   const CellDecoder dec(c);
   const StressBlockArgs args = stress_args(c);
   const bool avx2 = lanes_use_avx2();
-  for_thread_list_chunks(c, LOOP_STRESS, [&](int first, int count) {
+  for_list_chunks(c, [&](int first, int count) {
     const int* list = c->patch_part + first;
     if (avx2)
       stress_list_avx2(c, list, count, gvel, args);
@@ -107,7 +107,7 @@ void stress_gimp(StepContext* c, const double* gvel) {
 double* node_velocities(StepContext* c) {
   const double cutoff = c->mass_cutoff;
   double* gvel = c->gforce;
-  for_thread_patches(c, LOOP_NODE_VELOCITY, [&](int q) {
+  for_patches(c, [&](int q) {
     const OwnedNodes o = owned_nodes(c, q);
     if (!o.active) return;
     for_owned_nodes(c, o, [&](int n) {

@@ -62,22 +62,6 @@ struct StepContext {
   // Fields after this point are stage-internal scratch of the C++ kernels (a Fortran
   // mirror of the struct may stop before them).
   int *pscratch;       // (np) patch of each particle during binning
-  double *tgrid;       // --scatter expansion: per-thread grid copies (kNodeFields, nnode, ntgrid)
-  int ntgrid;          // copies in tgrid
-  // Load balance of the trilinear patch stages (thread_balance.hpp), one set per
-  // PatchLoop: in loop l, thread t of nshare takes about share[balance_index(l, t)]
-  // of the binned particles (each loop's shares sum to 1) and adds the seconds it spends
-  // there to busy[balance_index(l, t)]; the bin stage turns the busy times into
-  // new shares. Null: equal shares. Which thread does a patch never changes a bit.
-  double *thread_share, *thread_busy;
-  int nshare;
-  // The particles each thread did in each loop since the last binning (laid out as
-  // thread_busy; null: its range's). With patch_ranges, a thread that finishes its range
-  // takes the remaining patches of another's from the far end, so a CPU held back for a
-  // moment delays the loop by one patch at most; patch_ranges holds one 64-byte line per
-  // thread: the unclaimed patches [first, end) of its range, packed in one word.
-  double* thread_done;
-  uint64_t* patch_ranges;
 };
 
 typedef void (*StageFn)(StepContext*);
@@ -93,12 +77,6 @@ void mpm3d_cxx_energy(StepContext* c);     // stage_energy: kinetic, internal en
 void mpm3d_cxx_contact(StepContext* c);    // stage_grid: multi-velocity contact (c->other: comp. 2)
 void mpm3d_cxx_recontact(StepContext* c);  // stage_grid: contact again at the marked nodes (MUSL remap, USF P2G)
 
-// Benchmark alternative to the patch scheme (cxx/scatter_expansion.cpp): per-thread
-// copies of the grid ("array expansion"), reduced node by node in thread order. Correct,
-// but the node sums depend on the thread count. C++ only.
-void mpm3d_cxx_p2g_expansion(StepContext* c);
-void mpm3d_cxx_forces_expansion(StepContext* c);
-void mpm3d_cxx_g2p_expansion(StepContext* c);
 
 // The Fortran reference stages (fortran_ref/update_step.f90, bind(C)), same contracts.
 void mpm3d_f_bin(StepContext* c);
@@ -117,35 +95,6 @@ namespace mpm3d {
 
 extern const char* const kStageNames[ST_COUNT];
 constexpr int kReduceFields = 5;
-// Capacity of StepContext::thread_share and thread_busy; more threads run with equal shares.
-constexpr int kMaxBalancedThreads = 1024;
-// The thread-range loops of the trilinear stages, each balanced on its own: their costs
-// are spread differently along a body (a node loop's with the active patches, a particle
-// loop's with the particles), so one set of shares balanced over the whole step left
-// every loop unbalanced, each waiting at its own barrier.
-enum PatchLoop {
-  LOOP_BIN,              // binning: a run of particle indices
-  LOOP_P2G,              // scatter of mass, momentum (and forces) into the patch buffers
-  LOOP_P2G_ASSEMBLY,     // ... and their assembly into the nodes
-  LOOP_FORCES,           // USF: scatter of the forces
-  LOOP_FORCES_ASSEMBLY,  // ... and their assembly
-  LOOP_INTEGRATE,        // node momentum update
-  LOOP_G2P,              // particle velocities and positions (MUSL: and the remap scatter)
-  LOOP_REMAP_ASSEMBLY,   // MUSL: assembly of the remapped momentum
-  LOOP_NODE_VELOCITY,    // node velocities for the stress stage
-  LOOP_STRESS,           // velocity gradients and the stress update
-  LOOP_NORMAL_ASSEMBLY,  // contact: assembly of the mass gradients
-  LOOP_COUNT
-};
-// Doubles behind StepContext::thread_share, thread_busy and thread_done, in that order.
-constexpr size_t kBalanceValues = 3 * size_t(LOOP_COUNT) * size_t(kMaxBalancedThreads);
-// 64-bit words behind StepContext::patch_ranges (one cache line per thread).
-constexpr size_t kPatchRangeWords = 8 * size_t(kMaxBalancedThreads);
-// Where thread t's value of loop `loop` lies in thread_share, thread_busy and thread_done.
-constexpr size_t balance_index(int loop, int t) { return size_t(loop) * size_t(kMaxBalancedThreads) + size_t(t); }
-// New thread shares of every PatchLoop from the busy times since the last call (the bin
-// stage calls it first; cxx/thread_balance.cpp). Equal shares when the team size changed.
-void rebalance_threads(StepContext* c);
 
 // The stage table: which implementation each stage uses (cxx/stages.cpp).
 struct StageTable {

@@ -1,4 +1,4 @@
-// The adaptive background grid, the patch statistics and the array-expansion scatter
+// The adaptive background grid, the patch statistics and the patch loops
 // (issue 4: OpenMP parallel MPM as in MPM3DMP). Bit-for-bit checks across thread counts
 // and languages with the adaptive grid on are in tests/threads.cmake and
 // fortran_ref/tests.cmake; these tests check the rules and the hand-derived figures.
@@ -19,7 +19,7 @@
 #include "ffi.hpp"
 #include "mpm3d.hpp"
 #include "test_util.hpp"
-#include "thread_balance.hpp"
+#include "patch_loops.hpp"
 
 using testutil::RunResult;
 using testutil::TempDir;
@@ -157,55 +157,6 @@ TEST(Adaptive, WindowRules) {
   }
 }
 
-// Array expansion (per-thread grid copies) against the patch scheme: the same physics with
-// the node sums grouped differently, so equal to round-off (measured: positions within
-// 1e-12 mm, velocities 1e-8 mm/ms, stresses 1e-8 MPa after 60 steps of the Taylor bar).
-// Tolerances: 1e-10 mm, 1e-7 mm/ms (5e-10 of the impact speed), 1e-6 MPa.
-// The USF (forces stage) and USL decks of fortran_ref/testdecks are checked the same way.
-TEST(Adaptive, ExpansionScatterAgreesWithPatches) {
-  const std::string fdecks = std::string(MPM3D_TEST_DECKS) + "/../../fortran_ref/testdecks";
-  for (const std::string deck : {kInputs + "/taylor/taylor_coarse.mpm", kInputs + "/impact/two_blocks.mpm",
-                                 fdecks + "/usf_john.mpm", fdecks + "/usl_blocks.mpm"}) {
-    // Two threads on the smallest deck only (ctest runs tests side by side on few cores);
-    // the Taylor bar (58k particles) for 20 steps.
-    const bool taylor = deck.find("taylor") != std::string::npos;
-    const bool two = deck.find("two_blocks") != std::string::npos;
-    for (int threads : {1, 2}) {
-      if (!two && threads > 1) continue;
-#ifdef _OPENMP
-      omp_set_num_threads(threads);
-#else
-      if (threads > 1) continue;
-#endif
-      mpm3d::Simulation p(mpm3d::read_deck(deck)), e(mpm3d::read_deck(deck));
-      e.use_expansion_scatter();
-      ASSERT_TRUE(e.expansion_scatter());
-      for (int k = 0; k < (taylor ? 20 : 60); ++k) {
-        p.step();
-        e.step();
-      }
-      const auto& P = p.model.particles;
-      const auto& E = e.model.particles;
-      double dx = 0, dv = 0, ds = 0;
-      for (size_t i = 0; i < P.x.size(); ++i) {
-        dx = std::max(dx, std::fabs(P.x[i] - E.x[i]));
-        dv = std::max(dv, std::fabs(P.v[i] - E.v[i]));
-      }
-      for (size_t i = 0; i < P.sig.size(); ++i) ds = std::max(ds, std::fabs(P.sig[i] - E.sig[i]));
-      EXPECT_LE(dx, 1e-10) << deck << " threads " << threads;
-      EXPECT_LE(dv, 1e-7) << deck << " threads " << threads;
-      EXPECT_LE(ds, 1e-6) << deck << " threads " << threads;
-      // ... and the run did something (the comparison is not vacuous).
-      const mpm3d::Model m0 = mpm3d::read_deck(deck);
-      EXPECT_NE(P.x, m0.particles.x);
-      EXPECT_NE(P.sig, m0.particles.sig);
-    }
-  }
-#ifdef _OPENMP
-  omp_set_num_threads(1);
-#endif
-}
-
 TEST(Adaptive, BadOptions) {
   TempDir tmp;
   const std::string d = kDecks + "/patch_balance.mpm";
@@ -241,132 +192,36 @@ TEST(Adaptive, ElasticBenchDeckIsTheTaylorGeometry) {
   EXPECT_NE(t.mats[0].eos_type, EOS_NONE);
 }
 
-// The thread shares of the patch loops (rebalance_threads), hand-derived: 8 patches of 100
-// particles, 2 threads with equal shares. In the G2P loop thread 1 was twice as fast
-// (0.5 s against 1.0 s for 400 particles each), so the speeds 400 and 800 particles per
-// second ask for shares 1/3 and 2/3, taken halfway: 5/12 and 7/12. The stress loop ran
-// equally fast and keeps 1/2; the forces loop did not run and keeps its shares. Every
-// busy time is cleared, and a change of the team size starts equal shares again.
-TEST(Adaptive, ThreadSharesFollowEachLoopsMeasuredSpeed) {
-#ifndef _OPENMP
-  GTEST_SKIP() << "built without OpenMP";
-#else
-  const int threads_before = omp_get_max_threads();
-  omp_set_num_threads(2);
-  std::vector<double> balance(mpm3d::kBalanceValues, 0.0);
-  std::vector<int> start = {0, 100, 200, 300, 400, 500, 600, 700, 800};
+// The patch runs of the trilinear loops (thread_patches), hand-derived: patches of 100, 0,
+// 30, 1, 100, 100, 100, 100, 30 and 40 particles (601). Two threads split at particle 300:
+// the first list starting at or after it is patch 6 (at 331). Three threads split at 200
+// and 400: patches 5 (231) and 7 (431). Every patch in exactly one run.
+TEST(Adaptive, PatchRunsHoldEqualParticleShares) {
+  std::vector<int> start = {0, 100, 100, 130, 131, 231, 331, 431, 531, 561, 601};
   StepContext c{};
-  c.np = 800;
-  c.npatch = 8;
+  c.npatch = int(start.size()) - 1;
   c.patch_start = start.data();
-  c.thread_share = balance.data();
-  c.thread_busy = balance.data() + mpm3d::kBalanceValues / 3;
-  c.nshare = 0;
-  auto share = [&](mpm3d::PatchLoop l, int t) { return c.thread_share[mpm3d::balance_index(l, t)]; };
-  auto busy = [&](mpm3d::PatchLoop l, int t) -> double& {
-    return c.thread_busy[mpm3d::balance_index(l, t)];
-  };
-  mpm3d::rebalance_threads(&c);  // the first call sets equal shares for 2 threads
-  EXPECT_EQ(c.nshare, 2);
-  for (int l = 0; l < mpm3d::LOOP_COUNT; ++l) EXPECT_EQ(share(mpm3d::PatchLoop(l), 0), 0.5);
-  busy(mpm3d::LOOP_G2P, 0) = 1.0;
-  busy(mpm3d::LOOP_G2P, 1) = 0.5;
-  busy(mpm3d::LOOP_STRESS, 0) = 0.25;
-  busy(mpm3d::LOOP_STRESS, 1) = 0.25;
-  mpm3d::rebalance_threads(&c);
-  EXPECT_NEAR(share(mpm3d::LOOP_G2P, 0), 5.0 / 12.0, 1e-15);
-  EXPECT_NEAR(share(mpm3d::LOOP_G2P, 1), 7.0 / 12.0, 1e-15);
-  // The stress loop takes the lists in chunks of kListChunk (64) entries: at equal shares
-  // thread 0 has 6 of the 13 chunks, 384 of the 800 particles, so equal busy times make it
-  // the slower one: 0.5 * 0.5 + 0.5 * 384 / 800.
-  EXPECT_NEAR(share(mpm3d::LOOP_STRESS, 0), 0.49, 1e-15);
-  EXPECT_EQ(share(mpm3d::LOOP_FORCES, 1), 0.5);
-  for (int l = 0; l < mpm3d::LOOP_COUNT; ++l)
-    for (int t = 0; t < 2; ++t) EXPECT_EQ(busy(mpm3d::PatchLoop(l), t), 0.0);
-  // Thread 0's G2P range now ends at the first patch start at or beyond 5/12 of 800 (333):
-  // patches 0-3 stay with it, and the busy times of that range drive the next shares.
-  busy(mpm3d::LOOP_G2P, 0) = 400.0 / 400.0;  // the same speeds again
-  busy(mpm3d::LOOP_G2P, 1) = 400.0 / 800.0;
-  mpm3d::rebalance_threads(&c);
-  EXPECT_NEAR(share(mpm3d::LOOP_G2P, 0), 0.5 * 5.0 / 12.0 + 0.5 / 3.0, 1e-15);
-  // With thread_done (the patches a thread took from another's range count as its own):
-  // 300 and 500 particles in equal times ask for 3/8, so the stress share goes halfway
-  // there from 0.49: 0.5 * 0.49 + 0.5 * 3 / 8.
-  std::vector<double> done(size_t(mpm3d::LOOP_COUNT) * mpm3d::kMaxBalancedThreads, 0.0);
-  c.thread_done = done.data();
-  done[mpm3d::balance_index(mpm3d::LOOP_STRESS, 0)] = 300.0;
-  done[mpm3d::balance_index(mpm3d::LOOP_STRESS, 1)] = 500.0;
-  busy(mpm3d::LOOP_STRESS, 0) = 1.0;
-  busy(mpm3d::LOOP_STRESS, 1) = 1.0;
-  mpm3d::rebalance_threads(&c);
-  EXPECT_NEAR(share(mpm3d::LOOP_STRESS, 0), 0.5 * 0.49 + 0.5 * 3.0 / 8.0, 1e-15);
-  EXPECT_EQ(done[mpm3d::balance_index(mpm3d::LOOP_STRESS, 1)], 0.0);
-  omp_set_num_threads(3);
-  mpm3d::rebalance_threads(&c);
-  EXPECT_EQ(c.nshare, 3);
-  EXPECT_EQ(share(mpm3d::LOOP_G2P, 2), 1.0 / 3.0);
-  omp_set_num_threads(threads_before);
-#endif
+  int lo, hi;
+  mpm3d::thread_patches(&c, 0, 2, lo, hi);
+  EXPECT_EQ(lo, 0);
+  EXPECT_EQ(hi, 6);
+  mpm3d::thread_patches(&c, 1, 2, lo, hi);
+  EXPECT_EQ(lo, 6);
+  EXPECT_EQ(hi, 10);
+  const int expect3[4] = {0, 5, 7, 10};
+  for (int t = 0; t < 3; ++t) {
+    mpm3d::thread_patches(&c, t, 3, lo, hi);
+    EXPECT_EQ(lo, expect3[t]) << "thread " << t;
+    EXPECT_EQ(hi, expect3[t + 1]) << "thread " << t;
+  }
+  mpm3d::thread_patches(&c, 0, 1, lo, hi);
+  EXPECT_EQ(lo, 0);
+  EXPECT_EQ(hi, 10);
 }
 
-// The load-balance arrays and range words the program binds (bind_balance in simulation.cpp),
-// bound to a context over the patch lists `start` (one particle per list entry).
-struct BalanceArrays {
-  std::vector<double> balance = std::vector<double>(mpm3d::kBalanceValues, 0.0);
-  std::vector<uint64_t> ranges = std::vector<uint64_t>(mpm3d::kPatchRangeWords, 0);
-  void bind(StepContext& c, std::vector<int>& start) {
-    c.npatch = int(start.size()) - 1;
-    c.np = start.back();
-    c.patch_start = start.data();
-    c.thread_share = balance.data();
-    c.thread_busy = balance.data() + mpm3d::kBalanceValues / 3;
-    c.thread_done = balance.data() + 2 * (mpm3d::kBalanceValues / 3);
-    c.patch_ranges = ranges.data();
-  }
-};
-
-// Work stealing in the patch loops (claim_patch): 4 threads, each with a range of 1000
-// patches of 1 particle, run for_thread_patches 200 times; each thread sleeps now and then
-// inside a patch so that the others steal. Every patch must be done exactly once per loop,
-// and what the threads did must add up to all the particles.
-TEST(Adaptive, StolenPatchesAreDoneExactlyOnce) {
-#ifndef _OPENMP
-  GTEST_SKIP() << "built without OpenMP";
-#else
-  const int threads_before = omp_get_max_threads();
-  omp_set_num_threads(4);
-  const int npatch = 4000;
-  std::vector<int> start(npatch + 1);
-  for (int q = 0; q <= npatch; ++q) start[size_t(q)] = q;
-  BalanceArrays arrays;
-  StepContext c{};
-  arrays.bind(c, start);
-  mpm3d::rebalance_threads(&c);  // equal shares for 4 threads
-  std::vector<int> hits(npatch);
-  std::vector<int> by_thread(npatch);
-  long stolen = 0;
-  for (int rep = 0; rep < 200; ++rep) {
-    std::fill(hits.begin(), hits.end(), 0);
-    mpm3d::for_thread_patches(&c, mpm3d::LOOP_G2P, [&](int q) {
-      __atomic_add_fetch(&hits[size_t(q)], 1, __ATOMIC_RELAXED);
-      by_thread[size_t(q)] = omp_get_thread_num();
-      if (q % 997 == rep % 997) std::this_thread::sleep_for(std::chrono::microseconds(100));  // held back
-    });
-    for (int q = 0; q < npatch; ++q) ASSERT_EQ(hits[size_t(q)], 1) << "patch " << q << " in loop " << rep;
-    for (int q = 0; q < npatch; ++q) stolen += by_thread[size_t(q)] != q / 1000;
-  }
-  double done = 0.0;
-  for (int t = 0; t < 4; ++t) done += c.thread_done[mpm3d::balance_index(mpm3d::LOOP_G2P, t)];
-  EXPECT_EQ(done, 200.0 * npatch);
-  EXPECT_GT(stolen, 0) << "no patch was ever taken from another thread's range";
-  omp_set_num_threads(threads_before);
-#endif
-}
-
-// The stress loop's chunks of the patch lists (for_thread_list_chunks): patches of 100,
-// 30 and 1 particles (601 list entries), 3 threads, stealing on. The chunks are 64 entries
-// from the start of the lists whatever the patch ends (the tenth one 25 long), each done
-// exactly once per loop, and thread_done adds up to the entries.
+// The stress loop's chunks of the patch lists (for_list_chunks): patches of 100, 30 and 1
+// particles (601 list entries), 3 threads. The chunks are 64 entries from the start of the
+// lists whatever the patch ends (the tenth one 25 long), each done exactly once per loop.
 TEST(Adaptive, ListChunksCoverEveryEntryOnce) {
 #ifndef _OPENMP
   GTEST_SKIP() << "built without OpenMP";
@@ -374,33 +229,21 @@ TEST(Adaptive, ListChunksCoverEveryEntryOnce) {
   const int threads_before = omp_get_max_threads();
   omp_set_num_threads(3);
   std::vector<int> start = {0, 100, 100, 130, 131, 231, 331, 431, 531, 561, 601};
-  BalanceArrays arrays;
   StepContext c{};
-  arrays.bind(c, start);
-  mpm3d::rebalance_threads(&c);
+  c.npatch = int(start.size()) - 1;
+  c.patch_start = start.data();
   ASSERT_EQ(mpm3d::kListChunk, 64);
-  // Equal thirds of 601 entries end at 200 and 401 (rounded): chunk ends round(200 / 64) = 3
-  // and round(401 / 64) = 6, so the threads own chunks 0-2, 3-5 and 6-9.
-  int lo, hi;
-  mpm3d::thread_list_chunks(&c, mpm3d::LOOP_STRESS, 1, 3, lo, hi);
-  EXPECT_EQ(lo, 3);
-  EXPECT_EQ(hi, 6);
-  mpm3d::thread_list_chunks(&c, mpm3d::LOOP_STRESS, 2, 3, lo, hi);
-  EXPECT_EQ(lo, 6);
-  EXPECT_EQ(hi, 10);
   std::vector<int> hits(601);
   for (int rep = 0; rep < 50; ++rep) {
     std::fill(hits.begin(), hits.end(), 0);
-    mpm3d::for_thread_list_chunks(&c, mpm3d::LOOP_STRESS, [&](int first, int count) {
+    mpm3d::for_list_chunks(&c, [&](int first, int count) {
       EXPECT_EQ(first % 64, 0);
       EXPECT_EQ(count, first == 576 ? 25 : 64);
       for (int i = first; i < first + count; ++i) __atomic_add_fetch(&hits[size_t(i)], 1, __ATOMIC_RELAXED);
     });
     for (int i = 0; i < 601; ++i) ASSERT_EQ(hits[size_t(i)], 1) << "entry " << i << " in loop " << rep;
   }
-  double done = 0.0;
-  for (int t = 0; t < 3; ++t) done += c.thread_done[mpm3d::balance_index(mpm3d::LOOP_STRESS, t)];
-  EXPECT_EQ(done, 50.0 * 601);
   omp_set_num_threads(threads_before);
 #endif
 }
+

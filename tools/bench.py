@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """make bench (through tools/bench.sh): the C++ solver's speed, thread scaling and memory.
 
-For every deck, scatter scheme (patches, expansion), adaptive grid (off, on) and thread
+For every deck, adaptive grid (off, on) and thread
 count (1, 2, 4, ... up to the machine's cores, and the core count itself), the best of
 BENCH_REPEATS runs of `mpm3d --steps BENCH_STEPS --no-output`: ns per particle-step (the
 step loop alone, from the summary), speedup and efficiency against 1 thread of the same
@@ -9,7 +9,7 @@ configuration, bytes per particle (peak resident memory from /usr/bin/time -v di
 the particles), the share of each stage (stage_seconds in the summary), the patch
 statistics, and the 1-minute load average before the run.
 
-For the patch scheme without the adaptive grid the runs go in BENCH_ROUNDS rounds instead:
+Without the adaptive grid the runs go in BENCH_ROUNDS rounds instead:
 each round runs 1 thread pinned to each CPU in turn (taskset), then every thread count
 once, so that a round's figures are seconds apart. The 1-thread time is then the best of
 all unpinned and pinned runs (on a virtual machine whose CPUs run at different speeds, an
@@ -29,7 +29,7 @@ Also, per deck, the parallel regions of a step and the step's time outside them 
 (regions.csv beside CSV; the LD_PRELOAD counter BUILD_DIR/tools/mpm3d_omp_regions.so).
 
 environment: BENCH_STEPS (default 100), BENCH_REPEATS (3), BENCH_ROUNDS (5), BENCH_REGRID (20),
-             BENCH_SCHEMES ("patches expansion"), BENCH_FINE=1 adds taylor_fine.mpm
+             BENCH_FINE=1 adds taylor_fine.mpm
 """
 import csv
 import json
@@ -48,11 +48,11 @@ def load1():
         return float(f.read().split()[0])
 
 
-def run_once(exe, deck, threads, steps, scheme, regrid, tmp, cpu=None):
+def run_once(exe, deck, threads, steps, regrid, tmp, cpu=None):
     summary = os.path.join(tmp, "s.json")
     pin = ["taskset", "-c", str(cpu)] if cpu is not None else []
     cmd = ["/usr/bin/time", "-v"] + pin + [exe, "--threads", str(threads), "--steps", str(steps), "--no-output",
-           "--quiet", "--summary", summary, "--scatter", scheme, "--regrid-every", str(regrid), deck]
+           "--quiet", "--summary", summary, "--regrid-every", str(regrid), deck]
     load = load1()
     p = subprocess.run(cmd, capture_output=True, text=True)
     if p.returncode != 0:
@@ -132,9 +132,8 @@ def main():
     repeats = int(os.environ.get("BENCH_REPEATS", "3"))
     rounds = int(os.environ.get("BENCH_ROUNDS", "5"))
     regrid = int(os.environ.get("BENCH_REGRID", "20"))
-    schemes = os.environ.get("BENCH_SCHEMES", "patches expansion").split()
     exe = os.path.join(build, "cxx", "mpm3d")
-    fields = ["deck", "particles", "scatter", "regrid_every", "threads", "steps", "ns_per_particle_step",
+    fields = ["deck", "particles", "regrid_every", "threads", "steps", "ns_per_particle_step",
               "speedup", "efficiency", "peak_rss_bytes_per_particle"] + [f"share_{s}" for s in STAGES] + \
              ["patches", "patches_empty", "patch_imbalance", "load1_before", "load1_max", "capacity",
               "capacity_efficiency", "round_speedup", "round_capacity_efficiency"]
@@ -144,69 +143,68 @@ def main():
         w = csv.DictWriter(f, fieldnames=fields)
         w.writeheader()
         for deck in decks:
-            for scheme in schemes:
-                for rg in (0, regrid):
-                    base = None
-                    paired = pinning and scheme == "patches" and rg == 0
-                    # samples[t]: (summary, rss, load) of every run at t threads; cpu_ns[r][k]:
-                    # round r's 1-thread time pinned to CPU k. In the paired configuration the
-                    # runs go in rounds (every CPU pinned, then each thread count), so that a
-                    # round's figures are seconds apart and share the CPUs' speeds.
-                    samples = {t: [] for t in thread_counts(maxt)}
-                    cpu_ns = []
-                    for _ in range(rounds if paired else 1):
-                        if paired:
-                            cpu_ns.append([run_once(exe, deck, 1, steps, scheme, rg, tmp, cpu)[0]["ns_per_particle_step"]
-                                           for cpu in range(os.cpu_count())])
-                        for t in thread_counts(maxt):
-                            for _ in range(1 if paired else repeats):
-                                samples[t].append(run_once(exe, deck, t, steps, scheme, rg, tmp))
+            for rg in (0, regrid):
+                base = None
+                paired = pinning and rg == 0
+                # samples[t]: (summary, rss, load) of every run at t threads; cpu_ns[r][k]:
+                # round r's 1-thread time pinned to CPU k. In the paired configuration the
+                # runs go in rounds (every CPU pinned, then each thread count), so that a
+                # round's figures are seconds apart and share the CPUs' speeds.
+                samples = {t: [] for t in thread_counts(maxt)}
+                cpu_ns = []
+                for _ in range(rounds if paired else 1):
+                    if paired:
+                        cpu_ns.append([run_once(exe, deck, 1, steps, rg, tmp, cpu)[0]["ns_per_particle_step"]
+                                       for cpu in range(os.cpu_count())])
                     for t in thread_counts(maxt):
-                        s, rss, _ = min(samples[t], key=lambda x: x[0]["ns_per_particle_step"])
-                        loads = [x[2] for x in samples[t]]
-                        ns = s["ns_per_particle_step"]
-                        if t == 1 and cpu_ns:
-                            ns = min([ns] + [c for r in cpu_ns for c in r])  # the fastest CPU's 1-thread time
-                        base = base or ns
-                        total = sum(s["stage_seconds"].values()) or 1.0
-                        row = {"deck": os.path.basename(deck), "particles": s["particles"], "scatter": scheme,
-                               "regrid_every": rg, "threads": t, "steps": s["steps"],
-                               "ns_per_particle_step": f"{ns:.1f}", "speedup": f"{base / ns:.3f}",
-                               "efficiency": f"{base / ns / t:.3f}",
-                               "peak_rss_bytes_per_particle": f"{rss / s['particles']:.0f}",
-                               "patches": s["patches"], "patches_empty": s["patches_empty"],
-                               "patch_imbalance": f"{s['patch_imbalance']:.3f}",
-                               "load1_before": f"{loads[0]:.2f}", "load1_max": f"{max(loads):.2f}"}
-                        for st in STAGES:
-                            row[f"share_{st}"] = f"{s['stage_seconds'][st] / total:.3f}"
-                        for k in ("capacity", "capacity_efficiency", "round_speedup", "round_capacity_efficiency"):
-                            row[k] = ""
-                        extra = ""
-                        if cpu_ns and t == maxt:
-                            cap = sum(base / min(r[k] for r in cpu_ns) for k in range(len(cpu_ns[0])))
-                            row["capacity"] = f"{cap:.3f}"
-                            row["capacity_efficiency"] = f"{base / ns / cap:.3f}"
-                            # Per round: the speedup over that round's fastest pinned 1-thread
-                            # run, and that against the round's own capacity; their medians.
-                            rs, re = [], []
-                            for r, cpus in enumerate(cpu_ns):
-                                tn = samples[t][r][0]["ns_per_particle_step"]
-                                rs.append(min(cpus) / tn)
-                                re.append(min(cpus) / tn / sum(min(cpus) / c for c in cpus))
-                            row["round_speedup"] = f"{statistics.median(rs):.3f}"
-                            row["round_capacity_efficiency"] = f"{statistics.median(re):.3f}"
-                            extra = (f" capacity {row['capacity']} (eff {row['capacity_efficiency']}); rounds: speedup "
-                                     + " ".join(f"{x:.3f}" for x in rs) + f" median {row['round_speedup']}, against the "
-                                     f"round's capacity median {row['round_capacity_efficiency']}; 1 thread pinned: "
-                                     + "; ".join(" ".join(f"{c:.1f}" for c in r) for r in cpu_ns) + " ns")
-                        w.writerow(row)
-                        f.flush()
-                        rows.append(row)
-                        print(f"{row['deck']:24s} {scheme:9s} regrid {rg:3d} threads {t:2d}: {row['ns_per_particle_step']:>7s} ns "
-                              f"speedup {row['speedup']} eff {row['efficiency']} {row['peak_rss_bytes_per_particle']} B/p "
-                              f"(load {loads[0]:.2f})" + extra, flush=True)
+                        for _ in range(1 if paired else repeats):
+                            samples[t].append(run_once(exe, deck, t, steps, rg, tmp))
+                for t in thread_counts(maxt):
+                    s, rss, _ = min(samples[t], key=lambda x: x[0]["ns_per_particle_step"])
+                    loads = [x[2] for x in samples[t]]
+                    ns = s["ns_per_particle_step"]
+                    if t == 1 and cpu_ns:
+                        ns = min([ns] + [c for r in cpu_ns for c in r])  # the fastest CPU's 1-thread time
+                    base = base or ns
+                    total = sum(s["stage_seconds"].values()) or 1.0
+                    row = {"deck": os.path.basename(deck), "particles": s["particles"],
+                           "regrid_every": rg, "threads": t, "steps": s["steps"],
+                           "ns_per_particle_step": f"{ns:.1f}", "speedup": f"{base / ns:.3f}",
+                           "efficiency": f"{base / ns / t:.3f}",
+                           "peak_rss_bytes_per_particle": f"{rss / s['particles']:.0f}",
+                           "patches": s["patches"], "patches_empty": s["patches_empty"],
+                           "patch_imbalance": f"{s['patch_imbalance']:.3f}",
+                           "load1_before": f"{loads[0]:.2f}", "load1_max": f"{max(loads):.2f}"}
+                    for st in STAGES:
+                        row[f"share_{st}"] = f"{s['stage_seconds'][st] / total:.3f}"
+                    for k in ("capacity", "capacity_efficiency", "round_speedup", "round_capacity_efficiency"):
+                        row[k] = ""
+                    extra = ""
+                    if cpu_ns and t == maxt:
+                        cap = sum(base / min(r[k] for r in cpu_ns) for k in range(len(cpu_ns[0])))
+                        row["capacity"] = f"{cap:.3f}"
+                        row["capacity_efficiency"] = f"{base / ns / cap:.3f}"
+                        # Per round: the speedup over that round's fastest pinned 1-thread
+                        # run, and that against the round's own capacity; their medians.
+                        rs, re = [], []
+                        for r, cpus in enumerate(cpu_ns):
+                            tn = samples[t][r][0]["ns_per_particle_step"]
+                            rs.append(min(cpus) / tn)
+                            re.append(min(cpus) / tn / sum(min(cpus) / c for c in cpus))
+                        row["round_speedup"] = f"{statistics.median(rs):.3f}"
+                        row["round_capacity_efficiency"] = f"{statistics.median(re):.3f}"
+                        extra = (f" capacity {row['capacity']} (eff {row['capacity_efficiency']}); rounds: speedup "
+                                 + " ".join(f"{x:.3f}" for x in rs) + f" median {row['round_speedup']}, against the "
+                                 f"round's capacity median {row['round_capacity_efficiency']}; 1 thread pinned: "
+                                 + "; ".join(" ".join(f"{c:.1f}" for c in r) for r in cpu_ns) + " ns")
+                    w.writerow(row)
+                    f.flush()
+                    rows.append(row)
+                    print(f"{row['deck']:24s} regrid {rg:3d} threads {t:2d}: {row['ns_per_particle_step']:>7s} ns "
+                          f"speedup {row['speedup']} eff {row['efficiency']} {row['peak_rss_bytes_per_particle']} B/p "
+                          f"(load {loads[0]:.2f})" + extra, flush=True)
 
-    # The serial part of a step and its parallel regions (patch scheme, 1 thread), measured
+    # The serial part of a step and its parallel regions (1 thread), measured
     # from outside the program by the LD_PRELOAD counter tools/omp_regions.c.
     counter = os.path.join(build, "tools", "mpm3d_omp_regions.so")
     if os.path.isfile(counter):

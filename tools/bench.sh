@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # make bench: ns per particle-step, speedup and parallel efficiency at 1..N threads on the
-# Taylor decks (and the elastic-only twin of the coarse one), for both scatter schemes and
-# with the adaptive grid off and on, measured side by side in one run (tools/bench.py);
+# Taylor decks (and the elastic-only twin of the coarse one), with the adaptive grid off
+# and on, measured side by side in one run (tools/bench.py);
 # peak memory per particle from /usr/bin/time -v; the Fortran reference program's serial
 # speed; the plots of tools/bench_plot.py. Writes docs/bench/{bench,reference}.csv and
 # docs/bench/{speedup,efficiency}.png and prints the tables.
 # usage: tools/bench.sh BUILD_DIR [max_threads] [decks...]
-# environment: see tools/bench.py (BENCH_STEPS, BENCH_REPEATS, BENCH_REGRID, BENCH_SCHEMES,
+# environment: see tools/bench.py (BENCH_STEPS, BENCH_REPEATS, BENCH_REGRID, BENCH_ROUNDS,
 # BENCH_FINE); BENCH_OUT (default docs/bench) for a trial run that keeps the committed files.
 set -euo pipefail
 build=$1; shift
@@ -49,9 +49,9 @@ if [ -x "$build/fortran_ref/mpm3d_ref" ]; then
         if [ -z "$best" ] || awk "BEGIN{exit !($d < $best)}"; then best=$d; fi
       done
     done
-    # The 1-thread patch-scheme row without the adaptive grid.
-    np=$(awk -F, -v d="$(basename "$deck")" '$1 == d && $3 == "patches" && $4 == 0 && $5 == 1 {print $2}' "$csv")
-    cx=$(awk -F, -v d="$(basename "$deck")" '$1 == d && $3 == "patches" && $4 == 0 && $5 == 1 {print $7}' "$csv")
+    # The 1-thread row without the adaptive grid.
+    np=$(awk -F, -v d="$(basename "$deck")" '$1 == d && $3 == 0 && $4 == 1 {print $2}' "$csv")
+    cx=$(awk -F, -v d="$(basename "$deck")" '$1 == d && $3 == 0 && $4 == 1 {print $6}' "$csv")
     awk -v d="$(basename "$deck")" -v np="$np" -v s="$steps" -v t="$best" -v cx="$cx" \
       'BEGIN{ns=t*1e9/(np*s); printf "%s,%d,%d,%.1f,%.1f,%.2f\n", d, np, s, ns, cx, ns/cx}' >> "$ref_csv"
   done

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Speedup and parallel-efficiency plots of `make bench` (docs/bench/bench.csv), in the
-manner of Figs. 6-7 of Huang et al. (MPM3DMP): one line per deck, scatter scheme and
+manner of Figs. 6-7 of Huang et al. (MPM3DMP): one line per deck and
 adaptive-grid setting, the ideal line, and the paper's measured points (speedup 3.82 at 4
 threads and 6.23 at 8; efficiency 0.96 and 0.78).
 
@@ -24,8 +24,7 @@ def main():
         rows = list(csv.DictReader(f))
     series = {}
     for r in rows:
-        # (CSV files of the earlier bench.sh have no scheme or regrid columns: patches, off.)
-        key = (r["deck"].replace(".mpm", ""), r.get("scatter") or "patches", int(r.get("regrid_every") or 0))
+        key = (r["deck"].replace(".mpm", ""), int(r.get("regrid_every") or 0))
         series.setdefault(key, []).append((int(r["threads"]), float(r["speedup"]), float(r["efficiency"]),
                                            float(r.get("load1_max") or 0)))
     maxt = max((int(r["threads"]) for r in rows), default=1)
@@ -41,14 +40,13 @@ def main():
         else:
             ax.axhline(1.0, color="k", ls=":", lw=1, label="ideal")
         ax.plot(PAPER["threads"], PAPER[what], "ks--", label="MPM3DMP paper (Taylor bar)")
-        for (deck, scheme, rg), pts in sorted(series.items()):
+        for (deck, rg), pts in sorted(series.items()):
             pts.sort()
             t = [p[0] for p in pts]
             y = [p[1] if what == "speedup" else p[2] for p in pts]
-            style = "-" if scheme == "patches" else "--"
             marker = "o" if rg == 0 else "^"
-            label = f"{deck}, {scheme}" + (f", regrid {rg}" if rg else "")
-            ax.plot(t, y, style, marker=marker, label=label)
+            label = deck + (f", regrid {rg}" if rg else "")
+            ax.plot(t, y, "-", marker=marker, label=label)
         ax.set_xlabel("threads")
         ax.set_ylabel(ylabel)
         ax.set_xlim(0.8, top + 0.2)
