@@ -54,23 +54,12 @@ contains
         end if
         do idx = pstart(q + 1), pstart(q + 2) - 1
           p = ppart(idx + 1) + 1
-          if (gimp) then
-            call gimp_stencil(c, cell(p), lx(:, p), psize(p), ci, o, sn, sg)
-            base = gimp_corner(c, ci, o)
-            nk = 27
-          else
-            call shape_linear(lx(:, p), c%inv_h, sn(1:8), sg(:, 1:8))
-            base = base_node(c, cell(p))
-            nk = 8
-          end if
+          call particle_shape(c, gimp, p, cell(p), lx, psize, ci, o, sn, sg, nk)
+          base = stencil_first_node(c, gimp, cell(p), ci, o)
           acc = 0.0_dp
           vel = 0.0_dp
           do k = 0, nk - 1
-            if (gimp) then
-              n = base + stencil_offset(k, c%nn(1), c%nn(2)) + 1
-            else
-              n = node_of(c, base, k) + 1
-            end if
+            n = stencil_node(c, gimp, base, k)
             m = gmass(n)
             if (.not. (m > c%mass_cutoff)) cycle
             r = sn(k + 1) / m
@@ -84,18 +73,10 @@ contains
             x(a, p) = x(a, p) + (vel(a) * c%dt)
           end do
           if (remap) then
-            if (gimp) then
-              pbase = gimp_patch_corner(c, q, ci, o)
-            else
-              pbase = patch_base(c, q, cell(p))
-            end if
+            pbase = stencil_first_local(c, gimp, q, cell(p), ci, o)
             mp = mass(p)
             do k = 0, nk - 1
-              if (gimp) then
-                ln = pbase + stencil_offset(k, qq, qq) + 1
-              else
-                ln = pbase + patch_local(pc, k) + 1
-              end if
+              ln = stencil_local(c, gimp, pbase, k)
               mn = mp * sn(k + 1)
               buf(2, ln, slot + 1) = buf(2, ln, slot + 1) + (mn * v(1, p))
               buf(3, ln, slot + 1) = buf(3, ln, slot + 1) + (mn * v(2, p))

@@ -89,15 +89,8 @@ contains
       buf(:, :, slot + 1) = 0.0_dp
       do idx = pstart(q + 1), pstart(q + 2) - 1
         p = ppart(idx + 1) + 1
-        if (gimp) then
-          call gimp_stencil(c, cell(p), lx(:, p), psize(p), ci, o, sn, sg)
-          base = gimp_patch_corner(c, q, ci, o)
-          nk = 27
-        else
-          call shape_linear(lx(:, p), c%inv_h, sn(1:8), sg(:, 1:8))
-          base = patch_base(c, q, cell(p))
-          nk = 8
-        end if
+        call particle_shape(c, gimp, p, cell(p), lx, psize, ci, o, sn, sg, nk)
+        base = stencil_first_local(c, gimp, q, cell(p), ci, o)
         mp = mass(p)
         vs = 0.0_dp
         fb = 0.0_dp
@@ -114,11 +107,7 @@ contains
           end if
         end if
         do k = 0, nk - 1
-          if (gimp) then
-            ln = base + stencil_offset(k, qq, qq) + 1
-          else
-            ln = base + patch_local(pc, k) + 1
-          end if
+          ln = stencil_local(c, gimp, base, k)
           if (with_mass_mom) then
             mn = mp * sn(k + 1)
             buf(1, ln, slot + 1) = buf(1, ln, slot + 1) + mn
@@ -255,21 +244,10 @@ contains
         do idx = pstart(q + 1), pstart(q + 2) - 1
           p = ppart(idx + 1) + 1
           mp = mass(p)
-          if (gimp) then
-            call gimp_stencil(c, cell(p), lx(:, p), psize(p), ci, o, sn, sg)
-            base = gimp_patch_corner(c, q, ci, o)
-            nk = 27
-          else
-            call shape_linear(lx(:, p), c%inv_h, sn(1:8), sg(:, 1:8))
-            base = patch_base(c, q, cell(p))
-            nk = 8
-          end if
+          call particle_shape(c, gimp, p, cell(p), lx, psize, ci, o, sn, sg, nk)
+          base = stencil_first_local(c, gimp, q, cell(p), ci, o)
           do k = 0, nk - 1
-            if (gimp) then
-              ln = base + stencil_offset(k, qq, qq) + 1
-            else
-              ln = base + patch_local(pc, k) + 1
-            end if
+            ln = stencil_local(c, gimp, base, k)
             buf(5, ln, slot + 1) = buf(5, ln, slot + 1) + (mp * sg(1, k + 1))
             buf(6, ln, slot + 1) = buf(6, ln, slot + 1) + (mp * sg(2, k + 1))
             buf(7, ln, slot + 1) = buf(7, ln, slot + 1) + (mp * sg(3, k + 1))

@@ -63,22 +63,11 @@ contains
       if (filter) then
         if (other_component(c, p, body, bcomp)) cycle
       end if
-      if (gimp) then
-        call gimp_stencil(c, cl, lx(:, p), psize(p), ci, o, sn, sg)
-        base = gimp_corner(c, ci, o)
-        nk = 27
-      else
-        call shape_linear(lx(:, p), c%inv_h, sn(1:8), sg(:, 1:8))
-        base = base_node(c, cl)
-        nk = 8
-      end if
+      call particle_shape(c, gimp, p, cl, lx, psize, ci, o, sn, sg, nk)
+      base = stencil_first_node(c, gimp, cl, ci, o)
       lg = 0.0_dp             ! lg(3a+b) = d v_a / d x_b (0-based a, b)
       do k = 0, nk - 1
-        if (gimp) then
-          n = base + stencil_offset(k, c%nn(1), c%nn(2)) + 1
-        else
-          n = node_of(c, base, k) + 1
-        end if
+        n = stencil_node(c, gimp, base, k)
         m = gmass(n)
         if (.not. (m > c%mass_cutoff)) cycle
         do a = 0, 2
