@@ -126,25 +126,14 @@ contains
     real(dp), intent(in) :: x(3, np), v(3, np), dt
     integer, intent(out) :: off(3), nc(3)
     integer :: cmin(3), cmax(3), idx(3), p, a, m, lo, hi
-    real(dp) :: vmax2, s, t, fl, r
-    logical :: any_in, inside
+    real(dp) :: vmax2, s, r
+    logical :: any_in
     cmin = g%deck_nc
     cmax = -1
     vmax2 = 0.0_dp
     any_in = .false.
     do p = 1, np
-      inside = .true.
-      do a = 1, 3
-        t = (x(a, p) - g%origin(a)) / g%h
-        fl = aint(t)
-        if (fl > t) fl = fl - 1.0_dp
-        if (.not. (fl >= 0.0_dp .and. fl < real(g%deck_nc(a), dp))) then
-          inside = .false.
-          exit
-        end if
-        idx(a) = int(fl)
-      end do
-      if (.not. inside) cycle
+      if (.not. deck_cell(g, x(:, p), idx)) cycle
       any_in = .true.
       do a = 1, 3
         if (idx(a) < cmin(a)) cmin(a) = idx(a)
@@ -176,29 +165,39 @@ contains
     end do
   end subroutine grid_adaptive_window
 
+  ! True when point xp lies in the deck's box; idx: its cell there (0-based per axis), the
+  ! floor of (x - origin) / h as cxx/grid.cpp takes it.
+  logical function deck_cell(g, xp, idx) result(inside)
+    type(grid_t), intent(in) :: g
+    real(dp), intent(in) :: xp(3)
+    integer, intent(out) :: idx(3)
+    integer :: a
+    real(dp) :: t, fl
+    inside = .true.
+    idx = 0
+    do a = 1, 3
+      t = (xp(a) - g%origin(a)) / g%h
+      fl = aint(t)
+      if (fl > t) fl = fl - 1.0_dp
+      if (.not. (fl >= 0.0_dp .and. fl < real(g%deck_nc(a), dp))) then
+        inside = .false.
+        return
+      end if
+      idx(a) = int(fl)
+    end do
+  end function deck_cell
+
   ! Particles outside the window (cell < 0) but inside the deck's box (count_escaped).
   integer function grid_count_escaped(g, x, cell, np) result(n)
     type(grid_t), intent(in) :: g
     integer, intent(in) :: np
     real(dp), intent(in) :: x(3, np)
     integer(c_int), intent(in) :: cell(np)
-    integer :: p, a
-    real(dp) :: t, fl
-    logical :: inside
+    integer :: p, idx(3)
     n = 0
     do p = 1, np
       if (cell(p) >= 0) cycle
-      inside = .true.
-      do a = 1, 3
-        t = (x(a, p) - g%origin(a)) / g%h
-        fl = aint(t)
-        if (fl > t) fl = fl - 1.0_dp
-        if (.not. (fl >= 0.0_dp .and. fl < real(g%deck_nc(a), dp))) then
-          inside = .false.
-          exit
-        end if
-      end do
-      if (inside) n = n + 1
+      if (deck_cell(g, x(:, p), idx)) n = n + 1
     end do
   end function grid_count_escaped
 

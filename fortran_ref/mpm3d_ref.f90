@@ -371,26 +371,24 @@ contains
 
   ! Buffers for the non-empty patches found by the bin stage (Simulation::ensure_patch_buffers).
   subroutine ensure_patch_buffers()
+    call ensure_buffers_of(grid, ctx)
+    if (model%contact) call ensure_buffers_of(grid2, ctx2)
+  end subroutine ensure_patch_buffers
+
+  ! Room for c%nslot patch buffers in g, grown (never shrunk) as the non-empty patches need.
+  subroutine ensure_buffers_of(g, c)
+    type(grid_t), intent(inout), target :: g
+    type(step_context), intent(inout) :: c
     integer :: have
     have = 0
-    if (allocated(grid%patch_buf)) have = size(grid%patch_buf, 3)
-    if (have < ctx%nslot) then
-      if (allocated(grid%patch_buf)) deallocate(grid%patch_buf)
-      allocate(grid%patch_buf(NODE_FIELDS, grid%patch_nodes, ctx%nslot))
-      grid%patch_buf = 0.0_dp
-      ctx%patch_buf = c_loc(grid%patch_buf)
+    if (allocated(g%patch_buf)) have = size(g%patch_buf, 3)
+    if (have < c%nslot) then
+      if (allocated(g%patch_buf)) deallocate(g%patch_buf)
+      allocate(g%patch_buf(NODE_FIELDS, g%patch_nodes, c%nslot))
+      g%patch_buf = 0.0_dp
+      c%patch_buf = c_loc(g%patch_buf)
     end if
-    if (model%contact) then
-      have = 0
-      if (allocated(grid2%patch_buf)) have = size(grid2%patch_buf, 3)
-      if (have < ctx2%nslot) then
-        if (allocated(grid2%patch_buf)) deallocate(grid2%patch_buf)
-        allocate(grid2%patch_buf(NODE_FIELDS, grid2%patch_nodes, ctx2%nslot))
-        grid2%patch_buf = 0.0_dp
-        ctx2%patch_buf = c_loc(grid2%patch_buf)
-      end if
-    end if
-  end subroutine ensure_patch_buffers
+  end subroutine ensure_buffers_of
 
   ! The adaptive grid: a new window from the particles (Simulation::regrid).
   subroutine regrid()
