@@ -1,4 +1,4 @@
-# Tests of the C and Fortran bindings (DESIGN.md section 5a). Included from
+# Tests of the C and Fortran bindings (docs/DESIGN.md section 5a). Included from
 # tests/CMakeLists.txt:  include(${CMAKE_SOURCE_DIR}/bindings/tests.cmake OPTIONAL)
 #   bindings.state.*          the library, called from Fortran, writes the same state file
 #                             as the mpm3d program, bit for bit (h5diff, no tolerance)

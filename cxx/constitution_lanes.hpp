@@ -1,7 +1,7 @@
 // The stress update of constitution.cpp written once for a "lane type" T: T = double
 // updates one particle, T = a GCC vector of W doubles (lanes.hpp) updates W particles of
 // one material at once. Every lane performs exactly the IEEE operations of the scalar
-// update in the same order (DESIGN.md 5: vectorising across particles keeps the bits):
+// update in the same order (docs/DESIGN.md 5: vectorising across particles keeps the bits):
 // branches that depend on the particle become selects that compute both arms, branches
 // that depend on the material stay branches, and the transcendental calls (pow, log, exp)
 // and the Drucker-Prager return run lane by lane through the scalar functions.

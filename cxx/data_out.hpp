@@ -33,7 +33,7 @@ const std::vector<OutputVariable>& output_variables();
 ParticleVarFn output_variable(const std::string& name);  // nullptr for an unknown name
 double particle_variable(const Model& m, const std::string& var, int p);
 
-// Writes the final particle state (DESIGN.md section 6) atomically (temporary + rename).
+// Writes the final particle state (docs/DESIGN.md section 6) atomically (temporary + rename).
 void write_state_h5(const std::string& path, const Model& m, double time, long step, double dt);
 
 struct OutputSchedule;

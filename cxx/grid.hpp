@@ -23,7 +23,7 @@ struct Grid {
 
   std::vector<double> mass, mom, force;  // (nnode) (3,nnode) (3,nnode)
 
-  // Patch decomposition (DESIGN.md section 4): cubes of patch_cells^3 cells; it depends
+  // Patch decomposition (docs/DESIGN.md section 4): cubes of patch_cells^3 cells; it depends
   // on the grid only, never on the number of threads.
   int patch_cells = 4;
   int npd[3] = {0, 0, 0};  // patches per axis

@@ -1,7 +1,7 @@
 // Lane types for code written once for one particle (T = double, ScalarLane) and for W
 // particles at once (T = a GCC vector of W doubles, VectorLane<W>). A lane performs the
 // IEEE operations of the scalar code in the same order, so the bits are the same
-// (DESIGN.md 5: vectorising across particles). Branches on a particle's data become
+// (docs/DESIGN.md 5: vectorising across particles). Branches on a particle's data become
 // selects that compute both arms.
 //
 // Everything here has internal linkage: a translation unit compiled for a wider

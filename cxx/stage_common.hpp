@@ -11,7 +11,7 @@
 
 namespace mpm3d {
 
-// Canonical assembly (DESIGN.md section 4): each node's value is 0.0 plus the values of
+// Canonical assembly (docs/DESIGN.md section 4): each node's value is 0.0 plus the values of
 // the non-empty patches holding it, in ascending patch index (x fastest, then y, z).
 // Fields first..first+count-1 of the buffers go to dst_mass (field 0), dst_mom (1-3)
 // and dst_force (4-6). Every node is written by exactly one owner patch, so owners run in

@@ -99,7 +99,7 @@ contains
     call h5sclose_f(space, st)
   end subroutine write_attr
 
-  ! Writes the particle state (DESIGN.md section 6) to a temporary file, then renames it.
+  ! Writes the particle state (docs/DESIGN.md section 6) to a temporary file, then renames it.
   subroutine write_state_h5(path, m, time, step, dt)
     character(len=*), intent(in) :: path
     type(model_t), intent(in), target :: m

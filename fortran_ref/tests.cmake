@@ -1,4 +1,4 @@
-# Bit-for-bit checks of the Fortran reference against the C++ solver (DESIGN.md 5, 5a).
+# Bit-for-bit checks of the Fortran reference against the C++ solver (docs/DESIGN.md 5, 5a).
 # Included from tests/CMakeLists.txt. Every comparison is a plain `h5diff` of two HDF5
 # state files (no tolerance): the C++ run against --kernel fortran, against each single
 # stage taken from Fortran, against the Fortran program mpm3d_ref, and the initial states

@@ -1,6 +1,6 @@
 // The mpm3d program: bad input is refused with one line on stderr naming the file, the
 // line and the problem, with a non-zero exit code and no output files; a good run writes
-// the documented summary JSON and HDF5 state (DESIGN.md section 6).
+// the documented summary JSON and HDF5 state (docs/DESIGN.md section 6).
 #include <filesystem>
 #include <gtest/gtest.h>
 #include <hdf5.h>
@@ -89,7 +89,7 @@ TEST_F(Cli, GoodDeckRuns) {
   const RunResult r = run({"--quiet", "--out-dir", out, d});
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.err, "");
-  // Legacy files named after the deck (DESIGN.md section 6).
+  // Legacy files named after the deck (docs/DESIGN.md section 6).
   for (const char* f : {"good.out", "good_curv.dat", "EnergyPlot.dat", "MomentumPlot.dat"})
     EXPECT_TRUE(testutil::fs::exists(out + "/" + f)) << f;
 }

@@ -281,7 +281,7 @@ TEST(Solver, TwoDeckLayoutsGiveBitIdenticalStates) {
 }
 
 TEST(Stability, RunawayEnergyIsStoppedWithADiagnostic) {
-  // DESIGN.md section 7: a run either finishes with a bounded energy error and no NaN or
+  // docs/DESIGN.md section 7: a run either finishes with a bounded energy error and no NaN or
   // stops with a clear diagnostic naming the step, the particle and the cause. USL at
   // dtsc 0.9 on the colliding blocks is unstable (see above): with no external force and no
   // energy source, a total energy above twice the initial one is a breakdown, and the

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Bit-for-bit results for any thread count (DESIGN.md section 4): runs DECK at 1, 2, 3, 4, 8
+# Bit-for-bit results for any thread count (docs/DESIGN.md section 4): runs DECK at 1, 2, 3, 4, 8
 # and 16 threads and compares the final states with h5diff (no tolerance); with a reference
 # program given, its state must match too. 8 and 16 threads run oversubscribed on a small
 # machine: they check the many-thread paths (16 runs of the bin stage's counting sort, 16

@@ -1,4 +1,4 @@
-/* MPM3D-CXX C API (DESIGN.md section 5a).
+/* MPM3D-CXX C API (docs/DESIGN.md section 5a).
  *
  * A plain C99 interface to the MPM3D-CXX solver: open a legacy deck, choose the stage
  * kernels, advance the model, read and write the particle arrays, write the HDF5 state
@@ -12,7 +12,7 @@
  *     handle is null. No function throws across the C boundary or aborts the process.
  *   - Every call except mpm3d_last_error() clears the calling thread's message first, so
  *     after a successful call mpm3d_last_error() returns "".
- *   - Particle arrays use the shared layout of DESIGN.md section 5: one array per field,
+ *   - Particle arrays use the shared layout of docs/DESIGN.md section 5: one array per field,
  *     the component index fastest, as Fortran x(3,np): element (c, p) (0-based) at
  *     a[c + ncomp*p]. Stress is in Voigt order xx yy zz yz xz xy.
  *   - A handle may be used by one thread at a time; different handles are independent.
@@ -108,7 +108,7 @@ MPM3D_API long mpm3d_array_size(const mpm3d_sim* sim, const char* name);
 MPM3D_API int mpm3d_get_array(const mpm3d_sim* sim, const char* name, double* dst, long n);
 MPM3D_API int mpm3d_set_array(mpm3d_sim* sim, const char* name, const double* src, long n);
 
-/* Writes the particle state as the program's --state option does (HDF5, DESIGN.md
+/* Writes the particle state as the program's --state option does (HDF5, docs/DESIGN.md
  * section 6; written to a temporary file and renamed). */
 MPM3D_API int mpm3d_write_state(const mpm3d_sim* sim, const char* path);
 

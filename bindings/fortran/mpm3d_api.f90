@@ -1,4 +1,4 @@
-!> mpm3d_api: the MPM3D-CXX library for Fortran programs (DESIGN.md section 5a).
+!> mpm3d_api: the MPM3D-CXX library for Fortran programs (docs/DESIGN.md section 5a).
 !>
 !> A thin ISO_C_BINDING layer over the C API (bindings/c/mpm3d.h); the names, arguments
 !> and return codes are those of the C functions:
