@@ -5,6 +5,7 @@
 #include <string>
 
 #include "data_in_reader.hpp"
+#include "material_models.hpp"
 
 namespace mpm3d {
 
@@ -20,64 +21,15 @@ void DeckReader::read_materials(const Token& key) {
     MaterialParams& mp = m_.mats[size_t(num - 1)];
     const int line = typ.line;
     mp = MaterialParams{};
-    auto R = [&](const char* what) { return ts_.real(what); };
-    if (t == "elas" || t == "pla1" || t == "pla2") {
-      mp.type = t == "elas" ? MAT_ELAS : (t == "pla1" ? MAT_PLA1 : MAT_PLA2);
-      mp.rho0 = R("density");
-      mp.young = R("Young's modulus");
-      mp.poisson = R("Poisson's ratio");
-      if (mp.type != MAT_ELAS) mp.yield0 = R("yield stress");
-      if (mp.type == MAT_PLA2) {
-        const double et = R("tangent modulus");
-        if (!(et >= 0.0 && et < mp.young)) fail(line, "tangent modulus must lie in [0, E)");
-        mp.hardening = (mp.young * et) / (mp.young - et);
-      }
-    } else if (t == "john" || t == "jcf") {
-      mp.type = t == "john" ? MAT_JOHN : MAT_JCF;
-      mp.rho0 = R("density");
-      mp.young = R("Young's modulus");
-      mp.poisson = R("Poisson's ratio");
-      mp.yield0 = R("A");
-      mp.hardening = R("B");
-      mp.jc_n = R("n");
-      mp.jc_c = R("C");
-      mp.jc_m = R("m");
-      mp.t_room = R("room temperature");
-      mp.t_melt = R("melting temperature");
-      mp.heat_cap = R("specific heat");
-      mp.eps0dot = R("reference strain rate");
-      if (mp.type == MAT_JCF) mp.fail_strain = R("failure strain");
-      if (!(mp.t_melt > mp.t_room)) fail(line, "melting temperature must exceed room temperature");
-      if (!(mp.heat_cap > 0.0)) fail(line, "specific heat must be positive");
-    } else if (t == "sjc" || t == "sjcf") {
-      mp.type = t == "sjc" ? MAT_SJC : MAT_SJCF;
-      mp.rho0 = R("density");
-      mp.young = R("Young's modulus");
-      mp.poisson = R("Poisson's ratio");
-      mp.yield0 = R("A");
-      mp.hardening = R("B");
-      mp.jc_n = R("n");
-      mp.jc_c = R("C");
-      mp.eps0dot = R("reference strain rate");
-      if (mp.type == MAT_SJCF) mp.fail_strain = R("failure strain");
-    } else if (t == "hiex" || t == "null") {
-      mp.type = t == "hiex" ? MAT_HIEX : MAT_NULL;
-      mp.rho0 = R("density");
-      mp.wave_speed = R(t == "hiex" ? "the detonation velocity" : "the wave speed");
-      if (mp.type == MAT_HIEX) mp.det_vel = mp.wave_speed;
-    } else if (t == "dpm") {
-      mp.type = MAT_DPM;
-      mp.rho0 = R("density");
-      mp.young = R("Young's modulus");
-      mp.poisson = R("Poisson's ratio");
-      mp.dp_qphi = R("q_phi");
-      mp.dp_kphi = R("k_phi");
-      mp.dp_qpsi = R("q_psi");
-      mp.dp_tension = R("the tension cut-off");
-    } else {
-      fail(line, "unknown material type '" + typ.text + "'");
+    const MaterialModel* model = find_material_model(t);
+    if (!model) fail(line, "unknown material type '" + typ.text + "'");
+    mp.type = model->type;
+    for (int k = 0; k < model->nparams; ++k) mp.*(model->params[k].field) = ts_.real(model->params[k].name);
+    if (model->finish) {
+      const std::string err = model->finish(mp);
+      if (!err.empty()) fail(line, err);
     }
-    if (mp.type == MAT_SJC || mp.type == MAT_SJCF || mp.type == MAT_JOHN || mp.type == MAT_JCF) {
+    if (model->johnson_cook) {
       if (!(mp.jc_n > 0.0)) fail(line, "Johnson-Cook n must be positive");
       if (mp.jc_c != 0.0 && !(mp.eps0dot > 0.0)) fail(line, "reference strain rate must be positive");
     }

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "data_in_reader.hpp"
+#include "material_models.hpp"
 
 namespace mpm3d {
 
@@ -98,7 +99,7 @@ void DeckReader::finish(int line) {
     }
   }
   bool thermal = false;
-  for (const auto& mp : m_.mats) thermal = thermal || mp.type == MAT_JOHN || mp.type == MAT_JCF;
+  for (const auto& mp : m_.mats) thermal = thermal || (material_model(mp.type) && material_model(mp.type)->thermal);
   if (thermal) P.temp.assign(size_t(P.np), 0.0);
   double c_max = 0.0, rho_sum = 0.0;
   for (const auto& mp : m_.mats) {

@@ -2,27 +2,19 @@
 
 #include <cmath>
 
+#include "material_models.hpp"
+
 namespace mpm3d {
 
 const char* material_keyword(int type) {
-  switch (type) {
-    case MAT_ELAS: return "elas";
-    case MAT_PLA1: return "pla1";
-    case MAT_PLA2: return "pla2";
-    case MAT_JOHN: return "john";
-    case MAT_SJC: return "sjc";
-    case MAT_SJCF: return "sjcf";
-    case MAT_JCF: return "jcf";
-    case MAT_HIEX: return "hiex";
-    case MAT_NULL: return "null";
-    case MAT_DPM: return "dpm";
-  }
-  return "?";
+  const MaterialModel* model = material_model(type);
+  return model ? model->keyword : "?";
 }
 
 std::string material_derive(MaterialParams& m) {
   if (!(m.rho0 > 0.0)) return "density must be positive";
-  if (m.type == MAT_HIEX || m.type == MAT_NULL) {
+  const MaterialModel* model = material_model(m.type);
+  if (model && model->fluid) {
     // No deviatoric stiffness: pressure from the EOS only. wave_speed is D or c.
     if (!(m.wave_speed > 0.0))
       return m.type == MAT_HIEX ? "detonation velocity must be positive" : "wave speed must be positive";

@@ -4,6 +4,7 @@ module mpm3d_data_in
   use, intrinsic :: iso_fortran_env, only: int64, error_unit
   use, intrinsic :: iso_c_binding, only: c_long
   use mpm3d_material
+  use mpm3d_material_models
   use mpm3d_particle
   use mpm3d_ffi
   use mpm3d_particle_gen
@@ -430,7 +431,6 @@ contains
     integer(int64) :: num
     character(len=:), allocatable :: t, err
     integer :: line
-    real(dp) :: et
     type(material_params) :: mp
     call need_counts(ts, m, key, .false., .true., .false.)
     do
@@ -442,89 +442,10 @@ contains
       t = key4(ts%text_of(typ))
       line = typ%line
       mp = material_params()
-      select case (t)
-      case ('elas', 'pla1', 'pla2')
-        if (t == 'elas') then
-          mp%type = MAT_ELAS
-        else if (t == 'pla1') then
-          mp%type = MAT_PLA1
-        else
-          mp%type = MAT_PLA2
-        end if
-        mp%rho0 = ts%real('density')
-        mp%young = ts%real("Young's modulus")
-        mp%poisson = ts%real("Poisson's ratio")
-        if (mp%type /= MAT_ELAS) mp%yield0 = ts%real('yield stress')
-        if (mp%type == MAT_PLA2) then
-          et = ts%real('tangent modulus')
-          if (.not. (et >= 0.0_dp .and. et < mp%young)) &
-            call ts%fail(line, 'tangent modulus must lie in [0, E)')
-          mp%hardening = (mp%young * et) / (mp%young - et)
-        end if
-      case ('john', 'jcf')
-        if (t == 'john') then
-          mp%type = MAT_JOHN
-        else
-          mp%type = MAT_JCF
-        end if
-        mp%rho0 = ts%real('density')
-        mp%young = ts%real("Young's modulus")
-        mp%poisson = ts%real("Poisson's ratio")
-        mp%yield0 = ts%real('A')
-        mp%hardening = ts%real('B')
-        mp%jc_n = ts%real('n')
-        mp%jc_c = ts%real('C')
-        mp%jc_m = ts%real('m')
-        mp%t_room = ts%real('room temperature')
-        mp%t_melt = ts%real('melting temperature')
-        mp%heat_cap = ts%real('specific heat')
-        mp%eps0dot = ts%real('reference strain rate')
-        if (mp%type == MAT_JCF) mp%fail_strain = ts%real('failure strain')
-        if (.not. (mp%t_melt > mp%t_room)) &
-          call ts%fail(line, 'melting temperature must exceed room temperature')
-        if (.not. (mp%heat_cap > 0.0_dp)) call ts%fail(line, 'specific heat must be positive')
-      case ('sjc', 'sjcf')
-        if (t == 'sjc') then
-          mp%type = MAT_SJC
-        else
-          mp%type = MAT_SJCF
-        end if
-        mp%rho0 = ts%real('density')
-        mp%young = ts%real("Young's modulus")
-        mp%poisson = ts%real("Poisson's ratio")
-        mp%yield0 = ts%real('A')
-        mp%hardening = ts%real('B')
-        mp%jc_n = ts%real('n')
-        mp%jc_c = ts%real('C')
-        mp%eps0dot = ts%real('reference strain rate')
-        if (mp%type == MAT_SJCF) mp%fail_strain = ts%real('failure strain')
-      case ('hiex', 'null')
-        if (t == 'hiex') then
-          mp%type = MAT_HIEX
-        else
-          mp%type = MAT_NULL
-        end if
-        mp%rho0 = ts%real('density')
-        if (mp%type == MAT_HIEX) then
-          mp%wave_speed = ts%real('the detonation velocity')
-          mp%det_vel = mp%wave_speed
-        else
-          mp%wave_speed = ts%real('the wave speed')
-        end if
-      case ('dpm')
-        mp%type = MAT_DPM
-        mp%rho0 = ts%real('density')
-        mp%young = ts%real("Young's modulus")
-        mp%poisson = ts%real("Poisson's ratio")
-        mp%dp_qphi = ts%real('q_phi')
-        mp%dp_kphi = ts%real('k_phi')
-        mp%dp_qpsi = ts%real('q_psi')
-        mp%dp_tension = ts%real('the tension cut-off')
-      case default
-        call ts%fail(line, "unknown material type '" // ts%text_of(typ) // "'")
-      end select
-      if (mp%type == MAT_SJC .or. mp%type == MAT_SJCF .or. mp%type == MAT_JOHN .or. &
-          mp%type == MAT_JCF) then
+      mp%type = material_type_of(t)
+      if (mp%type == 0) call ts%fail(line, "unknown material type '" // ts%text_of(typ) // "'")
+      call read_material_card(ts, mp, line)
+      if (material_is_johnson_cook(mp%type)) then
         if (.not. (mp%jc_n > 0.0_dp)) call ts%fail(line, 'Johnson-Cook n must be positive')
         if (mp%jc_c /= 0.0_dp .and. .not. (mp%eps0dot > 0.0_dp)) &
           call ts%fail(line, 'reference strain rate must be positive')
@@ -903,7 +824,7 @@ contains
     ! Initial internal energy from E0 (per unit initial volume), initial temperature.
     thermal = .false.
     do i = 1, m%nmat
-      thermal = thermal .or. m%mats(i)%type == MAT_JOHN .or. m%mats(i)%type == MAT_JCF
+      thermal = thermal .or. material_is_thermal(m%mats(i)%type)
     end do
     if (thermal) then
       allocate(m%particles%temp(m%particles%np))

@@ -16,7 +16,7 @@ CXX=${FUZZ_CXX:-clang++}
 mkdir -p "$OUT/corpus" "$OUT/artifacts"
 HDF5_INC=$(pkg-config --cflags hdf5 2>/dev/null || echo -I/usr/include/hdf5/serial)
 HDF5_LIB=$(pkg-config --libs hdf5 2>/dev/null || echo -lhdf5_serial)
-SRC="cxx/ffi.cpp cxx/data_in.cpp cxx/data_in_cards.cpp cxx/data_in_finish.cpp cxx/particle_gen.cpp cxx/particle.cpp cxx/grid.cpp cxx/material.cpp cxx/constitution.cpp
+SRC="cxx/ffi.cpp cxx/data_in.cpp cxx/data_in_cards.cpp cxx/data_in_finish.cpp cxx/particle_gen.cpp cxx/particle.cpp cxx/grid.cpp cxx/material.cpp cxx/material_models.cpp cxx/constitution.cpp
      cxx/stages.cpp cxx/stage_bin.cpp cxx/stage_p2g.cpp cxx/stage_grid.cpp cxx/stage_g2p.cpp cxx/stage_stress.cpp
      cxx/stage_energy.cpp cxx/data_out.cpp cxx/simulation.cpp cxx/analysis.cpp"
 BIN="$OUT/fuzz_deck"
