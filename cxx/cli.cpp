@@ -266,7 +266,7 @@ int run_main(int argc, char** argv) {
     const Model& m = sim.model;
     const double end_time = opt.end_time > 0.0 ? opt.end_time : m.endtime;
     const bool series = opt.hdf5 || (m.hdf5 && !opt.no_output);
-    LegacyOutput out;
+    Output out;
     if (!opt.no_output || series) out.open(m, opt.out_dir, !opt.no_output, series, restarted ? &resume : nullptr);
     install_signal_handlers();
     std::ostringstream head;
@@ -331,8 +331,7 @@ int run_main(int argc, char** argv) {
       }
       sim.new_energy_warnings.clear();
       if (!failure.empty()) break;
-      out.step(m, sim.time, sim.kinetic, sim.internal, sim.momentum);
-      if (m.contact) out.contact(sim.time, sim.contact_force);
+      out.step(m, StepRecord{sim.time, sim.steps, sim.kinetic, sim.internal, sim.momentum, sim.contact_force});
       if (sim.time >= next_out - eps) {
         if (out.animates()) out.frame(m, sim.time, sim.steps);
         next_out += m.outtime;

@@ -1,11 +1,12 @@
-// DataOut: legacy result files (log, curves, energy and momentum plots, TecPlot and
-// ParaView animations), the HDF5 state file and the summary JSON.
+// DataOut: the output variables, the HDF5 state file, and Output, which runs the writers of
+// the result files (output_writer.hpp: curves, TecPlot, ParaView, HDF5 series).
 #pragma once
 #include <cstdio>
 #include <string>
 #include <vector>
 
 #include "data_in.hpp"
+#include "output_writer.hpp"
 
 namespace mpm3d {
 
@@ -38,61 +39,29 @@ void write_state_h5(const std::string& path, const Model& m, double time, long s
 
 struct OutputSchedule;
 
-// HDF5 + XDMF time series of the animation (deck keyword 'hdf5', option --hdf5):
-// name_anim.h5 holds one group /frames/<k> per output time with attributes time and step,
-// datasets position (np,3) and one (np) dataset per outr variable; name_anim.xdmf (Xdmf 3,
-// a temporal collection of uniform Polyvertex grids) points at them, so ParaView opens the
-// animation directly. The .h5 file is opened, extended and closed at each frame, and the
-// .xdmf rewritten (temporary + rename).
-class H5Series {
+// The run's output files: the writers of the formats the run asked for (output_writer.hpp),
+// each called in turn at every step, animation time and checkpoint. Files are created in
+// open() and appended as the run goes; nothing is opened when output is off. On a restart
+// (resume given) the text files are truncated to their sizes at the checkpoint and appended
+// to, and the frame count continues.
+class Output {
  public:
-  // resume_frames: frames kept from an earlier run (restart); later groups are removed.
-  void open(const Model& m, const std::string& dir, const std::vector<double>& resume_times);
-  void frame(const Model& m, double time, long step);
-  bool is_open() const { return !h5_.empty(); }
-  std::string h5_path() const { return dir_ + "/" + h5_; }
-  std::string xdmf_path() const { return dir_ + "/" + xdmf_; }
-
- private:
-  std::string dir_, h5_, xdmf_;
-  std::vector<std::string> vars_;
-  std::vector<double> times_;  // times_[k]: time of /frames/<k>
-  int np_ = 0;
-  size_t first_ = 0;           // first frame present in the .h5 file
-  void write_xdmf();
-};
-
-// Legacy per-step and animation files (plus the HDF5 series when asked). Files are created
-// in open() and appended as the run goes; nothing is opened when output is off. On a
-// restart (resume given) the text files are truncated to their sizes at the checkpoint and
-// appended to.
-class LegacyOutput {
- public:
-  ~LegacyOutput();
+  Output();
+  ~Output();
+  // legacy: the curves and the deck's animation formats; series: the HDF5 + XDMF series.
   void open(const Model& m, const std::string& dir, bool legacy, bool series, const OutputSchedule* resume);
-  void log(const std::string& line);       // name.out
-  void step(const Model& m, double time, double ke, double ie, const double mom[3]);
-  void frame(const Model& m, double time, long step);  // TecPlot zone, ParaView file, HDF5 group
-  bool animates() const { return tec_ || paraview_ || series_.is_open(); }
+  void log(const std::string& line);  // name.out
+  void step(const Model& m, const StepRecord& s);
+  void frame(const Model& m, double time, long step);  // one frame of every animation format
+  bool animates() const { return animates_; }
   // Flushes the text files and records their sizes and the frames written so far.
   void save_state(OutputSchedule& o);
-  // ContforcPlot.dat (decks with 'cont'): time and the contact force on component 1.
-  void contact(double time, const double force[3]);
   void close();
-  std::vector<std::string> written;
-  const H5Series& series() const { return series_; }
 
  private:
-  std::string dir_, base_;
-  FILE *out_ = nullptr, *curv_ = nullptr, *energy_ = nullptr, *momentum_ = nullptr, *tec_ = nullptr;
-  bool paraview_ = false;
-  FILE* contact_ = nullptr;
-  std::vector<std::pair<double, std::string>> pvd_;
+  std::vector<std::unique_ptr<OutputWriter>> writers_;
   std::vector<double> frame_times_;
-  H5Series series_;
-  std::vector<ParticleVarFn> anim_fn_, curve_fn_;
-  std::vector<int> curve_at_;  // stored index of each curve's particle
-  FILE* create(const std::string& name, const OutputSchedule* resume, bool& appended);
+  bool animates_ = false;
 };
 
 }  // namespace mpm3d
