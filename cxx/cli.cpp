@@ -171,23 +171,6 @@ Options parse_args(int argc, char** argv, bool& exit_now) {
   return o;
 }
 
-std::string json_escape(const std::string& s) {
-  std::string r;
-  for (char ch : s) {
-    if (ch == '"' || ch == '\\') r += '\\', r += ch;
-    else if (static_cast<unsigned char>(ch) < 32) r += ' ';
-    else r += ch;
-  }
-  return r;
-}
-
-std::string num(double v) {
-  if (!std::isfinite(v)) return "null";
-  char b[40];
-  std::snprintf(b, sizeof b, "%.17g", v);
-  return b;
-}
-
 void write_text_atomic(const std::string& path, const std::string& text) {
   const std::string tmp = path + ".tmp";
   {
@@ -205,6 +188,23 @@ bool dir_writable(const std::string& dir) {
 }
 
 }  // namespace
+
+std::string json_escape(const std::string& s) {
+  std::string r;
+  for (char ch : s) {
+    if (ch == '"' || ch == '\\') r += '\\', r += ch;
+    else if (static_cast<unsigned char>(ch) < 32) r += ' ';
+    else r += ch;
+  }
+  return r;
+}
+
+std::string json_number(double v) {
+  if (!std::isfinite(v)) return "null";
+  char b[40];
+  std::snprintf(b, sizeof b, "%.17g", v);
+  return b;
+}
 
 int run_main(int argc, char** argv) {
   Options opt;
@@ -390,23 +390,23 @@ int run_main(int argc, char** argv) {
     if (!opt.summary.empty()) {
       std::ostringstream js;
       js << "{\n  \"deck\": \"" << json_escape(opt.deck) << "\",\n  \"title\": \"" << json_escape(m.title)
-         << "\",\n  \"particles\": " << P.np << ",\n  \"steps\": " << sim.steps << ",\n  \"time\": " << num(sim.time)
-         << ",\n  \"dt_min\": " << num(dt_min) << ",\n  \"dt_max\": " << num(dt_max) << ",\n  \"threads\": " << threads
-         << ",\n  \"wall_seconds\": " << num(wall) << ",\n  \"ns_per_particle_step\": " << num(ns)
-         << ",\n  \"kinetic_energy\": " << num(sim.kinetic) << ",\n  \"internal_energy\": " << num(sim.internal)
-         << ",\n  \"initial_total_energy\": " << num(sim.initial_total_energy) << ",\n  \"momentum\": ["
-         << num(sim.momentum[0]) << ", " << num(sim.momentum[1]) << ", " << num(sim.momentum[2])
-         << "],\n  \"bbox_min\": [" << num(lo[0]) << ", " << num(lo[1]) << ", " << num(lo[2]) << "],\n  \"bbox_max\": ["
-         << num(hi[0]) << ", " << num(hi[1]) << ", " << num(hi[2]) << "],\n  \"max_epeff\": " << num(max_epeff)
+         << "\",\n  \"particles\": " << P.np << ",\n  \"steps\": " << sim.steps << ",\n  \"time\": " << json_number(sim.time)
+         << ",\n  \"dt_min\": " << json_number(dt_min) << ",\n  \"dt_max\": " << json_number(dt_max) << ",\n  \"threads\": " << threads
+         << ",\n  \"wall_seconds\": " << json_number(wall) << ",\n  \"ns_per_particle_step\": " << json_number(ns)
+         << ",\n  \"kinetic_energy\": " << json_number(sim.kinetic) << ",\n  \"internal_energy\": " << json_number(sim.internal)
+         << ",\n  \"initial_total_energy\": " << json_number(sim.initial_total_energy) << ",\n  \"momentum\": ["
+         << json_number(sim.momentum[0]) << ", " << json_number(sim.momentum[1]) << ", " << json_number(sim.momentum[2])
+         << "],\n  \"bbox_min\": [" << json_number(lo[0]) << ", " << json_number(lo[1]) << ", " << json_number(lo[2]) << "],\n  \"bbox_max\": ["
+         << json_number(hi[0]) << ", " << json_number(hi[1]) << ", " << json_number(hi[2]) << "],\n  \"max_epeff\": " << json_number(max_epeff)
          << ",\n  \"particles_outside_grid\": " << sim.outside << ",\n  \"regrid_every\": " << sim.regrid_every << ",\n  \"regrids\": " << sim.regrids
          << ",\n  \"regrids_forced\": " << sim.regrids_forced << ",\n  \"grid_window_offset\": [" << sim.grid.off[0]
          << ", " << sim.grid.off[1] << ", " << sim.grid.off[2] << "],\n  \"grid_window_cells\": [" << sim.grid.nc[0]
          << ", " << sim.grid.nc[1] << ", " << sim.grid.nc[2] << "],\n  \"patches\": " << sim.stats.patches
          << ",\n  \"patches_empty\": " << sim.stats.empty << ",\n  \"patch_max_particles\": " << sim.stats.max
-         << ",\n  \"patch_mean_particles\": " << num(sim.stats.mean)
-         << ",\n  \"patch_imbalance\": " << num(sim.stats.imbalance) << ",\n  \"stage_seconds\": {";
+         << ",\n  \"patch_mean_particles\": " << json_number(sim.stats.mean)
+         << ",\n  \"patch_imbalance\": " << json_number(sim.stats.imbalance) << ",\n  \"stage_seconds\": {";
       for (int st = 0; st < ST_COUNT; ++st)
-        js << (st ? ", " : "") << "\"" << kStageNames[st] << "\": " << num(sim.stage_seconds[st]);
+        js << (st ? ", " : "") << "\"" << kStageNames[st] << "\": " << json_number(sim.stage_seconds[st]);
       js << "},\n  \"warnings\": [";
       for (size_t i = 0; i < warnings.size(); ++i) js << (i ? ", " : "") << "\"" << json_escape(warnings[i]) << "\"";
       js << "]\n}\n";

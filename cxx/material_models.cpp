@@ -13,36 +13,18 @@ const MaterialParam kElas[] = {MPM3D_ELASTIC};
 const MaterialParam kPla1[] = {MPM3D_ELASTIC, {"yield stress", &M::yield0}};
 // The tangent modulus is read into `hardening` and turned into the plastic modulus there.
 const MaterialParam kPla2[] = {MPM3D_ELASTIC, {"yield stress", &M::yield0}, {"tangent modulus", &M::hardening}};
-const MaterialParam kJohn[] = {MPM3D_ELASTIC,
-                               {"A", &M::yield0},
-                               {"B", &M::hardening},
-                               {"n", &M::jc_n},
-                               {"C", &M::jc_c},
-                               {"m", &M::jc_m},
-                               {"room temperature", &M::t_room},
-                               {"melting temperature", &M::t_melt},
-                               {"specific heat", &M::heat_cap},
-                               {"reference strain rate", &M::eps0dot}};
-const MaterialParam kJcf[] = {MPM3D_ELASTIC,
-                              {"A", &M::yield0},
-                              {"B", &M::hardening},
-                              {"n", &M::jc_n},
-                              {"C", &M::jc_c},
-                              {"m", &M::jc_m},
-                              {"room temperature", &M::t_room},
-                              {"melting temperature", &M::t_melt},
-                              {"specific heat", &M::heat_cap},
-                              {"reference strain rate", &M::eps0dot},
-                              {"failure strain", &M::fail_strain}};
-const MaterialParam kSjc[] = {MPM3D_ELASTIC,     {"A", &M::yield0}, {"B", &M::hardening}, {"n", &M::jc_n},
-                              {"C", &M::jc_c}, {"reference strain rate", &M::eps0dot}};
-const MaterialParam kSjcf[] = {MPM3D_ELASTIC,
-                               {"A", &M::yield0},
-                               {"B", &M::hardening},
-                               {"n", &M::jc_n},
-                               {"C", &M::jc_c},
-                               {"reference strain rate", &M::eps0dot},
-                               {"failure strain", &M::fail_strain}};
+// The Johnson-Cook yield stress (A + B eps_p^n)(1 + C ln rate*); the full model also
+// softens with temperature, the simplified one (sjc, sjcf) does not.
+#define MPM3D_JC_HARDENING {"A", &M::yield0}, {"B", &M::hardening}, {"n", &M::jc_n}, {"C", &M::jc_c}
+#define MPM3D_JC_THERMAL                                                                             \
+  {"m", &M::jc_m}, {"room temperature", &M::t_room}, {"melting temperature", &M::t_melt},           \
+      {"specific heat", &M::heat_cap}
+#define MPM3D_RATE {"reference strain rate", &M::eps0dot}
+#define MPM3D_FAILURE {"failure strain", &M::fail_strain}
+const MaterialParam kJohn[] = {MPM3D_ELASTIC, MPM3D_JC_HARDENING, MPM3D_JC_THERMAL, MPM3D_RATE};
+const MaterialParam kJcf[] = {MPM3D_ELASTIC, MPM3D_JC_HARDENING, MPM3D_JC_THERMAL, MPM3D_RATE, MPM3D_FAILURE};
+const MaterialParam kSjc[] = {MPM3D_ELASTIC, MPM3D_JC_HARDENING, MPM3D_RATE};
+const MaterialParam kSjcf[] = {MPM3D_ELASTIC, MPM3D_JC_HARDENING, MPM3D_RATE, MPM3D_FAILURE};
 const MaterialParam kHiex[] = {{"density", &M::rho0}, {"the detonation velocity", &M::wave_speed}};
 const MaterialParam kNull[] = {{"density", &M::rho0}, {"the wave speed", &M::wave_speed}};
 const MaterialParam kDpm[] = {MPM3D_ELASTIC,
@@ -51,6 +33,10 @@ const MaterialParam kDpm[] = {MPM3D_ELASTIC,
                               {"q_psi", &M::dp_qpsi},
                               {"the tension cut-off", &M::dp_tension}};
 #undef MPM3D_ELASTIC
+#undef MPM3D_JC_HARDENING
+#undef MPM3D_JC_THERMAL
+#undef MPM3D_RATE
+#undef MPM3D_FAILURE
 
 std::string finish_pla2(M& m) {
   const double et = m.hardening;

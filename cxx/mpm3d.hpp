@@ -8,4 +8,10 @@ namespace mpm3d {
 // Command-line driver (used by main): returns the process exit code.
 int run_main(int argc, char** argv);
 
+// JSON text of the summary files: a string's content (quotes and backslashes escaped,
+// control characters as spaces) and a number (shortest round-trip form, null when not
+// finite).
+std::string json_escape(const std::string& s);
+std::string json_number(double v);
+
 }  // namespace mpm3d

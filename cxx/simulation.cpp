@@ -78,6 +78,31 @@ Simulation::Simulation(Model m, int patch_cells, ParticleOrder order) : model(st
   }
 }
 
+namespace {
+
+// The context's grid arrays and patch buffers are those of grid g.
+void point_at_grid(StepContext& c, Grid& g) {
+  c.gmass = g.mass.data();
+  c.gmom = g.mom.data();
+  c.gforce = g.force.data();
+  c.patch_start = g.patch_start.data();
+  c.patch_part = g.patch_part.data();
+  c.patch_slot = g.patch_slot.data();
+  c.patch_buf = g.patch_buf.data();
+}
+
+// Room in g's patch buffers for the patches binned into c.nslot slots (a quarter more, so
+// that a slowly growing count does not reallocate every step).
+void ensure_patch_buffer(StepContext& c, Grid& g) {
+  const size_t need = size_t(c.nslot) * size_t(g.patch_nodes) * kNodeFields;
+  if (g.patch_buf.size() < need) {
+    g.patch_buf.resize(need + need / 4);
+    c.patch_buf = g.patch_buf.data();
+  }
+}
+
+}  // namespace
+
 void Simulation::bind() {
   Particles& P = model.particles;
   StepContext& c = ctx;
@@ -106,8 +131,6 @@ void Simulation::bind() {
     for (int a = 0; a < 3; ++a) grav[3 * b + a] = model.bodies[b].gravity[a];
   c.gravity = grav.data();
   c.mats = model.mats.data();
-  c.patch_part = grid.patch_part.data();
-  c.patch_buf = grid.patch_buf.data();
   c.reduce_block = 4096;
   partials_.assign(size_t(kReduceFields) * (P.np / c.reduce_block + 1), 0.0);
   c.partials = partials_.data();
@@ -151,23 +174,13 @@ void Simulation::bind() {
     c.other = &ctx2;
     ctx2.only_comp = 2;
     ctx2.gnormal = gnormal2_.data();
-    ctx2.gmass = grid2.mass.data();
-    ctx2.gmom = grid2.mom.data();
-    ctx2.gforce = grid2.force.data();
-    ctx2.patch_start = grid2.patch_start.data();
-    ctx2.patch_part = grid2.patch_part.data();
-    ctx2.patch_slot = grid2.patch_slot.data();
-    ctx2.patch_buf = grid2.patch_buf.data();
+    point_at_grid(ctx2, grid2);
   }
 }
 
 void Simulation::bind_grid() {
   StepContext& c = ctx;
-  c.gmass = grid.mass.data();
-  c.gmom = grid.mom.data();
-  c.gforce = grid.force.data();
-  c.patch_start = grid.patch_start.data();
-  c.patch_slot = grid.patch_slot.data();
+  point_at_grid(c, grid);
   for (int a = 0; a < 3; ++a) {
     c.origin[a] = grid.origin[a];
     c.nc[a] = grid.nc[a];
@@ -217,18 +230,8 @@ void Simulation::set_grid(const double origin[3], double h, const int deck_nc[3]
 }
 
 void Simulation::ensure_patch_buffers() {
-  const size_t need = size_t(ctx.nslot) * size_t(grid.patch_nodes) * kNodeFields;
-  if (grid.patch_buf.size() < need) {
-    grid.patch_buf.resize(need + need / 4);
-    ctx.patch_buf = grid.patch_buf.data();
-  }
-  if (model.contact) {
-    const size_t need2 = size_t(ctx2.nslot) * size_t(grid2.patch_nodes) * kNodeFields;
-    if (grid2.patch_buf.size() < need2) {
-      grid2.patch_buf.resize(need2 + need2 / 4);
-      ctx2.patch_buf = grid2.patch_buf.data();
-    }
-  }
+  ensure_patch_buffer(ctx, grid);
+  if (model.contact) ensure_patch_buffer(ctx2, grid2);
 }
 
 void Simulation::step() {

@@ -104,6 +104,19 @@ int lookup(const mpm3d_sim* s, const char* name, const char* fn, ArrayRef& r) {
   return MPM3D_OK;
 }
 
+// The array of a get/set call, checked: its name, then the caller's count n against the
+// array's size and the caller's buffer (what: "destination" or "source").
+int lookup_sized(const mpm3d_sim* s, const char* name, const char* fn, long n, const void* buf, const char* what,
+                 ArrayRef& r) {
+  if (int rc = lookup(s, name, fn, r)) return rc;
+  const long need = long(r.data->size());
+  if (n != need)
+    return fail(MPM3D_ERR_ARGUMENT, "%s('%s'): wrong size %ld, need %ld (%ld x %d particles)", fn, name, n, need,
+                r.ncomp, s->sim.model.particles.np);
+  if (!buf && need > 0) return fail(MPM3D_ERR_ARGUMENT, "%s('%s'): null %s", fn, name, what);
+  return MPM3D_OK;
+}
+
 }  // namespace
 
 extern "C" {
@@ -228,12 +241,7 @@ MPM3D_API long mpm3d_array_size(const mpm3d_sim* sim, const char* name) {
 MPM3D_API int mpm3d_get_array(const mpm3d_sim* sim, const char* name, double* dst, long n) {
   clear_error();
   ArrayRef r;
-  if (int rc = lookup(sim, name, "mpm3d_get_array", r)) return rc;
-  const long need = long(r.data->size());
-  if (n != need)
-    return fail(MPM3D_ERR_ARGUMENT, "mpm3d_get_array('%s'): wrong size %ld, need %ld (%ld x %d particles)", name, n,
-                need, r.ncomp, sim->sim.model.particles.np);
-  if (!dst && need > 0) return fail(MPM3D_ERR_ARGUMENT, "mpm3d_get_array('%s'): null destination", name);
+  if (int rc = lookup_sized(sim, name, "mpm3d_get_array", n, dst, "destination", r)) return rc;
   // In deck order (the solver stores the particles in its own order, Particles::id).
   const mpm3d::Particles& P = sim->sim.model.particles;
   const std::vector<int> at = mpm3d::stored_index(P);
@@ -244,17 +252,12 @@ MPM3D_API int mpm3d_get_array(const mpm3d_sim* sim, const char* name, double* ds
 MPM3D_API int mpm3d_set_array(mpm3d_sim* sim, const char* name, const double* src, long n) {
   clear_error();
   ArrayRef r;
-  if (int rc = lookup(sim, name, "mpm3d_set_array", r)) return rc;
-  const long need = long(r.data->size());
-  if (n != need)
-    return fail(MPM3D_ERR_ARGUMENT, "mpm3d_set_array('%s'): wrong size %ld, need %ld (%ld x %d particles)", name, n,
-                need, r.ncomp, sim->sim.model.particles.np);
-  if (!src && need > 0) return fail(MPM3D_ERR_ARGUMENT, "mpm3d_set_array('%s'): null source", name);
+  if (int rc = lookup_sized(sim, name, "mpm3d_set_array", n, src, "source", r)) return rc;
   try {
     // In place (the step context keeps pointing at these arrays), from deck order. The
     // source is read completely before anything changes, so it may alias the array.
     const mpm3d::Particles& P = sim->sim.model.particles;
-    std::vector<double> t(src, src + need);
+    std::vector<double> t(src, src + n);
     mpm3d::gather_rows(t.data(), int(r.ncomp), P.np, [&](int p) { return P.deck_number(p); }, r.data->data());
     sim->sim.measure();  // energies and momentum of the new state
     return MPM3D_OK;

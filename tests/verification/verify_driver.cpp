@@ -49,23 +49,6 @@ using namespace mpm3d;
 
 namespace {
 
-std::string num(double v) {
-  if (!std::isfinite(v)) return "null";
-  char b[40];
-  std::snprintf(b, sizeof b, "%.17g", v);
-  return b;
-}
-
-std::string esc(const std::string& s) {
-  std::string r;
-  for (char ch : s) {
-    if (ch == '"' || ch == '\\') r += '\\', r += ch;
-    else if (static_cast<unsigned char>(ch) < 32) r += ' ';
-    else r += ch;
-  }
-  return r;
-}
-
 std::vector<double> split_reals(const std::string& s) {
   std::vector<double> r;
   std::stringstream ss(s);
@@ -153,7 +136,7 @@ int main(int argc, char** argv) {
   try {
     model = read_deck(deck);
   } catch (const std::exception& e) {
-    write_json(prefix + ".json", "{\n  \"status\": \"refused\",\n  \"message\": \"" + esc(e.what()) + "\"\n}\n");
+    write_json(prefix + ".json", "{\n  \"status\": \"refused\",\n  \"message\": \"" + json_escape(e.what()) + "\"\n}\n");
     std::cerr << "mpm3d_verify: deck refused: " << e.what() << "\n";
     return 4;
   }
@@ -259,25 +242,25 @@ int main(int argc, char** argv) {
     double mass1 = 0;
     for (int p = 0; p < np; ++p) mass1 += P.mass[p];
     std::ostringstream js;
-    js << "{\n  \"status\": \"" << status << "\",\n  \"message\": \"" << esc(message) << "\",\n  \"deck\": \""
-       << esc(deck) << "\",\n  \"particles\": " << np << ",\n  \"nodes\": " << sim.grid.nnode()
-       << ",\n  \"steps\": " << sim.steps << ",\n  \"time\": " << num(sim.time) << ",\n  \"dt\": " << num(sim.model.dt)
-       << ",\n  \"dcell\": " << num(sim.model.dcell) << ",\n  \"threads\": " << threads
-       << ",\n  \"wall_seconds\": " << num(loop_seconds) << ",\n  \"setup_seconds\": " << num(setup_seconds)
-       << ",\n  \"mass_initial\": " << num(mass0) << ",\n  \"mass_final\": " << num(mass1)
-       << ",\n  \"kinetic_energy\": " << num(sim.kinetic) << ",\n  \"internal_energy\": " << num(sim.internal)
-       << ",\n  \"initial_total_energy\": " << num(E0) << ",\n  \"external_work\": " << num(sim.external_work)
-       << ",\n  \"max_energy_error\": " << num(max_energy_error) << ",\n  \"momentum_initial\": [" << num(mom0[0])
-       << ", " << num(mom0[1]) << ", " << num(mom0[2]) << "],\n  \"momentum\": [" << num(sim.momentum[0]) << ", "
-       << num(sim.momentum[1]) << ", " << num(sim.momentum[2]) << "],\n  \"nonfinite_values\": " << nonfinite
+    js << "{\n  \"status\": \"" << status << "\",\n  \"message\": \"" << json_escape(message) << "\",\n  \"deck\": \""
+       << json_escape(deck) << "\",\n  \"particles\": " << np << ",\n  \"nodes\": " << sim.grid.nnode()
+       << ",\n  \"steps\": " << sim.steps << ",\n  \"time\": " << json_number(sim.time) << ",\n  \"dt\": " << json_number(sim.model.dt)
+       << ",\n  \"dcell\": " << json_number(sim.model.dcell) << ",\n  \"threads\": " << threads
+       << ",\n  \"wall_seconds\": " << json_number(loop_seconds) << ",\n  \"setup_seconds\": " << json_number(setup_seconds)
+       << ",\n  \"mass_initial\": " << json_number(mass0) << ",\n  \"mass_final\": " << json_number(mass1)
+       << ",\n  \"kinetic_energy\": " << json_number(sim.kinetic) << ",\n  \"internal_energy\": " << json_number(sim.internal)
+       << ",\n  \"initial_total_energy\": " << json_number(E0) << ",\n  \"external_work\": " << json_number(sim.external_work)
+       << ",\n  \"max_energy_error\": " << json_number(max_energy_error) << ",\n  \"momentum_initial\": [" << json_number(mom0[0])
+       << ", " << json_number(mom0[1]) << ", " << json_number(mom0[2]) << "],\n  \"momentum\": [" << json_number(sim.momentum[0]) << ", "
+       << json_number(sim.momentum[1]) << ", " << json_number(sim.momentum[2]) << "],\n  \"nonfinite_values\": " << nonfinite
        << ",\n  \"particles_outside_grid\": " << sim.outside << ",\n  \"snapshots\": " << nsnap_written
        << ",\n  \"energy_check_first_step\": " << first_trip_step << ",\n  \"energy_check_message\": \""
-       << esc(first_trip) << "\"";
+       << json_escape(first_trip) << "\"";
     if (taylor_args.size() == 2) {
       const double dp = taylor_args[0], bin = taylor_args[1];
       const TaylorMeasures tm = taylor_measures(P.x, dp, 25.4);
-      js << ",\n  \"taylor\": {\"L\": " << num(tm.length) << ", \"D\": " << num(tm.impact_diameter)
-         << ", \"W\": " << num(tm.width_02) << "}";
+      js << ",\n  \"taylor\": {\"L\": " << json_number(tm.length) << ", \"D\": " << json_number(tm.impact_diameter)
+         << ", \"W\": " << json_number(tm.width_02) << "}";
       // Radius profile: axis through the mean (x, y); bins of width BIN from the lowest z.
       double cx = 0, cy = 0, zmin = INFINITY, zmax = -INFINITY;
       for (int p = 0; p < np; ++p) {
@@ -296,9 +279,9 @@ int main(int argc, char** argv) {
         if (k >= 0 && k < nbin && r > rmax[size_t(k)]) rmax[size_t(k)] = r;
       }
       js << ",\n  \"profile_z\": [";
-      for (int k = 0; k < nbin; ++k) js << (k ? ", " : "") << num(zmin + (k + 0.5) * bin);
+      for (int k = 0; k < nbin; ++k) js << (k ? ", " : "") << json_number(zmin + (k + 0.5) * bin);
       js << "],\n  \"profile_r\": [";
-      for (int k = 0; k < nbin; ++k) js << (k ? ", " : "") << num(rmax[size_t(k)]);
+      for (int k = 0; k < nbin; ++k) js << (k ? ", " : "") << json_number(rmax[size_t(k)]);
       js << "]";
     }
     js << "\n}\n";
@@ -309,7 +292,7 @@ int main(int argc, char** argv) {
     }
     return 0;
   } catch (const std::exception& e) {
-    write_json(prefix + ".json", "{\n  \"status\": \"error\",\n  \"message\": \"" + esc(e.what()) + "\"\n}\n");
+    write_json(prefix + ".json", "{\n  \"status\": \"error\",\n  \"message\": \"" + json_escape(e.what()) + "\"\n}\n");
     std::cerr << "mpm3d_verify: " << e.what() << "\n";
     return 1;
   }
