@@ -159,6 +159,20 @@ void DeckReader::read_particles(const Token& key) {
   if (back.count == 0) fail(kind.line, "particle card generated no particles");
 }
 
+void DeckReader::card_target(const Token& t, const std::string& k, const char* what, int& first, int& count) {
+  if (k == "node") {
+    const long pid = ts_.integer("a particle id");
+    first = particle_index(t, pid);
+    if (first >= parts_.count())
+      fail(t.line, std::string(what) + " particle " + std::to_string(pid) + " before it is defined");
+    count = 1;
+  } else {
+    const Body& b = m_.bodies[size_t(body_index(t, ts_.integer("a body number")))];
+    first = b.first;
+    count = b.count;
+  }
+}
+
 void DeckReader::read_velocities(const Token& key) {
   need_counts(key, true, false, false);
   for (;;) {
@@ -166,17 +180,11 @@ void DeckReader::read_velocities(const Token& key) {
     const std::string k = key4(t.text);
     if (k == "endv") return;
     double v[3];
-    if (k == "node") {
-      const long pid = ts_.integer("a particle id");
-      const int p = particle_index(t, pid);
-      if (p >= parts_.count()) fail(t.line, "velocity for particle " + std::to_string(pid) + " before it is defined");
+    if (k == "node" || k == "body") {
+      int first, count;
+      card_target(t, k, "velocity for", first, count);
       for (double& c : v) c = ts_.real("a velocity");
-      for (int a = 0; a < 3; ++a) m_.particles.v[3 * size_t(p) + a] = v[a];
-    } else if (k == "body") {
-      const int ib = body_index(t, ts_.integer("a body number"));
-      for (double& c : v) c = ts_.real("a velocity");
-      const Body& b = m_.bodies[size_t(ib)];
-      for (int p = b.first; p < b.first + b.count; ++p)
+      for (int p = first; p < first + count; ++p)
         for (int a = 0; a < 3; ++a) m_.particles.v[3 * size_t(p) + a] = v[a];
     } else {
       fail(t.line, "in 'velo': expected 'node', 'body' or 'endv', found '" + t.text + "'");
@@ -196,16 +204,7 @@ void DeckReader::read_loads(const Token& key) {
       if (P.fext.empty()) P.fext.assign(3 * size_t(P.np), 0.0);
       m_.has_loads = true;
       int first, count;
-      if (k == "node") {
-        const long pid = ts_.integer("a particle id");
-        first = particle_index(t, pid);
-        if (first >= parts_.count()) fail(t.line, "load on particle " + std::to_string(pid) + " before it is defined");
-        count = 1;
-      } else {
-        const Body& b = m_.bodies[size_t(body_index(t, ts_.integer("a body number")))];
-        first = b.first;
-        count = b.count;
-      }
+      card_target(t, k, "load on", first, count);
       for (double& c : f) c = ts_.real("a force");
       for (int p = first; p < first + count; ++p)
         for (int a = 0; a < 3; ++a) P.fext[3 * size_t(p) + a] = P.fext[3 * size_t(p) + a] + f[a];

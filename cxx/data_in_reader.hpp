@@ -39,6 +39,9 @@ class DeckReader {
   void read_eos(const Token& key);
   int body_index(const Token& at, long ib);
   int particle_index(const Token& at, long pid);
+  // The particles a 'node' (one particle, already defined) or 'body' line of velo and load
+  // applies to, read from the deck: first and count. what: "velocity for", "load on".
+  void card_target(const Token& at, const std::string& k, const char* what, int& first, int& count);
   std::string output_var(int line);
   void finish(int line);
 };
