@@ -160,10 +160,10 @@ TEST(Adaptive, WindowRules) {
 TEST(Adaptive, BadOptions) {
   TempDir tmp;
   const std::string d = kDecks + "/patch_balance.mpm";
-  for (const auto& args : std::vector<std::vector<std::string>>{{"--scatter", "threads", d},
+  for (const auto& args : std::vector<std::vector<std::string>>{{"--patch-cells", "0", d},
                                                                 {"--regrid-every", "-1", d},
                                                                 {"--regrid-every", "x", d},
-                                                                {"--scatter", "expansion", "--kernel", "cxx", d}}) {
+                                                                {"--particle-order", "random", d}}) {
     const RunResult r = testutil::run_program(kExe, args, tmp.path(), tmp.path());
     EXPECT_EQ(r.code, 2) << r.err;
     EXPECT_EQ(testutil::split_lines(r.err).size(), 1u) << r.err;
