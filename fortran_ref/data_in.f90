@@ -56,7 +56,8 @@ module mpm3d_data_in
   public :: read_deck, is_output_variable
   ! For the submodules only: gfortran gives a private module procedure local linkage, which
   ! a submodule's object file cannot call.
-  public :: memory_budget, megabytes, i2s, warn, n_defined, need_counts, body_index, particle_index
+  public :: memory_budget, megabytes, i2s, warn, n_defined, need_counts, body_index, particle_index, &
+            read_vec3
 
   ! Memory limit of a deck (as cxx/data_in.hpp): estimated bytes per particle and per grid
   ! node of a run, the hard limit of grid nodes; the budget is the machine's memory.
@@ -73,34 +74,16 @@ module mpm3d_data_in
 
   character(len=4), parameter :: OUTPUT_VARS(14) = [character(len=4) :: 'seqv', 'epef', 'mat', &
       'pres', 'volu', 'engk', 'engi', 'velx', 'vely', 'velz', 'cels', 'fail', 'sspd', 'damg']
-  ! The cards with bodies of their own (data_in_cards.f90) and the end of the deck, 'endi'
-  ! (data_in_finish.f90), as cxx/data_in_cards.cpp and cxx/data_in_finish.cpp.
+
+  ! The cards with bodies of their own, 'mate', 'seos', 'part', 'velo', 'load' (read_card,
+  ! data_in_cards.f90), and the end of the deck, 'endi' (finish, data_in_finish.f90).
   interface
-    module subroutine read_materials(ts, m, key)
+    module subroutine read_card(ts, m, key, k)
       type(token_stream), intent(inout) :: ts
       type(model_t), intent(inout) :: m
       type(token_t), intent(in) :: key
-    end subroutine read_materials
-    module subroutine read_eos(ts, m, key)
-      type(token_stream), intent(inout) :: ts
-      type(model_t), intent(inout) :: m
-      type(token_t), intent(in) :: key
-    end subroutine read_eos
-    module subroutine read_particles(ts, m, key)
-      type(token_stream), intent(inout) :: ts
-      type(model_t), intent(inout) :: m
-      type(token_t), intent(in) :: key
-    end subroutine read_particles
-    module subroutine read_velocities(ts, m, key)
-      type(token_stream), intent(inout) :: ts
-      type(model_t), intent(inout) :: m
-      type(token_t), intent(in) :: key
-    end subroutine read_velocities
-    module subroutine read_loads(ts, m, key)
-      type(token_stream), intent(inout) :: ts
-      type(model_t), intent(inout) :: m
-      type(token_t), intent(in) :: key
-    end subroutine read_loads
+      character(len=*), intent(in) :: k
+    end subroutine read_card
     module subroutine finish(ts, m, line, box_line, dcell_line)
       type(token_stream), intent(in) :: ts
       type(model_t), intent(inout) :: m
@@ -251,10 +234,8 @@ contains
             call ts%fail(key%line, 'face conditions are 0 (free), 1 (fixed) or 2 (symmetry)')
           m%fix(f) = int(v)
         end do
-      case ('mate')
-        call read_materials(ts, m, key)
-      case ('part')
-        call read_particles(ts, m, key)
+      case ('mate', 'seos', 'part', 'velo', 'load')
+        call read_card(ts, m, key, k)
       case ('musl', 'usf', 'usl')
         if (on_off(ts, key)) then
           if (k == 'musl') then
@@ -269,12 +250,6 @@ contains
         m%jaumann = on_off(ts, key)
         if (.not. m%jaumann) &
           call warn(m, 'jaum off: stresses are rotated with the Jaumann rate all the same')
-      case ('load')
-        call read_loads(ts, m, key)
-      case ('velo')
-        call read_velocities(ts, m, key)
-      case ('seos')
-        call read_eos(ts, m, key)
       case ('outr')
         if (m%nanim < size(m%anim_vars)) m%nanim = m%nanim + 1
         m%anim_vars(m%nanim) = output_var(ts, key%line)
@@ -296,9 +271,7 @@ contains
         call add_curve(m, cv)
       case ('curx')
         cv%var = output_var(ts, key%line)
-        do a = 1, 3
-          xyz(a) = ts%real('a curve position')
-        end do
+        xyz = read_vec3(ts, 'a curve position')
         if (n_defined(m) == 0) call ts%fail(key%line, "'curx' must follow the particle cards")
         tol = 0.25_dp * m%dcell
         found = -1
@@ -329,9 +302,7 @@ contains
           m%paraview = on
         end if
       case ('deto')
-        do a = 1, 3
-          xyz(a) = ts%real('the detonation point')
-        end do
+        xyz = read_vec3(ts, 'the detonation point')
         if (m%ndeto >= 10) call ts%fail(key%line, "at most 10 detonation points ('deto')")
         m%ndeto = m%ndeto + 1
         m%deto(:, m%ndeto) = xyz
@@ -368,6 +339,17 @@ contains
     end do
     if (.not. ended) call ts%fail(ts%line(), "end of file reached before 'endi'")
   end subroutine read_deck
+
+  ! Three reals in a row (a vector), what naming them in the messages.
+  function read_vec3(ts, what) result(v)
+    type(token_stream), intent(inout) :: ts
+    character(len=*), intent(in) :: what
+    real(dp) :: v(3)
+    integer :: a
+    do a = 1, 3
+      v(a) = ts%real(what)
+    end do
+  end function read_vec3
 
   ! Particles defined so far.
   integer function n_defined(m)

@@ -5,7 +5,39 @@ submodule (mpm3d_data_in) mpm3d_data_in_cards
 
 contains
 
-  module procedure read_materials
+  ! The card of keyword k (key: its token), from read_deck.
+  module procedure read_card
+    select case (k)
+    case ('mate')
+      call read_materials(ts, m, key)
+    case ('seos')
+      call read_eos(ts, m, key)
+    case ('part')
+      call read_particles(ts, m, key)
+    case ('velo')
+      call read_velocities(ts, m, key)
+    case ('load')
+      call read_loads(ts, m, key)
+    case default
+      call ts%fail(key%line, "unknown keyword '" // ts%text_of(key) // "'")
+    end select
+  end procedure read_card
+
+  ! A material number in 1..nmat; at: its token (the line of the caller's own messages).
+  integer(int64) function read_material_number(ts, m, at) result(id)
+    type(token_stream), intent(inout) :: ts
+    type(model_t), intent(in) :: m
+    type(token_t), intent(out) :: at
+    at = ts%peek()
+    id = ts%integer('a material number')
+    if (id < 1 .or. id > m%nmat) &
+      call ts%fail(at%line, 'material number ' // itoa(id) // ' out of range 1..' // i2s(m%nmat))
+  end function read_material_number
+
+  subroutine read_materials(ts, m, key)
+    type(token_stream), intent(inout) :: ts
+    type(model_t), intent(inout) :: m
+    type(token_t), intent(in) :: key
     type(token_t) :: idt, typ
     integer(int64) :: num
     character(len=:), allocatable :: t, err
@@ -13,10 +45,7 @@ contains
     type(material_params) :: mp
     call need_counts(ts, m, key, .false., .true., .false.)
     do
-      idt = ts%peek()
-      num = ts%integer('a material number')
-      if (num < 1 .or. num > m%nmat) &
-        call ts%fail(idt%line, 'material number ' // itoa(num) // ' out of range 1..' // i2s(m%nmat))
+      num = read_material_number(ts, m, idt)
       typ = ts%next()
       t = key4(ts%text_of(typ))
       line = typ%line
@@ -39,17 +68,17 @@ contains
       m%mats(num) = mp
       if (num == m%nmat) exit
     end do
-  end procedure read_materials
+  end subroutine read_materials
 
-  module procedure read_eos
+  subroutine read_eos(ts, m, key)
+    type(token_stream), intent(inout) :: ts
+    type(model_t), intent(inout) :: m
+    type(token_t), intent(in) :: key
     type(token_t) :: at
     integer(int64) :: mid, et
     integer :: i
     call need_counts(ts, m, key, .false., .true., .false.)
-    at = ts%peek()
-    mid = ts%integer('a material number')
-    if (mid < 1 .or. mid > m%nmat) &
-      call ts%fail(at%line, 'material number ' // itoa(mid) // ' out of range 1..' // i2s(m%nmat))
+    mid = read_material_number(ts, m, at)
     if (m%mats(mid)%type == 0) &
       call ts%fail(at%line, "'seos' for material " // itoa(mid) // " before its 'mate' card")
     et = ts%integer('an EOS type')
@@ -79,23 +108,23 @@ contains
     end if
     if (m%mats(mid)%type == MAT_DPM) call ts%fail(key%line, 'a dpm material takes no equation of state')
     m%mats(mid)%eos_type = int(et)
-  end procedure read_eos
+  end subroutine read_eos
 
   integer function read_material_id(ts, m) result(id0)
     type(token_stream), intent(inout) :: ts
     type(model_t), intent(in) :: m
     type(token_t) :: at
     integer(int64) :: id
-    at = ts%peek()
-    id = ts%integer('a material number')
-    if (id < 1 .or. id > m%nmat) &
-      call ts%fail(at%line, 'material number ' // itoa(id) // ' out of range 1..' // i2s(m%nmat))
+    id = read_material_number(ts, m, at)
     if (m%mats(id)%type == 0) &
       call ts%fail(at%line, 'material ' // itoa(id) // " is used before its 'mate' card")
     id0 = int(id - 1)
   end function read_material_id
 
-  module procedure read_particles
+  subroutine read_particles(ts, m, key)
+    type(token_stream), intent(inout) :: ts
+    type(model_t), intent(inout) :: m
+    type(token_t), intent(in) :: key
     type(token_t) :: kind, ct, nt, pt
     character(len=:), allocatable :: k
     integer(int64) :: comp, n, last, i, pid, nb(3), nr
@@ -169,18 +198,14 @@ contains
       card%vol = vol
       card%spacing = dpp
       if (k == 'bloc') then
-        do a = 1, 3
-          o(a) = ts%real('the block origin')
-        end do
+        o = read_vec3(ts, 'the block origin')
         do a = 1, 3
           nb(a) = ts%integer('a block count')
           if (nb(a) < 1 .or. nb(a) > 100000) call ts%fail(kind%line, 'block counts must be positive')
         end do
         call generate_block(ts, m%particles, m%bodies(m%nbodies), m%nbmp, card, o, nb)
       else if (k == 'sphe') then
-        do a = 1, 3
-          cc(a) = ts%real('the sphere centre')
-        end do
+        cc = read_vec3(ts, 'the sphere centre')
         nr = ts%integer('the sphere radius in spacings')
         if (nr < 1 .or. nr > 10000) call ts%fail(kind%line, 'sphere radius (in spacings) must lie in 1..10000')
         call generate_sphere(ts, m%particles, m%bodies(m%nbodies), m%nbmp, card, cc, nr)
@@ -200,50 +225,63 @@ contains
                    "' (poin, bloc, sphe or cyli)")
     end select
     if (m%bodies(m%nbodies)%count == 0) call ts%fail(kind%line, 'particle card generated no particles')
-  end procedure read_particles
+  end subroutine read_particles
 
-  module procedure read_velocities
+  ! 'node ID' or 'body ID' (keyword k, token t) in a 'velo' or 'load' card: the particles
+  ! first + 1 .. first + count; what names the card's value in the message on a node.
+  subroutine read_particle_range(ts, m, t, k, what, first, count)
+    type(token_stream), intent(inout) :: ts
+    type(model_t), intent(in) :: m
+    type(token_t), intent(in) :: t
+    character(len=*), intent(in) :: k, what
+    integer, intent(out) :: first, count
+    integer :: ib
+    if (k == 'node') then
+      first = particle_index(ts, m, t, ts%integer('a particle id'))
+      if (first >= n_defined(m)) &
+        call ts%fail(t%line, what // ' particle ' // i2s(first + 1) // ' before it is defined')
+      count = 1
+    else
+      ib = body_index(ts, m, t, ts%integer('a body number'))
+      first = m%bodies(ib + 1)%first
+      count = m%bodies(ib + 1)%count
+    end if
+  end subroutine read_particle_range
+
+  subroutine read_velocities(ts, m, key)
+    type(token_stream), intent(inout) :: ts
+    type(model_t), intent(inout) :: m
+    type(token_t), intent(in) :: key
     type(token_t) :: t
     character(len=:), allocatable :: k
     real(dp) :: v(3)
-    integer :: p, ib, a, c
+    integer :: first, count, p, a
     call need_counts(ts, m, key, .true., .false., .false.)
     do
       t = ts%next()
       k = key4(ts%text_of(t))
       if (k == 'endv') return
-      if (k == 'node') then
-        p = particle_index(ts, m, t, ts%integer('a particle id'))
-        if (p >= n_defined(m)) &
-          call ts%fail(t%line, 'velocity for particle ' // i2s(p + 1) // ' before it is defined')
-        do c = 1, 3
-          v(c) = ts%real('a velocity')
-        end do
-        do a = 1, 3
-          m%particles%v(a, p + 1) = v(a)
-        end do
-      else if (k == 'body') then
-        ib = body_index(ts, m, t, ts%integer('a body number'))
-        do c = 1, 3
-          v(c) = ts%real('a velocity')
-        end do
-        do p = m%bodies(ib + 1)%first + 1, m%bodies(ib + 1)%first + m%bodies(ib + 1)%count
-          do a = 1, 3
-            m%particles%v(a, p) = v(a)
-          end do
-        end do
-      else
+      if (k /= 'node' .and. k /= 'body') &
         call ts%fail(t%line, "in 'velo': expected 'node', 'body' or 'endv', found '" // &
                      ts%text_of(t) // "'")
-      end if
+      call read_particle_range(ts, m, t, k, 'velocity for', first, count)
+      v = read_vec3(ts, 'a velocity')
+      do p = first + 1, first + count
+        do a = 1, 3
+          m%particles%v(a, p) = v(a)
+        end do
+      end do
     end do
-  end procedure read_velocities
+  end subroutine read_velocities
 
-  module procedure read_loads
+  subroutine read_loads(ts, m, key)
+    type(token_stream), intent(inout) :: ts
+    type(model_t), intent(inout) :: m
+    type(token_t), intent(in) :: key
     type(token_t) :: t
     character(len=:), allocatable :: k
     real(dp) :: f(3)
-    integer :: first, count, ib, p, a, c
+    integer :: first, count, ib, p, a
     call need_counts(ts, m, key, .true., .false., .false.)
     do
       t = ts%next()
@@ -255,19 +293,8 @@ contains
           m%particles%fext = 0.0_dp
         end if
         m%has_loads = .true.
-        if (k == 'node') then
-          first = particle_index(ts, m, t, ts%integer('a particle id'))
-          if (first >= n_defined(m)) &
-            call ts%fail(t%line, 'load on particle ' // i2s(first + 1) // ' before it is defined')
-          count = 1
-        else
-          ib = body_index(ts, m, t, ts%integer('a body number'))
-          first = m%bodies(ib + 1)%first
-          count = m%bodies(ib + 1)%count
-        end if
-        do c = 1, 3
-          f(c) = ts%real('a force')
-        end do
+        call read_particle_range(ts, m, t, k, 'load on', first, count)
+        f = read_vec3(ts, 'a force')
         do p = first + 1, first + count
           do a = 1, 3
             m%particles%fext(a, p) = m%particles%fext(a, p) + f(a)
@@ -275,9 +302,7 @@ contains
         end do
       else if (k == 'grav') then
         ib = body_index(ts, m, t, ts%integer('a body number'))
-        do c = 1, 3
-          f(c) = ts%real('an acceleration')
-        end do
+        f = read_vec3(ts, 'an acceleration')
         do a = 1, 3
           m%bodies(ib + 1)%gravity(a) = f(a)
         end do
@@ -287,6 +312,6 @@ contains
                      ts%text_of(t) // "'")
       end if
     end do
-  end procedure read_loads
+  end subroutine read_loads
 
 end submodule mpm3d_data_in_cards
