@@ -18,6 +18,39 @@ contains
                  2.0_dp * (((s(4) * d(4)) + (s(5) * d(5))) + (s(6) * d(6)))
   end function double_dot
 
+  ! Mean of the three normal components of a stress, in a fixed order.
+  pure real(dp) function mean_of(a)
+    real(dp), intent(in) :: a(6)
+    mean_of = ((a(1) + a(2)) + a(3)) / 3.0_dp
+  end function mean_of
+
+  ! r = a - x I (Voigt): x off the three normal components, the shear components copied.
+  pure subroutine minus_diag(a, x, r)
+    real(dp), intent(in) :: a(6), x
+    real(dp), intent(out) :: r(6)
+    integer :: c
+    do c = 1, 3
+      r(c) = a(c) - x
+    end do
+    do c = 4, 6
+      r(c) = a(c)
+    end do
+  end subroutine minus_diag
+
+  ! The stress from its deviator s and the pressure p, plus the bulk viscosity q when has_q.
+  pure subroutine stress_of(s, p, has_q, q, sig)
+    real(dp), intent(in) :: s(6), p, q
+    logical, intent(in) :: has_q
+    real(dp), intent(out) :: sig(6)
+    real(dp) :: p_tot
+    if (has_q) then
+      p_tot = p + q
+    else
+      p_tot = p
+    end if
+    call minus_diag(s, p_tot, sig)
+  end subroutine stress_of
+
   ! Rotates sig by the Jaumann rate: sig += W sig - sig W; dw = (w_yz, w_xz, w_xy).
   pure subroutine jaumann_rotate(sig, dw)
     real(dp), intent(inout) :: sig(6)
@@ -251,7 +284,7 @@ contains
     logical, intent(in) :: has_temp, has_q
     real(dp) :: sig_r(6), dev(6), s(6), s_r(6)
     real(dp) :: dkk, third, two_g, vavg, strain_rate, tp, mean_r, lam_dkk, mean, deps, p_new
-    real(dp) :: vol0, dv, p_old, dwork, e_star, mu, a, b, e_new, q_new, q_old, base, p_tot
+    real(dp) :: vol0, dv, p_old, dwork, e_star, mu, a, b, e_new, q_new, q_old, base
     logical :: failed, fluid
     integer :: c
 
@@ -262,12 +295,7 @@ contains
 
     dkk = (de(1) + de(2)) + de(3)
     third = dkk / 3.0_dp
-    dev(1) = de(1) - third
-    dev(2) = de(2) - third
-    dev(3) = de(3) - third
-    dev(4) = de(4)
-    dev(5) = de(5)
-    dev(6) = de(6)
+    call minus_diag(de, third, dev)
     two_g = 2.0_dp * m%shear
     vavg = 0.5_dp * (vol_old + vol_new)
     ! Only the Johnson-Cook rate term reads it; it is formed only when that term is on.
@@ -290,7 +318,7 @@ contains
       q = q_new
     end if
 
-    mean_r = ((sig_r(1) + sig_r(2)) + sig_r(3)) / 3.0_dp
+    mean_r = mean_of(sig_r)
     if (m%eos_type == EOS_NONE) then
       ! Hypoelastic trial stress, then the return of its deviator (J2) or of the whole
       ! stress (Drucker-Prager).
@@ -306,13 +334,8 @@ contains
       do c = 4, 6
         sig(c) = sig_r(c) + (two_g * de(c))
       end do
-      mean = ((sig(1) + sig(2)) + sig(3)) / 3.0_dp
-      do c = 1, 3
-        s(c) = sig(c) - mean
-      end do
-      do c = 4, 6
-        s(c) = sig(c)
-      end do
+      mean = mean_of(sig)
+      call minus_diag(sig, mean, s)
       if (m%type == MAT_DPM) then
         deps = dp_return(m, s, mean, m%lambda + (two_g / 3.0_dp), m%shear)
         epeff = epeff + deps
@@ -327,17 +350,7 @@ contains
         end do
         if (p_new < 0.0_dp) p_new = 0.0_dp
       end if
-      if (has_q) then
-        p_tot = p_new + q_new
-      else
-        p_tot = p_new
-      end if
-      do c = 1, 3
-        sig(c) = s(c) - p_tot
-      end do
-      do c = 4, 6
-        sig(c) = s(c)
-      end do
+      call stress_of(s, p_new, has_q, q_new, sig)
       ie = ie + ((0.5_dp * (double_dot(sig_r, de) + double_dot(sig, de))) * vavg)
       call adiabatic_heating(m, s, deps, mass, vol_new, has_temp, temp)
       return
@@ -345,12 +358,7 @@ contains
 
     ! Deviatoric update plus an equation of state for the pressure. hiex and null carry no
     ! deviatoric stress.
-    do c = 1, 3
-      s_r(c) = sig_r(c) - mean_r
-    end do
-    do c = 4, 6
-      s_r(c) = sig_r(c)
-    end do
+    call minus_diag(sig_r, mean_r, s_r)
     deps = 0.0_dp
     fluid = m%type == MAT_HIEX .or. m%type == MAT_NULL
     if (fluid) then
@@ -388,17 +396,7 @@ contains
     if (failed .and. p_new < 0.0_dp) p_new = 0.0_dp
     e_new = e_star - ((0.5_dp * p_new) * dv)
     ie = e_new * vol0
-    if (has_q) then
-      p_tot = p_new + q_new
-    else
-      p_tot = p_new
-    end if
-    do c = 1, 3
-      sig(c) = s(c) - p_tot
-    end do
-    do c = 4, 6
-      sig(c) = s(c)
-    end do
+    call stress_of(s, p_new, has_q, q_new, sig)
     call adiabatic_heating(m, s, deps, mass, vol_new, has_temp, temp)
   end subroutine stress_update
 

@@ -39,13 +39,28 @@ contains
     end if
   end subroutine check
 
+  ! A dataset of type dtype over space (closed here) in g, holding data.
+  subroutine write_dataset(g, name, dtype, space, data)
+    integer(hid_t), intent(in) :: g, dtype, space
+    character(len=*), intent(in) :: name
+    type(c_ptr), intent(in) :: data
+    integer(hid_t) :: ds
+    integer :: st
+    call h5dcreate_f(g, name, dtype, space, ds, st, dcpl_id=untimed_dataset)
+    call check(st, name)
+    call h5dwrite_f(ds, dtype, data, st)
+    call check(st, name)
+    call h5dclose_f(ds, st)
+    call h5sclose_f(space, st)
+  end subroutine write_dataset
+
   subroutine write_real(g, name, data, rows, cols)
     integer(hid_t), intent(in) :: g
     character(len=*), intent(in) :: name
     type(c_ptr), intent(in) :: data      ! rows * max(cols, 1) doubles
     integer, intent(in) :: rows, cols     ! cols 0: a vector
     integer(hsize_t) :: dims(2)
-    integer(hid_t) :: space, ds
+    integer(hid_t) :: space
     integer :: st
     if (cols > 0) then
       dims = [int(cols, hsize_t), int(rows, hsize_t)]   ! Fortran order of a C (rows, cols)
@@ -55,12 +70,7 @@ contains
       call h5screate_simple_f(1, dims(1:1), space, st)
     end if
     call check(st, name)
-    call h5dcreate_f(g, name, H5T_NATIVE_DOUBLE, space, ds, st, dcpl_id=untimed_dataset)
-    call check(st, name)
-    call h5dwrite_f(ds, H5T_NATIVE_DOUBLE, data, st)
-    call check(st, name)
-    call h5dclose_f(ds, st)
-    call h5sclose_f(space, st)
+    call write_dataset(g, name, H5T_NATIVE_DOUBLE, space, data)
   end subroutine write_real
 
   subroutine write_int(g, name, data, rows)
@@ -69,18 +79,12 @@ contains
     type(c_ptr), intent(in) :: data      ! rows ints
     integer, intent(in) :: rows
     integer(hsize_t) :: dims(1)
-    integer(hid_t) :: space, ds, itype
+    integer(hid_t) :: space
     integer :: st
     dims = [int(rows, hsize_t)]
-    itype = h5kind_to_type(c_int, H5_INTEGER_KIND)
     call h5screate_simple_f(1, dims, space, st)
     call check(st, name)
-    call h5dcreate_f(g, name, itype, space, ds, st, dcpl_id=untimed_dataset)
-    call check(st, name)
-    call h5dwrite_f(ds, itype, data, st)
-    call check(st, name)
-    call h5dclose_f(ds, st)
-    call h5sclose_f(space, st)
+    call write_dataset(g, name, h5kind_to_type(c_int, H5_INTEGER_KIND), space, data)
   end subroutine write_int
 
   subroutine write_attr(g, name, itype, ptr)

@@ -340,12 +340,8 @@ contains
       ctx%other = c_loc(ctx2)
       ctx2%only_comp = 2
       ctx2%gnormal = c_loc(gnormal2)
-      ctx2%gmass = c_loc(grid2%mass)
-      ctx2%gmom = c_loc(grid2%mom)
-      ctx2%gforce = c_loc(grid2%force)
-      ctx2%patch_start = c_loc(grid2%patch_start)
+      call point_at_grid(ctx2, grid2)
       ctx2%patch_part = c_loc(grid2%patch_part)
-      ctx2%patch_slot = c_loc(grid2%patch_slot)
       ctx2%patch_buf = c_null_ptr
     end if
   end subroutine bind_context
@@ -353,11 +349,7 @@ contains
   ! ... and at the grid's arrays, again after a regrid (Simulation::bind_grid).
   subroutine bind_grid()
     integer :: a
-    ctx%gmass = c_loc(grid%mass)
-    ctx%gmom = c_loc(grid%mom)
-    ctx%gforce = c_loc(grid%force)
-    ctx%patch_start = c_loc(grid%patch_start)
-    ctx%patch_slot = c_loc(grid%patch_slot)
+    call point_at_grid(ctx, grid)
     do a = 1, 3
       ctx%origin(a) = grid%origin(a)
       ctx%nc(a) = grid%nc(a)
@@ -368,6 +360,17 @@ contains
     ctx%nnode = grid_nnode(grid)
     ctx%npatch = grid%npatch
   end subroutine bind_grid
+
+  ! The node arrays and patch tables of grid g in context c.
+  subroutine point_at_grid(c, g)
+    type(step_context), intent(inout) :: c
+    type(grid_t), intent(in), target :: g
+    c%gmass = c_loc(g%mass)
+    c%gmom = c_loc(g%mom)
+    c%gforce = c_loc(g%force)
+    c%patch_start = c_loc(g%patch_start)
+    c%patch_slot = c_loc(g%patch_slot)
+  end subroutine point_at_grid
 
   ! Buffers for the non-empty patches found by the bin stage (Simulation::ensure_patch_buffers).
   subroutine ensure_patch_buffers()

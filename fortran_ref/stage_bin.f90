@@ -22,17 +22,10 @@ contains
     real(dp) :: t, fl, f0
     logical :: inside, filter
     pc = c%patch_cells
-    filter = c%only_comp > 0     ! contact: this context's component only
-    if (filter) then
-      call c_f_pointer(c%body, body, [c%np])
-      call c_f_pointer(c%body_comp, bcomp, [max(c%nbody, 1)])
-    end if
+    call view_components(c, filter, body, bcomp)     ! contact: this context's component only
     call c_f_pointer(c%x, x, [3, c%np])
     call c_f_pointer(c%lx, lx, [3, c%np])
-    call c_f_pointer(c%patch_start, start, [c%npatch + 1])
-    call c_f_pointer(c%patch_part, ppart, [c%np])
-    call c_f_pointer(c%patch_slot, slots, [c%npatch])
-    call c_f_pointer(c%cell, cell, [c%np])
+    call view_patch_lists(c, start, ppart, slots, cell)
     ! start(q + 1) is C's start[q].
     do q = 0, c%npatch
       start(q + 1) = 0
@@ -96,5 +89,8 @@ contains
       start(q + 2) = start(q + 2) + 1
     end do
   end subroutine mpm3d_f_bin
+
+  ! The views of the context's arrays, a copy in this module so that its loops inline them.
+  include 'stage_views.inc'
 
 end module mpm3d_stage_bin

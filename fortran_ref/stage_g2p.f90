@@ -34,10 +34,7 @@ contains
     call c_f_pointer(c%gforce, gforce, [3, c%nnode])
     if (c%nslot > 0) then
       call view_buffers(c, buf)
-      call c_f_pointer(c%patch_start, pstart, [c%npatch + 1])
-      call c_f_pointer(c%patch_part, ppart, [c%np])
-      call c_f_pointer(c%patch_slot, slots, [c%npatch])
-      call c_f_pointer(c%cell, cell, [c%np])
+      call view_patch_lists(c, pstart, ppart, slots, cell)
       call c_f_pointer(c%lx, lx, [3, c%np])
       call c_f_pointer(c%v, v, [3, c%np])
       call c_f_pointer(c%x, x, [3, c%np])
@@ -92,7 +89,9 @@ contains
     end if
   end subroutine mpm3d_f_g2p
 
-  ! The node and buffer index helpers, a copy in this module so that its loops inline them.
+  ! The node and buffer index helpers and the views, a copy in this module so that its loops
+  ! inline them.
   include 'stage_index.inc'
+  include 'stage_views.inc'
 
 end module mpm3d_stage_g2p

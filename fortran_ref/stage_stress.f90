@@ -29,11 +29,7 @@ contains
     dt = c%dt
     gimp = c%shape == 1
     if (gimp) call c_f_pointer(c%psize, psize, [c%np])
-    filter = c%only_comp > 0
-    if (filter) then
-      call c_f_pointer(c%body, body, [c%np])
-      call c_f_pointer(c%body_comp, bcomp, [max(c%nbody, 1)])
-    end if
+    call view_components(c, filter, body, bcomp)
     call c_f_pointer(c%lx, lx, [3, c%np])
     call c_f_pointer(c%sig, sig, [6, c%np])
     call c_f_pointer(c%mass, mass, [c%np])
@@ -107,7 +103,9 @@ contains
     end do
   end subroutine mpm3d_f_stress
 
-  ! The node and buffer index helpers, a copy in this module so that its loops inline them.
+  ! The node and buffer index helpers and the views, a copy in this module so that its loops
+  ! inline them.
   include 'stage_index.inc'
+  include 'stage_views.inc'
 
 end module mpm3d_stage_stress
