@@ -2,6 +2,7 @@
 // stop signals, the output loop around Simulation::step, the summary JSON.
 #include "mpm3d.hpp"
 
+#include <algorithm>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -42,6 +43,10 @@ const char* kUsage =
     "  --patch-cells N    cells per patch edge of the grid decomposition (default 4)\n"
     "  --regrid-every N   adaptive background grid: redefine the grid from the particles'\n"
     "                     extent every N steps (0: off; default: the deck's 'adgr', else off)\n"
+    "  --time-step book|current  book: the initial dt for the whole run; current: dt\n"
+    "                     recomputed after every step from the wave speed plus the largest\n"
+    "                     particle velocity, as the current MPM3D-F90 (default: current for\n"
+    "                     decks with its solver keywords, neoh, UVFp, vsin; else book)\n"
     "  --particle-order blocks|deck  storage order of the particles (default blocks: sorted by\n"
     "                     patch-sized blocks of cells, so each thread's patches hold a run of\n"
     "                     memory; deck: as read). Outputs are in deck order either way\n"
@@ -65,6 +70,7 @@ struct Options {
   int threads = 0, patch_cells = 4;
   long regrid_every = -1;  // -1: the deck's
   std::string particle_order = "blocks";
+  std::string time_step;  // "", "book" or "current"
   bool no_output = false, quiet = false, hdf5 = false, patch_given = false, strict_energy = false;
 };
 
@@ -144,6 +150,9 @@ Options parse_args(int argc, char** argv, bool& exit_now) {
       o.particle_order = value();
       if (o.particle_order != "blocks" && o.particle_order != "deck")
         throw UsageError("--particle-order must be blocks or deck");
+    } else if (a == "--time-step") {
+      o.time_step = value();
+      if (o.time_step != "book" && o.time_step != "current") throw UsageError("--time-step must be book or current");
     } else if (a == "--regrid-every") {
       o.regrid_every = to_long(a, value());
       if (o.regrid_every < 0 || o.regrid_every > 1000000000) throw UsageError("--regrid-every must lie in 0..1000000000");
@@ -225,6 +234,7 @@ int run_main(int argc, char** argv) {
   try {
     Model model = read_deck(opt.deck);
     if (opt.regrid_every >= 0) model.regrid_every = int(opt.regrid_every);
+    if (!opt.time_step.empty()) model.dt_per_step = opt.time_step == "current";
     {  // --out-dir: created (with its parents) when missing
       std::error_code ec;
       std::filesystem::create_directories(opt.out_dir, ec);
@@ -316,6 +326,8 @@ int run_main(int argc, char** argv) {
     int interrupted = 0;
     while (sim.time < end_time - eps && (opt.max_steps < 0 || sim.steps < opt.max_steps)) {
       const auto t0 = std::chrono::steady_clock::now();
+      dt_min = std::min(dt_min, m.dt);
+      dt_max = std::max(dt_max, m.dt);
       try {
         sim.step();
       } catch (const HealthError& e) {

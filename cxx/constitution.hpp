@@ -36,11 +36,15 @@ struct StressBlock {
   double temp[kStressLanes];  // read and written only with has_temp
   double qv[kStressLanes];    // read and written only with has_q
   double burn[kStressLanes];  // programmed-burn fraction (1 except hiex)
+  double H[9][kStressLanes];  // F - I: read and written only for neoh (StepContext::defgrad)
 };
 struct StressBlockArgs {
   double dt;
   bool has_temp, has_q;
   double q1, q2, qlen;  // bulk viscosity coefficients and length
+  // Volume from the deformation: V_new = V_old det(I + L dt) instead of
+  // V_old (1 + tr(L) dt) (deck keyword UVFp; always for neoh).
+  bool uvf;
 };
 // Strain and spin increments dt sym(L), dt skew(L), new volume and stress update of all
 // kStressLanes particles of b (vector code; every lane computes what stress_update

@@ -147,6 +147,46 @@ struct LaneUpdate {
     temp = TL::select(deps > 0.0, heated, temp);
   }
 
+  // det(I + A) of a 3x3 increment A (row-major), by the cofactors of the first row.
+  static T det_identity_plus(const T A[9]) {
+    const T a0 = 1.0 + A[0], a4 = 1.0 + A[4], a8 = 1.0 + A[8];
+    return (a0 * (a4 * a8 - A[5] * A[7]) - A[1] * (A[3] * a8 - A[5] * A[6])) + A[2] * (A[3] * A[7] - a4 * A[6]);
+  }
+
+  // Compressible neo-Hookean (neoh): H = F - I advanced by the increment dL = L dt as
+  // F_new = (I + dL) F, i.e. H_new = H + (dL + dL H); then, with J = det F and
+  // B - I = H + H^T + H H^T (kept in H so that small strains lose no digits),
+  // sigma = (G (B - I) + lambda ln J I) / J. No Jaumann rotation: the stress is a function
+  // of F. Internal energy by the trapezoid of the old and new stress on de, as the
+  // hypoelastic path.
+  static void neo_hookean(const MaterialParams& m, const T dL[9], const T de[6], T H[9], T vol_old, T vol_new,
+                          T sig[6], T& ie) {
+    T hn[9];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        hn[3 * i + j] = H[3 * i + j] +
+                        (dL[3 * i + j] + ((dL[3 * i] * H[j] + dL[3 * i + 1] * H[3 + j]) + dL[3 * i + 2] * H[6 + j]));
+    for (int r = 0; r < 9; ++r) H[r] = hn[r];
+    const T J = det_identity_plus(H);
+    T ln_j;
+    for (int i = 0; i < TL::W; ++i) TL::set(ln_j, i, std::log(TL::get(J, i)));
+    T bm[6];  // (B - I) in Voigt order xx yy zz yz xz xy
+    const int ra[6] = {0, 1, 2, 1, 0, 0}, rb[6] = {0, 1, 2, 2, 2, 1};
+    for (int c = 0; c < 6; ++c) {
+      const int a = ra[c], b = rb[c];
+      bm[c] = (H[3 * a + b] + H[3 * b + a]) +
+              ((H[3 * a] * H[3 * b] + H[3 * a + 1] * H[3 * b + 1]) + H[3 * a + 2] * H[3 * b + 2]);
+    }
+    const T inv_j = 1.0 / J;
+    const T lam_ln = m.lambda * ln_j;
+    T sig_old[6];
+    for (int c = 0; c < 6; ++c) sig_old[c] = sig[c];
+    for (int c = 0; c < 3; ++c) sig[c] = inv_j * (m.shear * bm[c] + lam_ln);
+    for (int c = 3; c < 6; ++c) sig[c] = inv_j * (m.shear * bm[c]);
+    const T vavg = 0.5 * (vol_old + vol_new);
+    ie = ie + (0.5 * (double_dot(sig_old, de) + double_dot(sig, de))) * vavg;
+  }
+
   // The whole update (contract of stress_update in constitution.hpp). temp and q are
   // read and written only when has_temp / has_q.
   static void update(const MaterialParams& m, const T de[6], const T dw[3], double dt, T mass,
@@ -269,9 +309,23 @@ void stress_block_lanes(const MaterialParams& m, StressBlock& b, int first, cons
   const T dw[3] = {(0.5 * (L[5] - L[7])) * dt, (0.5 * (L[2] - L[6])) * dt,
                    (0.5 * (L[1] - L[3])) * dt};
   const T vol_old = TL::load(b.vol + first);
-  const T vol_new = vol_old * (1.0 + ((de[0] + de[1]) + de[2]));
+  const bool from_det = a.uvf || m.type == MAT_NEOH;
+  T dL[9];
+  if (from_det)
+    for (int r = 0; r < 9; ++r) dL[r] = L[r] * dt;
+  const T vol_new = from_det ? vol_old * U::det_identity_plus(dL) : vol_old * (1.0 + ((de[0] + de[1]) + de[2]));
   T sig[6];
   for (int c = 0; c < 6; ++c) sig[c] = TL::load(b.sig[c] + first);
+  if (m.type == MAT_NEOH) {
+    T H[9], ie = TL::load(b.ie + first);
+    for (int r = 0; r < 9; ++r) H[r] = TL::load(b.H[r] + first);
+    U::neo_hookean(m, dL, de, H, vol_old, vol_new, sig, ie);
+    TL::store(b.vol + first, vol_new);
+    for (int c = 0; c < 6; ++c) TL::store(b.sig[c] + first, sig[c]);
+    for (int r = 0; r < 9; ++r) TL::store(b.H[r] + first, H[r]);
+    TL::store(b.ie + first, ie);
+    return;
+  }
   T epeff = TL::load(b.epeff + first), ie = TL::load(b.ie + first);
   T temp = TL::load(b.temp + first), qv = TL::load(b.qv + first);
   U::update(m, de, dw, dt, TL::load(b.mass + first), vol_old, vol_new, sig, epeff, ie, temp,

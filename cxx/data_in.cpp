@@ -14,8 +14,9 @@
 
 namespace mpm3d {
 
-static const char* const kOutputVars[] = {"seqv", "epef", "mat", "pres", "volu", "engk", "engi",
-                                          "velx", "vely", "velz", "cels", "fail", "sspd", "damg"};
+static const char* const kOutputVars[] = {"seqv", "epef", "mat",  "pres", "volu", "engk", "engi",
+                                          "velx", "vely", "velz", "cels", "fail", "sspd", "damg",
+                                          "stsx", "disx", "disy", "disz", "spre"};
 
 bool is_output_variable(const std::string& name) {
   for (const char* v : kOutputVars)
@@ -175,6 +176,12 @@ Model DeckReader::read() {
       bool on = true;
       if (!ts_.at_end() && (key4(ts_.peek().text) == "on" || key4(ts_.peek().text) == "off")) on = on_off(key);
       (k == "tecp" ? m_.tecplot : m_.paraview) = on;
+    } else if (k == "smoo") {  // the current version's smoothed pressure (an output)
+      if (std::find(m_.anim_vars.begin(), m_.anim_vars.end(), "spre") == m_.anim_vars.end())
+        m_.anim_vars.push_back("spre");
+    } else if (k == "uvfp") {  // the current version's volume update from F
+      m_.uvf = true;
+      m_.dt_per_step = true;
     } else if (k == "hdf5") {  // extension: HDF5 + XDMF animation series
       bool on = true;
       if (!ts_.at_end() && (key4(ts_.peek().text) == "on" || key4(ts_.peek().text) == "off")) on = on_off(key);

@@ -48,6 +48,15 @@ struct Model {
   double contact_mu = 0.0;             // Coulomb friction coefficient
   int contact_normbody = 0;            // normals from component 1, 2, or 0 (both)
   int contact_line = 0;                // deck line of the cont card
+  // Volume from the deformation, det(I + L dt) per step (UVFp; on with any neoh material).
+  bool uvf = false;
+  // The current version's time step: dtscale min over the materials of h / (c + v_max),
+  // recomputed after every step (v_max: the largest particle velocity component); else the
+  // initial dt throughout. On for decks with the current version's solver keywords (neoh,
+  // UVFp, vsin) unless the command line says otherwise (--time-step).
+  bool dt_per_step = false;
+  // spre (smoothed pressure, 'smoo'): computed when written (update_smoothed_pressure).
+  mutable std::vector<double> spre;
   std::vector<std::string> warnings;
 };
 

@@ -160,7 +160,7 @@ void DeckReader::read_particles(const Token& key) {
 }
 
 void DeckReader::card_target(const Token& t, const std::string& k, const char* what, int& first, int& count) {
-  if (k == "node") {
+  if (k != "body") {  // node, part: one particle
     const long pid = ts_.integer("a particle id");
     first = particle_index(t, pid);
     if (first >= parts_.count())
@@ -186,8 +186,21 @@ void DeckReader::read_velocities(const Token& key) {
       for (double& c : v) c = ts_.real("a velocity");
       for (int p = first; p < first + count; ++p)
         for (int a = 0; a < 3; ++a) m_.particles.v[3 * size_t(p) + a] = v[a];
+    } else if (k == "vsin") {
+      // The current version's free soft beam (length 6 along y): every particle gets
+      // v_x = v0 sin(pi y / 6) from its initial y, with pi as the original's single-
+      // precision constant 3.1415926535 (3.14159274...).
+      const double v0 = ts_.real("a velocity");
+      m_.dt_per_step = true;
+      const double pi_single = double(3.1415926535f);
+      Particles& P = m_.particles;
+      for (int p = 0; p < parts_.count(); ++p) {
+        P.v[3 * size_t(p)] = v0 * std::sin((pi_single * P.x[3 * size_t(p) + 1]) / 6.0);
+        P.v[3 * size_t(p) + 1] = 0.0;
+        P.v[3 * size_t(p) + 2] = 0.0;
+      }
     } else {
-      fail(t.line, "in 'velo': expected 'node', 'body' or 'endv', found '" + t.text + "'");
+      fail(t.line, "in 'velo': expected 'node', 'body', 'vsin' or 'endv', found '" + t.text + "'");
     }
   }
 }
@@ -199,7 +212,7 @@ void DeckReader::read_loads(const Token& key) {
     const std::string k = key4(t.text);
     if (k == "endl") return;
     double f[3];
-    if (k == "node" || k == "body") {
+    if (k == "node" || k == "part" || k == "body") {  // part: the current version's name of node
       Particles& P = m_.particles;
       if (P.fext.empty()) P.fext.assign(3 * size_t(P.np), 0.0);
       m_.has_loads = true;
@@ -214,7 +227,7 @@ void DeckReader::read_loads(const Token& key) {
       for (int a = 0; a < 3; ++a) m_.bodies[size_t(ib)].gravity[a] = f[a];
       m_.has_gravity = true;
     } else {
-      fail(t.line, "in 'load': expected 'node', 'body', 'grav' or 'endl', found '" + t.text + "'");
+      fail(t.line, "in 'load': expected 'node', 'part', 'body', 'grav' or 'endl', found '" + t.text + "'");
     }
   }
 }

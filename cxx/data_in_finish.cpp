@@ -87,6 +87,22 @@ void DeckReader::finish(int line) {
     }
   }
   if (m_.has_bulk) P.qv.assign(size_t(P.np), 0.0);
+  // neoh: each particle carries F - I (zero at the start); the volume follows det F.
+  bool neoh = false;
+  for (const auto& mp : m_.mats) neoh = neoh || mp.type == MAT_NEOH;
+  if (neoh) {
+    if (m_.has_bulk)
+      fail(line, "'bulk' with a neoh material: the neo-Hookean stress has no bulk viscosity term (the current "
+                 "MPM3D ignores it); remove 'bulk'");
+    m_.uvf = true;
+    m_.dt_per_step = true;
+    P.defgrad.assign(9 * size_t(P.np), 0.0);
+  }
+  // disx, disy, disz: displacements from the initial positions.
+  bool displacement = false;
+  for (const auto& v : m_.anim_vars) displacement = displacement || v.compare(0, 3, "dis") == 0;
+  for (const auto& c : m_.curves) displacement = displacement || c.var.compare(0, 3, "dis") == 0;
+  if (displacement) P.x0 = P.x;
   // pt2d: TecPlot output only for the particles whose initial position lies in the box
   // (the original marks them as they are generated).
   if (m_.has_pt2d) {

@@ -66,6 +66,14 @@ double var_damg(const Model& m, int p) {
   const double ef = mat_of(m, p).fail_strain;
   return ef > 0.0 ? std::min(1.0, std::max(0.0, m.particles.epeff[p] / ef)) : 0.0;
 }
+double var_stsx(const Model& m, int p) { return m.particles.sig[6 * size_t(p)]; }
+double displacement(const Model& m, int p, int a) {
+  return m.particles.x[3 * size_t(p) + size_t(a)] - m.particles.x0[3 * size_t(p) + size_t(a)];
+}
+double var_disx(const Model& m, int p) { return displacement(m, p, 0); }
+double var_disy(const Model& m, int p) { return displacement(m, p, 1); }
+double var_disz(const Model& m, int p) { return displacement(m, p, 2); }
+double var_spre(const Model& m, int p) { return m.spre.empty() ? 0.0 : m.spre[size_t(p)]; }
 double var_sspd(const Model& m, int p) {
   const MaterialParams& mp = mat_of(m, p);
   double k = mp.lambda + (2.0 / 3.0) * mp.shear;
@@ -83,7 +91,8 @@ const std::vector<OutputVariable>& output_variables() {
   static const std::vector<OutputVariable> vars = {
       {"seqv", var_seqv}, {"epef", var_epef}, {"mat", var_mat},   {"pres", var_pres}, {"volu", var_volu},
       {"engk", var_engk}, {"engi", var_engi}, {"velx", var_velx}, {"vely", var_vely}, {"velz", var_velz},
-      {"cels", var_cels}, {"fail", var_fail}, {"sspd", var_sspd}, {"damg", var_damg}};
+      {"cels", var_cels}, {"fail", var_fail}, {"sspd", var_sspd}, {"damg", var_damg}, {"stsx", var_stsx},
+      {"disx", var_disx}, {"disy", var_disy}, {"disz", var_disz}, {"spre", var_spre}};
   return vars;
 }
 
@@ -180,6 +189,8 @@ Output::~Output() { close(); }
 void Output::open(const Model& m, const std::string& dir, bool legacy, bool series, const OutputSchedule* resume) {
   const OutputFiles files(dir, resume);
   if (resume) frame_times_ = resume->frame_times;
+  for (const auto& c : m.curves) spre_in_curves_ = spre_in_curves_ || c.var == "spre";
+  for (const auto& v : m.anim_vars) spre_in_frames_ = spre_in_frames_ || v == "spre";
   // The order of the writers is the order of the files in a checkpoint's record.
   if (legacy) {
     writers_.push_back(make_curve_writer(m, files));
@@ -199,11 +210,13 @@ void Output::log(const std::string& line) {
 }
 
 void Output::step(const Model& m, const StepRecord& s) {
+  if (spre_in_curves_ && !writers_.empty()) update_smoothed_pressure(m);
   for (auto& w : writers_) w->step(m, s);
 }
 
 void Output::frame(const Model& m, double time, long step) {
   const std::vector<int> at = stored_index(m.particles);
+  if (spre_in_frames_) update_smoothed_pressure(m);
   for (auto& w : writers_) w->frame(m, at, time, step);
   frame_times_.push_back(time);
 }

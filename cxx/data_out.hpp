@@ -22,6 +22,9 @@ std::string fortran_e12_4(double v);
 //   cels temperature (0 without a thermal material)
 //   fail 1 when the material has a failure strain eps_f (sjcf, jcf) and epeff >= eps_f
 //   damg epeff / eps_f clipped to [0, 1] (0 without eps_f)
+//   stsx stress xx (tension positive)
+//   disx disy disz displacement from the initial position
+//   spre pressure smoothed through the grid ('smoo'; update_smoothed_pressure)
 //   sspd longitudinal wave speed sqrt((K + 4G/3) / rho) at the current density, K the
 //        EOS's reference bulk modulus (rho0 c0^2 Mie-Gruneisen, C1 polynomial) or
 //        lambda + 2G/3 without an EOS; the material's wave speed when K + 4G/3 <= 0
@@ -33,6 +36,9 @@ struct OutputVariable {
 const std::vector<OutputVariable>& output_variables();
 ParticleVarFn output_variable(const std::string& name);  // nullptr for an unknown name
 double particle_variable(const Model& m, const std::string& var, int p);
+
+// Fills m.spre: the pressure smoothed through the grid (smoothed_pressure.cpp).
+void update_smoothed_pressure(const Model& m);
 
 // Writes the final particle state (docs/DESIGN.md section 6) atomically (temporary + rename).
 void write_state_h5(const std::string& path, const Model& m, double time, long step, double dt);
@@ -62,6 +68,7 @@ class Output {
   std::vector<std::unique_ptr<OutputWriter>> writers_;
   std::vector<double> frame_times_;
   bool animates_ = false;
+  bool spre_in_curves_ = false, spre_in_frames_ = false;  // spre is computed when written
 };
 
 }  // namespace mpm3d

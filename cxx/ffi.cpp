@@ -16,7 +16,7 @@ DeckError::DeckError(const std::string& file, int line, const std::string& what)
                                   : file + ": " + what),
       file_(file), line_(line) {}
 
-static constexpr size_t kMaxLine = 256;
+static constexpr size_t kMaxLine = 4096;
 
 TokenStream TokenStream::from_file(const std::string& path) {
   struct stat st;
@@ -44,7 +44,7 @@ TokenStream TokenStream::from_string(const std::string& text, const std::string&
     ++lineno;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.size() > kMaxLine)
-      throw DeckError(name, lineno, "line longer than 256 characters");
+      throw DeckError(name, lineno, "line longer than 4096 characters");
     ts.lines_.push_back(line);
     size_t k = 0;
     const size_t n = line.size();

@@ -15,7 +15,8 @@ enum MaterialType {
   MAT_JCF = 7,   // Johnson-Cook with failure strain
   MAT_HIEX = 8,  // high explosive (programmed burn)
   MAT_NULL = 9,  // null material
-  MAT_DPM = 10   // Drucker-Prager
+  MAT_DPM = 10,  // Drucker-Prager
+  MAT_NEOH = 11  // compressible neo-Hookean (hyperelastic, from the deformation gradient)
 };
 
 enum EosType { EOS_NONE = 0, EOS_LINEAR = 1, EOS_MIE_GRUNEISEN = 2, EOS_JWL = 3 };

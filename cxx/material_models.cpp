@@ -67,7 +67,8 @@ const MaterialModel kModels[] = {{"elas", MAT_ELAS, MPM3D_PARAMS(kElas), false, 
                                  {"sjcf", MAT_SJCF, MPM3D_PARAMS(kSjcf), false, true, false, nullptr},
                                  {"hiex", MAT_HIEX, MPM3D_PARAMS(kHiex), true, false, false, finish_hiex},
                                  {"null", MAT_NULL, MPM3D_PARAMS(kNull), true, false, false, nullptr},
-                                 {"dpm", MAT_DPM, MPM3D_PARAMS(kDpm), false, false, false, nullptr}};
+                                 {"dpm", MAT_DPM, MPM3D_PARAMS(kDpm), false, false, false, nullptr},
+                                 {"neoh", MAT_NEOH, MPM3D_PARAMS(kElas), false, false, false, nullptr}};
 #undef MPM3D_PARAMS
 
 }  // namespace

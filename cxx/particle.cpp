@@ -34,6 +34,8 @@ std::vector<ParticleField> particle_fields(Particles& P) {
           {"lighting_time", 1, &P.tlight, nullptr},
           {"bulk_viscosity", 1, &P.qv, nullptr},
           {"gimp_half_size", 1, &P.psize, nullptr},
+          {"deformation_gradient", 9, &P.defgrad, nullptr},
+          {"initial_position", 3, &P.x0, nullptr},
           {"deck_id", 1, nullptr, &P.id}};
 }
 

@@ -3,10 +3,12 @@
 // checks.
 #include "simulation.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -155,6 +157,8 @@ void Simulation::bind() {
   c.gnormal = nullptr;
   c.cpartials = nullptr;
   c.only_comp = 0;
+  c.defgrad = P.defgrad.empty() ? nullptr : P.defgrad.data();
+  c.uvf = model.uvf ? 1 : 0;
   bind_grid();  // before the contact copy: ctx2 starts as a copy of ctx
   if (model.contact) {
     // Two contexts over the same particles: each bins, scatters and updates the particles
@@ -269,7 +273,19 @@ void Simulation::step() {
   ++steps;
   time += model.dt;
   if (ctx.has_body_force) external_work += dt_work_of_body_forces();
+  if (model.dt_per_step) model.dt = velocity_time_step();
   health_check();
+}
+
+double Simulation::velocity_time_step() const {
+  const double* v = model.particles.v.data();
+  const long n = 3L * model.particles.np;
+  double vmax = 0.0;  // a max: the same bits for any thread count
+#pragma omp parallel for reduction(max : vmax)
+  for (long i = 0; i < n; ++i) vmax = std::max(vmax, std::fabs(v[i]));
+  double dt = std::numeric_limits<double>::infinity();
+  for (const MaterialParams& mp : model.mats) dt = std::min(dt, model.dcell / (mp.wave_speed + vmax));
+  return dt * model.dtscale;
 }
 
 void Simulation::run_stage(int s) {

@@ -94,6 +94,8 @@ class Simulation {
   std::vector<char> body_ie_warned_;
   bool kinetic_warned_ = false;
   double dt_work_of_body_forces() const;
+  // The current version's dt from the particle velocities (Model::dt_per_step).
+  double velocity_time_step() const;
 };
 
 }  // namespace mpm3d

@@ -236,6 +236,8 @@ inline void stress_block_load(const StepContext* c, const MaterialParams& mp, in
   b.temp[i] = c->temp ? c->temp[p] : 0.0;
   b.qv[i] = c->qv ? c->qv[p] : 0.0;
   b.burn[i] = c->tlight ? burn_fraction(mp, c->tlight[p], c->time) : 1.0;
+  if (c->defgrad)
+    for (int r = 0; r < 9; ++r) b.H[r][i] = c->defgrad[9 * size_t(p) + size_t(r)];
 }
 
 inline void stress_block_store(StepContext* c, int p, int i, const StressBlock& b) {
@@ -245,6 +247,8 @@ inline void stress_block_store(StepContext* c, int p, int i, const StressBlock& 
   c->ie[p] = b.ie[i];
   if (c->temp) c->temp[p] = b.temp[i];
   if (c->qv) c->qv[p] = b.qv[i];
+  if (c->defgrad)
+    for (int r = 0; r < 9; ++r) c->defgrad[9 * size_t(p) + size_t(r)] = b.H[r][i];
 }
 
 // The stress stage of the particles list[0..count) (trilinear): velocity gradients and the

@@ -59,6 +59,9 @@ struct StepContext {
   int only_comp;             // 0: every particle; 1 or 2: this context's component only
   int contact_normbody;      // contact normals from component 1, 2, or 0 (both)
   int ncontact;              // contact stage: nodes corrected in this step
+  // Finite-strain solids (issue 16).
+  double *defgrad;           // (9,np) F - I, row-major, of each particle, or null: only with neoh
+  int uvf;                   // 1: volume from det(I + L dt) (UVFp, and always for neoh)
   // Fields after this point are stage-internal scratch of the C++ kernels (a Fortran
   // mirror of the struct may stop before them).
   int *pscratch;       // (np) patch of each particle during binning

@@ -6,7 +6,7 @@ module mpm3d_constitution
   implicit none
   private
 
-  public :: stress_update, jaumann_rotate, eos_coefficients, yield_stress, burn_fraction, &
+  public :: stress_update, neo_hookean, det_identity_plus, jaumann_rotate, eos_coefficients, yield_stress, burn_fraction, &
             bulk_viscosity, dp_return
 
 contains
@@ -399,6 +399,55 @@ contains
     call stress_of(s, p_new, has_q, q_new, sig)
     call adiabatic_heating(m, s, deps, mass, vol_new, has_temp, temp)
   end subroutine stress_update
+
+  ! det(I + A) of a 3x3 increment A (row-major, 0-based), by the cofactors of the first row
+  ! (LaneUpdate::det_identity_plus, cxx/constitution_lanes.hpp).
+  pure real(dp) function det_identity_plus(a) result(d)
+    real(dp), intent(in) :: a(0:8)
+    real(dp) :: a0, a4, a8
+    a0 = 1.0_dp + a(0)
+    a4 = 1.0_dp + a(4)
+    a8 = 1.0_dp + a(8)
+    d = (a0 * (a4 * a8 - a(5) * a(7)) - a(1) * (a(3) * a8 - a(5) * a(6))) + a(2) * (a(3) * a(7) - a4 * a(6))
+  end function det_identity_plus
+
+  ! Compressible neo-Hookean (neoh), as LaneUpdate::neo_hookean: H = F - I advanced by
+  ! dL = L dt as H + (dL + dL H); J = det F, B - I = H + H^T + H H^T,
+  ! sigma = (G (B - I) + lambda ln J I) / J; internal energy by the trapezoid on de.
+  subroutine neo_hookean(m, dl, de, h, vol_old, vol_new, sig, ie)
+    type(material_params), intent(in) :: m
+    real(dp), intent(in) :: dl(0:8), de(6), vol_old, vol_new
+    real(dp), intent(inout) :: h(0:8), sig(6), ie
+    integer, parameter :: ra(6) = [0, 1, 2, 1, 0, 0], rb(6) = [0, 1, 2, 2, 2, 1]
+    real(dp) :: hn(0:8), bm(6), sig_old(6), jac, ln_j, inv_j, lam_ln, vavg
+    integer :: i, k, c, a, b
+    do i = 0, 2
+      do k = 0, 2
+        hn(3 * i + k) = h(3 * i + k) + (dl(3 * i + k) + ((dl(3 * i) * h(k) + dl(3 * i + 1) * h(3 + k)) + &
+                                                         dl(3 * i + 2) * h(6 + k)))
+      end do
+    end do
+    h = hn
+    jac = det_identity_plus(h)
+    ln_j = log(jac)
+    do c = 1, 6
+      a = ra(c)
+      b = rb(c)
+      bm(c) = (h(3 * a + b) + h(3 * b + a)) + ((h(3 * a) * h(3 * b) + h(3 * a + 1) * h(3 * b + 1)) + &
+                                               h(3 * a + 2) * h(3 * b + 2))
+    end do
+    inv_j = 1.0_dp / jac
+    lam_ln = m%lambda * ln_j
+    sig_old = sig
+    do c = 1, 3
+      sig(c) = inv_j * (m%shear * bm(c) + lam_ln)
+    end do
+    do c = 4, 6
+      sig(c) = inv_j * (m%shear * bm(c))
+    end do
+    vavg = 0.5_dp * (vol_old + vol_new)
+    ie = ie + (0.5_dp * (double_dot(sig_old, de) + double_dot(sig, de))) * vavg
+  end subroutine neo_hookean
 
   ! Adiabatic heating of thermal Johnson-Cook materials (Taylor-Quinney 0.9).
   subroutine adiabatic_heating(m, s, deps, mass, vol_new, has_temp, temp)

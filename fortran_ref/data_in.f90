@@ -51,6 +51,8 @@ module mpm3d_data_in
     real(dp) :: deto(3, 10) = 0.0_dp
     logical :: has_bulk = .false.       ! 'bulk q1 q2': artificial bulk viscosity
     real(dp) :: bulk_q1 = 0.0_dp, bulk_q2 = 0.0_dp
+    logical :: uvf = .false.            ! volume from det(I + L dt): UVFp, or a neoh material
+    logical :: dt_per_step = .false.    ! the current version's dt, recomputed every step
   end type model_t
 
   public :: read_deck, is_output_variable
@@ -72,8 +74,9 @@ module mpm3d_data_in
     end function c_sysconf
   end interface
 
-  character(len=4), parameter :: OUTPUT_VARS(14) = [character(len=4) :: 'seqv', 'epef', 'mat', &
-      'pres', 'volu', 'engk', 'engi', 'velx', 'vely', 'velz', 'cels', 'fail', 'sspd', 'damg']
+  character(len=4), parameter :: OUTPUT_VARS(19) = [character(len=4) :: 'seqv', 'epef', 'mat', &
+      'pres', 'volu', 'engk', 'engi', 'velx', 'vely', 'velz', 'cels', 'fail', 'sspd', 'damg', &
+      'stsx', 'disx', 'disy', 'disz', 'spre']
 
   ! The cards with bodies of their own, 'mate', 'seos', 'part', 'velo', 'load' (read_card,
   ! data_in_cards.f90), and the end of the deck, 'endi' (finish, data_in_finish.f90).
@@ -314,6 +317,10 @@ contains
         m%has_bulk = .true.
       case ('gimp')
         m%gimp = .true.
+      case ('smoo')  ! the current version's smoothed pressure: an output of mpm3d only
+      case ('uvfp')  ! the current version's volume update from F
+        m%uvf = .true.
+        m%dt_per_step = .true.
       case ('cont')
         if (ts%at_end()) call ts%fail(key%line, "'cont' needs 'lagr mu normbody'")
         t = ts%next()

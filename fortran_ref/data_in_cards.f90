@@ -236,7 +236,7 @@ contains
     character(len=*), intent(in) :: k, what
     integer, intent(out) :: first, count
     integer :: ib
-    if (k == 'node') then
+    if (k /= 'body') then  ! node, part: one particle
       first = particle_index(ts, m, t, ts%integer('a particle id'))
       if (first >= n_defined(m)) &
         call ts%fail(t%line, what // ' particle ' // i2s(first + 1) // ' before it is defined')
@@ -261,8 +261,20 @@ contains
       t = ts%next()
       k = key4(ts%text_of(t))
       if (k == 'endv') return
+      if (k == 'vsin') then
+        ! The current version's free soft beam (length 6 along y): v_x = v0 sin(pi y / 6)
+        ! from the initial y, pi as the original's single-precision constant.
+        v(1) = ts%real('a velocity')
+        m%dt_per_step = .true.
+        do p = 1, n_defined(m)
+          m%particles%v(1, p) = v(1) * sin((real(3.1415926535, dp) * m%particles%x(2, p)) / 6.0_dp)
+          m%particles%v(2, p) = 0.0_dp
+          m%particles%v(3, p) = 0.0_dp
+        end do
+        cycle
+      end if
       if (k /= 'node' .and. k /= 'body') &
-        call ts%fail(t%line, "in 'velo': expected 'node', 'body' or 'endv', found '" // &
+        call ts%fail(t%line, "in 'velo': expected 'node', 'body', 'vsin' or 'endv', found '" // &
                      ts%text_of(t) // "'")
       call read_particle_range(ts, m, t, k, 'velocity for', first, count)
       v = read_vec3(ts, 'a velocity')
@@ -287,7 +299,7 @@ contains
       t = ts%next()
       k = key4(ts%text_of(t))
       if (k == 'endl') return
-      if (k == 'node' .or. k == 'body') then
+      if (k == 'node' .or. k == 'part' .or. k == 'body') then  ! part: the current version's node
         if (.not. allocated(m%particles%fext)) then
           allocate(m%particles%fext(3, m%particles%np))
           m%particles%fext = 0.0_dp
@@ -308,7 +320,7 @@ contains
         end do
         m%has_gravity = .true.
       else
-        call ts%fail(t%line, "in 'load': expected 'node', 'body', 'grav' or 'endl', found '" // &
+        call ts%fail(t%line, "in 'load': expected 'node', 'part', 'body', 'grav' or 'endl', found '" // &
                      ts%text_of(t) // "'")
       end if
     end do

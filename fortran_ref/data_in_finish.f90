@@ -97,6 +97,15 @@ contains
         end associate
       end do
     end if
+    ! neoh: each particle carries F - I (zero at the start); the volume follows det F.
+    if (any(m%mats(1:m%nmat)%type == MAT_NEOH)) then
+      if (m%has_bulk) call ts%fail(line, "'bulk' with a neoh material: the neo-Hookean stress has no bulk " // &
+                                   "viscosity term (the current MPM3D ignores it); remove 'bulk'")
+      m%uvf = .true.
+      m%dt_per_step = .true.
+      allocate(m%particles%defgrad(9, m%particles%np))
+      m%particles%defgrad = 0.0_dp
+    end if
     if (m%has_bulk) then
       allocate(m%particles%qv(m%particles%np))
       m%particles%qv = 0.0_dp

@@ -1,5 +1,5 @@
 ! FFI: free-format deck tokenizer (the original's FFI module), same rules as cxx/ffi.cpp:
-! lines of at most 256 characters, tabs are blanks, '!' starts a comment, tokens are
+! lines of at most 4096 characters, tabs are blanks, '!' starts a comment, tokens are
 ! separated by blanks and/or commas, keywords are recognised by their first four
 ! characters case-insensitively, numbers follow Fortran list-directed input (d exponents).
 ! Input errors print "mpm3d_ref: FILE:LINE: problem" and end the program with status 1.
@@ -9,7 +9,7 @@ module mpm3d_ffi
   implicit none
   private
 
-  integer, parameter :: MAX_LINE = 256
+  integer, parameter :: MAX_LINE = 4096
 
   type, public :: token_t
     integer :: first = 1, last = 0   ! characters first..last of the deck text
@@ -143,7 +143,7 @@ contains
       if (lend >= i) then
         if (ts%text(lend:lend) == achar(13)) lend = lend - 1
       end if
-      if (lend - i + 1 > MAX_LINE) call ts%fail(lineno, 'line longer than 256 characters')
+      if (lend - i + 1 > MAX_LINE) call ts%fail(lineno, 'line longer than 4096 characters')
       call push_line(ts, i, lend)
       k = i
       first = .true.

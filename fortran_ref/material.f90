@@ -11,7 +11,7 @@ module mpm3d_material
   ! MaterialType
   integer, parameter, public :: MAT_ELAS = 1, MAT_PLA1 = 2, MAT_PLA2 = 3, MAT_JOHN = 4, &
                                 MAT_SJC = 5, MAT_SJCF = 6, MAT_JCF = 7, MAT_HIEX = 8, &
-                                MAT_NULL = 9, MAT_DPM = 10
+                                MAT_NULL = 9, MAT_DPM = 10, MAT_NEOH = 11
   ! EosType
   integer, parameter, public :: EOS_NONE = 0, EOS_LINEAR = 1, EOS_MIE_GRUNEISEN = 2, EOS_JWL = 3
 

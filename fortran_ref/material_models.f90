@@ -18,7 +18,7 @@ module mpm3d_material_models
     logical :: thermal       ! tracks temperature
   end type material_model_t
 
-  type(material_model_t), parameter :: MODELS(10) = [ &
+  type(material_model_t), parameter :: MODELS(11) = [ &
     material_model_t('elas', MAT_ELAS, .false., .false., .false.), &
     material_model_t('pla1', MAT_PLA1, .false., .false., .false.), &
     material_model_t('pla2', MAT_PLA2, .false., .false., .false.), &
@@ -28,7 +28,8 @@ module mpm3d_material_models
     material_model_t('sjcf', MAT_SJCF, .false., .true., .false.), &
     material_model_t('hiex', MAT_HIEX, .true., .false., .false.), &
     material_model_t('null', MAT_NULL, .true., .false., .false.), &
-    material_model_t('dpm ', MAT_DPM, .false., .false., .false.)]
+    material_model_t('dpm ', MAT_DPM, .false., .false., .false.), &
+    material_model_t('neoh', MAT_NEOH, .false., .false., .false.)]
 
   public :: material_type_of, material_keyword, material_is_fluid, material_is_johnson_cook, &
             material_is_thermal, read_material_card, material_derive
@@ -93,7 +94,7 @@ contains
       mp%poisson = ts%real("Poisson's ratio")
     end if
     select case (mp%type)
-    case (MAT_ELAS)
+    case (MAT_ELAS, MAT_NEOH)
     case (MAT_PLA1)
       mp%yield0 = ts%real('yield stress')
     case (MAT_PLA2)

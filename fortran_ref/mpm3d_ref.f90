@@ -33,6 +33,7 @@ program mpm3d_ref
   character(len=:), allocatable :: deck, state_path, init_path, energy_path, err
   integer(int64) :: max_steps, steps, iv
   integer :: patch_cells, i, nargs, np, b, rc, regrid_every, halo
+  integer :: time_step        ! --time-step: -1 the deck's choice, 0 book, 1 current
   integer :: woff(3), wnc(3)
   real(dp) :: end_time, time, eps, kinetic, internal, rv, initial_total, momentum(3)
   real(dp) :: external_work    ! bound of the work of gravity and loads: sum |f.v| dt (health check)
@@ -49,6 +50,7 @@ program mpm3d_ref
   patch_cells = 4
   order_blocks = .true.
   regrid_every = -1
+  time_step = -1
   quiet = .false.
   nargs = command_argument_count()
   i = 1
@@ -58,7 +60,7 @@ program mpm3d_ref
     case ('--help', '-h')
       write (output_unit, '(a)') 'usage: mpm3d_ref [--steps N] [--end-time T] [--state F.h5] ' // &
         '[--init-state F.h5] [--energies F.txt] [--patch-cells N] [--regrid-every N] ' // &
-        '[--particle-order blocks|deck] [--quiet] DECK.mpm'
+        '[--particle-order blocks|deck] [--time-step book|current] [--quiet] DECK.mpm'
       stop
     case ('--steps')
       call value(i, arg)
@@ -93,6 +95,10 @@ program mpm3d_ref
       call value(i, arg)
       if (trim(arg) /= 'blocks' .and. trim(arg) /= 'deck') call usage('--particle-order must be blocks or deck')
       order_blocks = trim(arg) == 'blocks'
+    case ('--time-step')
+      call value(i, arg)
+      if (trim(arg) /= 'book' .and. trim(arg) /= 'current') call usage('--time-step must be book or current')
+      time_step = merge(1, 0, trim(arg) == 'current')
     case ('--quiet', '-q')
       quiet = .true.
     case default
@@ -109,6 +115,7 @@ program mpm3d_ref
   if (end_time <= 0.0_dp) end_time = model%endtime
   np = model%particles%np
   if (regrid_every < 0) regrid_every = model%regrid_every
+  if (time_step >= 0) model%dt_per_step = time_step == 1
   ! The two contact grids share one node numbering: no adaptive window with contact (as mpm3d).
   if (model%contact) regrid_every = 0
   halo = merge(1, 0, model%gimp)   ! GIMP stencils reach one node beyond a patch's cells
@@ -180,6 +187,7 @@ program mpm3d_ref
     internal = ctx%result(2)
     momentum = ctx%result(3:5)
     if (ctx%has_body_force /= 0) external_work = external_work + dt_work_of_body_forces()
+    if (model%dt_per_step) model%dt = velocity_time_step()
     if (.not. healthy()) then
       rc = 3
       exit
@@ -222,6 +230,24 @@ contains
     end associate
     wdt = w * model%dt
   end function dt_work_of_body_forces
+
+  ! The current version's dt from the particle velocities (Simulation::velocity_time_step):
+  ! dtscale min over the materials of h / (c + v_max).
+  real(dp) function velocity_time_step() result(dt)
+    real(dp) :: vmax
+    integer :: p, a, k
+    vmax = 0.0_dp
+    do p = 1, np
+      do a = 1, 3
+        vmax = max(vmax, abs(model%particles%v(a, p)))
+      end do
+    end do
+    dt = huge(1.0_dp)
+    do k = 1, model%nmat
+      dt = min(dt, model%dcell / (model%mats(k)%wave_speed + vmax))
+    end do
+    dt = dt * model%dtscale
+  end function velocity_time_step
 
   ! Health check after a step (Simulation::health_check): non-finite energies, or a total
   ! energy above twice the initial energy plus the external work, end the run.
@@ -316,6 +342,9 @@ contains
     ctx%psize = c_null_ptr
     if (model%gimp) ctx%psize = c_loc(model%particles%psize)
     ctx%shape = merge(1, 0, model%gimp)
+    ctx%defgrad = c_null_ptr
+    if (allocated(model%particles%defgrad)) ctx%defgrad = c_loc(model%particles%defgrad)
+    ctx%uvf = merge(1, 0, model%uvf)
     ctx%patch_halo = grid%patch_halo
     call bind_grid()      ! before the contact copy: ctx2 starts as a copy of ctx
     if (model%contact) then

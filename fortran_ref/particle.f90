@@ -26,6 +26,7 @@ module mpm3d_particle
     real(dp), allocatable :: tlight(:)  ! only with hiex: lighting time
     real(dp), allocatable :: qv(:)      ! only with 'bulk': bulk viscosity pressure
     real(dp), allocatable :: psize(:)   ! only with gimp: particle half-size lp
+    real(dp), allocatable :: defgrad(:,:)  ! (9,np) only with neoh: F - I, row-major
     integer(c_int), allocatable :: id(:)  ! deck number (0-based) of each stored particle
   end type particles_t
 
@@ -43,6 +44,7 @@ contains
     if (allocated(p%tlight)) deallocate(p%tlight)
     if (allocated(p%qv)) deallocate(p%qv)
     if (allocated(p%psize)) deallocate(p%psize)
+    if (allocated(p%defgrad)) deallocate(p%defgrad)
     allocate(p%x(3, n), p%v(3, n), p%sig(6, n), p%mass(n), p%vol(n), p%epeff(n), p%ie(n), &
              p%mat(n), p%body(n))
     p%x = 0.0_dp
@@ -164,6 +166,7 @@ contains
     if (allocated(p%tlight)) p%tlight = p%tlight(from)
     if (allocated(p%qv)) p%qv = p%qv(from)
     if (allocated(p%psize)) p%psize = p%psize(from)
+    if (allocated(p%defgrad)) p%defgrad = p%defgrad(:, from)
     p%id = p%id(from)
   end subroutine particles_order_by_blocks
 

@@ -62,6 +62,8 @@ module mpm3d_stage_common
     integer(c_int) :: only_comp = 0        ! 0 every particle; 1 or 2 this component only
     integer(c_int) :: contact_normbody = 0 ! normals from component 1, 2, or 0 (both)
     integer(c_int) :: ncontact = 0         ! contact stage: nodes corrected
+    type(c_ptr) :: defgrad = c_null_ptr    ! (9,np) F - I (row-major) of each particle: neoh only
+    integer(c_int) :: uvf = 0              ! 1: volume from det(I + L dt) (UVFp, neoh)
   end type step_context
 
   public :: view_buffers, gimp_stencil
@@ -148,7 +150,7 @@ contains
   ! Layout of step_context and material_params as this compiler sees them (for the
   ! layout test against the C structs): sizes and a few offsets, in bytes.
   subroutine mpm3d_f_context_layout(out) bind(C, name='mpm3d_f_context_layout')
-    integer(c_size_t), intent(out) :: out(13)
+    integer(c_size_t), intent(out) :: out(15)
     type(step_context), target :: c
     type(material_params), target :: m(2)
     out(1) = c_sizeof(c)
@@ -164,6 +166,8 @@ contains
     out(11) = transfer(c_loc(c%cell_off), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
     out(12) = transfer(c_loc(c%psize), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
     out(13) = transfer(c_loc(c%ncontact), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
+    out(14) = transfer(c_loc(c%defgrad), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
+    out(15) = transfer(c_loc(c%uvf), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
   end subroutine mpm3d_f_context_layout
 
 end module mpm3d_stage_common

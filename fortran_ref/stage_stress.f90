@@ -4,7 +4,7 @@ module mpm3d_stage_stress
   use, intrinsic :: iso_c_binding
   use mpm3d_material
   use mpm3d_grid, only: shape_linear
-  use mpm3d_constitution, only: stress_update, burn_fraction
+  use mpm3d_constitution, only: stress_update, burn_fraction, neo_hookean, det_identity_plus
   use mpm3d_stage_common
   implicit none
   private
@@ -17,15 +17,15 @@ contains
   subroutine mpm3d_f_stress(c) bind(C, name='mpm3d_f_stress')
     type(step_context), intent(inout) :: c
     real(dp), pointer :: lx(:,:), sig(:,:), mass(:), vol(:), epeff(:), ie(:), temp(:)
-    real(dp), pointer :: tlight(:), qv(:)
+    real(dp), pointer :: tlight(:), qv(:), defgrad(:,:)
     real(dp), pointer :: gmass(:), gmom(:,:), psize(:)
     integer(c_int), pointer :: cell(:), mat(:), body(:), bcomp(:)
     type(material_params), pointer :: mats(:)
     real(dp) :: sn(27), sg(3, 27), lg(0:8), de(6), dw(3), dt, m, va, vol_old, vol_new, tdummy
-    real(dp) :: burn, qdummy
+    real(dp) :: burn, qdummy, dl(0:8)
     integer :: p, cl, base, k, n, a, b, nk
     integer :: ci(3), o(3)
-    logical :: has_temp, has_tl, has_q, gimp, filter
+    logical :: has_temp, has_tl, has_q, gimp, filter, neoh
     dt = c%dt
     gimp = c%shape == 1
     if (gimp) call c_f_pointer(c%psize, psize, [c%np])
@@ -51,6 +51,7 @@ contains
     if (has_tl) call c_f_pointer(c%tlight, tlight, [c%np])
     has_q = c_associated(c%qv)
     if (has_q) call c_f_pointer(c%qv, qv, [c%np])
+    if (c_associated(c%defgrad)) call c_f_pointer(c%defgrad, defgrad, [9, c%np])
     tdummy = 0.0_dp
     qdummy = 0.0_dp
     do p = 1, c%np
@@ -83,7 +84,21 @@ contains
       dw(2) = (0.5_dp * (lg(2) - lg(6))) * dt
       dw(3) = (0.5_dp * (lg(1) - lg(3))) * dt
       vol_old = vol(p)
-      vol_new = vol_old * (1.0_dp + ((de(1) + de(2)) + de(3)))
+      neoh = mats(mat(p) + 1)%type == MAT_NEOH
+      if (c%uvf /= 0 .or. neoh) then
+        ! UVFp and neoh: the volume from the deformation, det(I + L dt)
+        do k = 0, 8
+          dl(k) = lg(k) * dt
+        end do
+        vol_new = vol_old * det_identity_plus(dl)
+      else
+        vol_new = vol_old * (1.0_dp + ((de(1) + de(2)) + de(3)))
+      end if
+      if (neoh) then
+        call neo_hookean(mats(mat(p) + 1), dl, de, defgrad(:, p), vol_old, vol_new, sig(:, p), ie(p))
+        vol(p) = vol_new
+        cycle
+      end if
       burn = 1.0_dp
       if (has_tl) burn = burn_fraction(mats(mat(p) + 1), tlight(p), c%time)
       if (has_temp .and. has_q) then

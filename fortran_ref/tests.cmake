@@ -78,6 +78,11 @@ if(TARGET mpm3d AND TARGET mpm3d_ref)
   fref_deck(spheres ${CMAKE_SOURCE_DIR}/inputs/contact/spheres.mpm contact recontact)
   fref_deck(sliding_block ${CMAKE_SOURCE_DIR}/inputs/contact/sliding_block.mpm contact recontact)
   fref_deck(gimp_contact ${_fref_own}/gimp_contact_usf.mpm contact recontact)
+  # The current MPM3D-F90's neo-Hookean solid (F carried per particle, volume from det F),
+  # vsin, 'part' loads and UVFp on a hypoelastic body, trilinear and GIMP (issue 16).
+  fref_deck(free_soft_beam ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/free_soft_beam_coarse.mpm)
+  fref_deck(neo_block_gimp ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/neo_block_gimp.mpm)
+  fref_deck(current_free_soft_beam ${_fref_shared}/current/FreeSoftBeam_MPM_v0p3_FreeSB_MPM.mpm)
   # GIMP with the adaptive grid (halo patches on the deck's patch lattice).
   fref_adaptive(two_blocks_gimp ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks_gimp.mpm)
   # Hypervelocity lead sphere: every variant over the first 60 steps, and the whole run

@@ -122,7 +122,7 @@ case $kind in
       if [ "$card" = "NO-ENDI" ]; then
         sed '/^endi/d' "$deck" > "$d"
       elif [ "$card" = "LONG-LINE" ]; then
-        { cat "$deck"; printf '!%0300d\n' 0; } > "$d"
+        { cat "$deck"; printf '!%05000d\n' 0; } > "$d"
       elif [ "$card" = "BINARY" ]; then
         sed "s/^endi/dcell 0\x01.5\nendi/" "$deck" > "$d"
       elif [ "$card" = "DIRECTORY" ]; then

@@ -147,8 +147,8 @@ TEST_F(Cli, MissingEndiWithoutFinalNewline) {
 }
 
 TEST_F(Cli, LineTooLong) {
-  const std::string d = deck_file("long.mpm", replace_line(kGood, 7, "spz 0 4 !" + std::string(260, '-')));
-  expect_refused(run({"--quiet", "--out-dir", out, d}), d + ":7: ", {"256"});
+  const std::string d = deck_file("long.mpm", replace_line(kGood, 7, "spz 0 4 !" + std::string(4100, '-')));
+  expect_refused(run({"--quiet", "--out-dir", out, d}), d + ":7: ", {"4096"});
 }
 
 TEST_F(Cli, MissingFile) {

@@ -123,3 +123,54 @@ TEST(DataIn, InputErrorsNameTheLine) {
     }
   }
 }
+
+// The current MPM3D-F90's cards: a neoh material (F - I per particle, volume from det F),
+// the vsin velocity field, 'part' loads, and the displacement variables (initial positions
+// kept).
+TEST(DataIn, CurrentVersionNeoHookeanVsinPartLoadDisplacements) {
+  mpm3d::Model m = mpm3d::read_deck_text(
+      "nbmp 12 nbbo 1 nmat 1 spx 0 4 spy 0 4 spz 0 4 dcel 1 endt 1\n"
+      "outr disx\ncurv disy 3\n"
+      "mate 1 neoh 1100 17e6 0.3\n"
+      "part bloc 1 1 2.0 0.5 1.0 1.5 2.0 2 3 2\n"
+      "velo vsin 2.0 endv\n"
+      "load part 3 1 2 3 endl\n"
+      "endi\n",
+      "n.mpm");
+  const auto& P = m.particles;
+  ASSERT_EQ(m.mats.size(), 1u);
+  EXPECT_EQ(m.mats[0].type, MAT_NEOH);
+  EXPECT_TRUE(m.uvf);
+  ASSERT_EQ(P.defgrad.size(), 9u * 12u);
+  for (double h : P.defgrad) EXPECT_EQ(h, 0.0);
+  ASSERT_EQ(P.x0.size(), P.x.size());
+  for (size_t i = 0; i < P.x.size(); ++i) EXPECT_EQ(P.x0[i], P.x[i]);
+  for (int p = 0; p < P.np; ++p) {
+    // pi as the original's single-precision constant
+    EXPECT_EQ(P.v[3 * p], 2.0 * std::sin((double(3.1415926535f) * P.x[3 * p + 1]) / 6.0)) << p;
+    EXPECT_NE(P.v[3 * p], 0.0);
+    EXPECT_EQ(P.v[3 * p + 1], 0.0);
+    EXPECT_EQ(P.v[3 * p + 2], 0.0);
+  }
+  ASSERT_EQ(P.fext.size(), 36u);
+  EXPECT_EQ(P.fext[6], 1.0);  // particle 3
+  EXPECT_EQ(P.fext[7], 2.0);
+  EXPECT_EQ(P.fext[8], 3.0);
+  EXPECT_EQ(P.fext[9], 0.0);
+  EXPECT_TRUE(mpm3d::is_output_variable("stsx"));
+  // UVFp alone: the volume update of any model, no deformation gradient carried.
+  mpm3d::Model u = mpm3d::read_deck_text(deck("1 elas 2.0 200.0 0.25", "UVFp\n"), "u.mpm");
+  EXPECT_TRUE(u.uvf);
+  EXPECT_TRUE(u.particles.defgrad.empty());
+  EXPECT_TRUE(u.particles.x0.empty());
+  EXPECT_FALSE(mpm3d::read_deck_text(deck("1 elas 2.0 200.0 0.25"), "e.mpm").uvf);
+}
+
+TEST(DataIn, NeoHookeanWithBulkViscosityIsRefused) {
+  try {
+    mpm3d::read_deck_text(deck("1 neoh 1100 17e6 0.3", "bulk 1.5 0.06\n"), "nb.mpm");
+    ADD_FAILURE() << "accepted";
+  } catch (const mpm3d::DeckError& e) {
+    EXPECT_NE(std::string(e.what()).find("'bulk' with a neoh material"), std::string::npos) << e.what();
+  }
+}

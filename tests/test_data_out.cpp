@@ -2,6 +2,7 @@
 // of the animation and curve output.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -53,4 +54,38 @@ TEST(DataOut, ParticleVariables) {
   EXPECT_EQ(mpm3d::particle_variable(m, "fail", 1), 1.0);
   // Sound speed sqrt((lambda + 2G) / rho) at the current density 0.25 / 0.125 = 2: sqrt(120).
   EXPECT_NEAR(mpm3d::particle_variable(m, "sspd", 1), std::sqrt(120.0), 1e-13);
+}
+
+// smoo: the pressure smoothed through the grid is the pressure itself where the pressure is
+// uniform (the weights of each node sum to one over its particles' volumes, the shape
+// functions of each particle to one), with trilinear and with GIMP shape functions; 'smoo'
+// adds spre to the animation variables.
+TEST(SmoothedPressure, UniformPressureIsKept) {
+  for (const char* shape : {"", "gimp\n"}) {
+    mpm3d::Model m = mpm3d::read_deck_text(std::string("nbmp 48 nbbo 1 nmat 1 spx 0 4 spy 0 4 spz 0 4 dcel 1 endt 1\n"
+                                                       "smoo\n") +
+                                               shape +
+                                               "mate 1 elas 1 100 0.25\npart bloc 1 1 1.0 0.5 0.9 1.3 0.7 4 4 3\nendi\n",
+                                           "s.mpm");
+    ASSERT_NE(std::find(m.anim_vars.begin(), m.anim_vars.end(), "spre"), m.anim_vars.end());
+    for (int p = 0; p < m.particles.np; ++p)
+      for (int c = 0; c < 3; ++c) m.particles.sig[6 * size_t(p) + size_t(c)] = -2.5e3;
+    mpm3d::update_smoothed_pressure(m);
+    ASSERT_EQ(m.spre.size(), 48u);
+    for (int p = 0; p < m.particles.np; ++p) {
+      EXPECT_NEAR(m.spre[size_t(p)], 2.5e3, 1e-9) << shape << p;
+      EXPECT_EQ(mpm3d::particle_variable(m, "spre", p), m.spre[size_t(p)]);
+    }
+    // A pressure that varies: the smoothed field lies within its range and differs from it.
+    for (int p = 0; p < m.particles.np; ++p)
+      for (int c = 0; c < 3; ++c) m.particles.sig[6 * size_t(p) + size_t(c)] = -double(p % 7);
+    mpm3d::update_smoothed_pressure(m);
+    double diff = 0.0;
+    for (int p = 0; p < m.particles.np; ++p) {
+      EXPECT_GE(m.spre[size_t(p)], -1e-12);
+      EXPECT_LE(m.spre[size_t(p)], 6.0 + 1e-12);
+      diff += std::fabs(m.spre[size_t(p)] - double(p % 7));
+    }
+    EXPECT_GT(diff, 1.0);
+  }
 }

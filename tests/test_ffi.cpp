@@ -127,20 +127,22 @@ TEST(Ffi, NonNumericFieldIsAnErrorNamingTheLine) {
   }
 }
 
-TEST(Ffi, LineOf256CharactersIsAcceptedAnd257IsAnError) {
-  // 4 + 1 + 251 = 256 characters: accepted (a comment fills the rest).
-  const std::string ok = "endi " + std::string("!") + std::string(250, 'x');
-  ASSERT_EQ(ok.size(), 256u);
+TEST(Ffi, LineOf4096CharactersIsAcceptedAnd4097IsAnError) {
+  // 4 + 1 + 4091 = 4096 characters: accepted (a comment fills the rest). The original
+  // reads lines of any length and keeps the first 256 characters; the current public
+  // decks have comment lines past 200.
+  const std::string ok = "endi " + std::string("!") + std::string(4090, 'x');
+  ASSERT_EQ(ok.size(), 4096u);
   EXPECT_NO_THROW(TokenStream::from_string("nbmp 1\n" + ok + "\n", "a.mpm"));
   const std::string too_long = ok + "y";
   try {
     TokenStream::from_string("nbmp 1\n\n" + too_long + "\nendi\n", "long.mpm");
-    FAIL() << "257-character line accepted";
+    FAIL() << "4097-character line accepted";
   } catch (const DeckError& e) {
     EXPECT_EQ(e.line(), 3);
     const std::string w = e.what();
     EXPECT_EQ(w.rfind("long.mpm:3: ", 0), 0u) << w;
-    EXPECT_NE(w.find("256"), std::string::npos) << w;
+    EXPECT_NE(w.find("4096"), std::string::npos) << w;
   }
 }
 

@@ -307,3 +307,38 @@ TEST(Stability, RunawayEnergyIsStoppedWithADiagnostic) {
     EXPECT_NE(diagnostic.find("particle"), std::string::npos) << diagnostic;
   }
 }
+
+// The current version's time step (decks with neoh, UVFp or vsin): after every step
+// dt = dtscale min_m h / (c_m + v_max), v_max the largest particle velocity component; the
+// book's decks keep the initial dt.
+TEST(Solver, CurrentVersionTimeStepFollowsTheFastestParticle) {
+  const std::string deck =
+      "nbmp 12 nbbo 1 nmat 1 spx 0 4 spy 0 4 spz 0 4 dcel 1 dtsc 0.5 endt 1\n"
+      "mate 1 neoh 1100 17e6 0.3\n"
+      "part bloc 1 1 1100 0.5 1.0 1.5 2.0 2 3 2\n"
+      "velo vsin 30.0 endv\nendi\n";
+  mpm3d::Model model = mpm3d::read_deck_text(deck, "dt.mpm");
+  ASSERT_TRUE(model.dt_per_step);
+  const double dt0 = model.dt;
+  mpm3d::Simulation sim(std::move(model));
+  for (int s = 0; s < 3; ++s) {
+    sim.step();
+    double vmax = 0.0;
+    for (double v : sim.model.particles.v) vmax = std::max(vmax, std::fabs(v));
+    ASSERT_GT(vmax, 1.0);
+    const double c = sim.model.mats[0].wave_speed;
+    EXPECT_EQ(sim.model.dt, (1.0 / (c + vmax)) * 0.5) << s;
+    EXPECT_LT(sim.model.dt, dt0);
+  }
+  // The book's behaviour when asked (--time-step book): dt stays.
+  mpm3d::Model book = mpm3d::read_deck_text(deck, "dt.mpm");
+  book.dt_per_step = false;
+  mpm3d::Simulation fixed(std::move(book));
+  fixed.step();
+  fixed.step();
+  EXPECT_EQ(fixed.model.dt, dt0);
+  EXPECT_FALSE(mpm3d::read_deck_text("nbmp 1 nbbo 1 nmat 1 spx 0 4 spy 0 4 spz 0 4 dcel 1 endt 1\n"
+                                     "mate 1 elas 1 100 0.25\npart poin 1 1\n 1 1 1.0 1 1 1\nendi\n",
+                                     "b.mpm")
+                   .dt_per_step);
+}

@@ -5,6 +5,7 @@
 // side by side. A lane must never see its neighbours' branch.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <random>
 #include <string>
@@ -170,4 +171,98 @@ TEST(StressLanes, EveryLaneEqualsTheScalarUpdateBitForBit) {
   // The batches mixed both kinds of lanes (otherwise the selects were not exercised).
   EXPECT_GT(yielded, 1000);
   EXPECT_GT(elastic, 1000);
+}
+
+namespace {
+
+MaterialParams neo_hookean() {
+  MaterialParams m{};
+  m.type = MAT_NEOH;
+  m.rho0 = 1100.0;
+  m.young = 17.0e6;
+  m.poisson = 0.3;
+  EXPECT_EQ(mpm3d::material_derive(m), "");
+  return m;
+}
+
+// One particle from rest (H = 0, no stress) through one increment L dt.
+mpm3d::StressBlock neo_hookean_step(const MaterialParams& m, const double L[9], double dt) {
+  mpm3d::StressBlock b{};
+  for (int r = 0; r < 9; ++r) b.L[r][0] = L[r];
+  b.mass[0] = m.rho0;
+  b.vol[0] = 1.0;
+  mpm3d::stress_block_lane(m, b, 0, mpm3d::StressBlockArgs{dt, false, false, 0.0, 0.0, 0.0, true});
+  return b;
+}
+
+}  // namespace
+
+// neoh: sigma = (G (B - I) + lambda ln J I) / J of F = I + L dt, against the closed forms of
+// a uniaxial stretch and a simple shear.
+TEST(StressLanes, NeoHookeanStretchAndShear) {
+  const MaterialParams m = neo_hookean();
+  const double G = m.young / (2.0 * (1.0 + m.poisson));
+  const double lam = m.young * m.poisson / ((1.0 + m.poisson) * (1.0 - 2.0 * m.poisson));
+  const double dt = 1.0e-3, e = 0.05;
+  const double stretch[9] = {e / dt, 0, 0, 0, 0, 0, 0, 0, 0};
+  mpm3d::StressBlock b = neo_hookean_step(m, stretch, dt);
+  const double J = 1.0 + e;
+  EXPECT_NEAR(b.sig[0][0], (G * (J * J - 1.0) + lam * std::log(J)) / J, 1e-9 * G);
+  EXPECT_NEAR(b.sig[1][0], lam * std::log(J) / J, 1e-9 * G);
+  EXPECT_NEAR(b.sig[2][0], lam * std::log(J) / J, 1e-9 * G);
+  EXPECT_EQ(b.sig[3][0], 0.0);
+  EXPECT_NEAR(b.vol[0], J, 1e-15);
+  EXPECT_NEAR(b.H[0][0], e, 1e-15);
+  const double g = 0.1;
+  const double shear[9] = {0, g / dt, 0, 0, 0, 0, 0, 0, 0};  // dv_x / dy
+  b = neo_hookean_step(m, shear, dt);
+  EXPECT_NEAR(b.sig[0][0], G * g * g, 1e-9 * G);  // J = 1, B - I = [[g^2, g, 0], [g, 0, 0], 0]
+  EXPECT_NEAR(b.sig[5][0], G * g, 1e-9 * G);      // xy
+  EXPECT_NEAR(b.sig[1][0], 0.0, 1e-9 * G);
+  EXPECT_EQ(b.sig[3][0], 0.0);
+  EXPECT_EQ(b.sig[4][0], 0.0);
+  EXPECT_NEAR(b.vol[0], 1.0, 1e-15);
+  // A second, opposite increment brings F back to I: no stress left (hyperelastic: the
+  // stress depends on F only, not on the path).
+  mpm3d::StressBlock back = b;
+  for (int r = 0; r < 9; ++r) back.L[r][0] = -shear[r];
+  mpm3d::stress_block_lane(m, back, 0, mpm3d::StressBlockArgs{dt, false, false, 0.0, 0.0, 0.0, true});
+  // F = (I - L dt)(I + L dt) = I - (L dt)^2 = I for this L (L^2 = 0).
+  for (int c = 0; c < 6; ++c) EXPECT_NEAR(back.sig[c][0], 0.0, 1e-9 * G) << c;
+}
+
+// The neoh lanes and the UVFp volume of the other models: every lane of the vector update
+// equals the lane-by-lane update, bit for bit (the Fortran reference follows the latter).
+TEST(StressLanes, NeoHookeanAndUvfLanesEqualOneLaneAtATime) {
+  std::mt19937_64 rng(20261125);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const double dt = 1.0e-3;
+  const MaterialParams models[] = {neo_hookean(), solid(MAT_ELAS, EOS_NONE), solid(MAT_PLA2, EOS_NONE)};
+  for (const MaterialParams& m : models) {
+    const mpm3d::StressBlockArgs args{dt, false, false, 0.0, 0.0, 0.0, true};
+    for (int trial = 0; trial < 500; ++trial) {
+      mpm3d::StressBlock in{};
+      for (int i = 0; i < mpm3d::kStressLanes; ++i) {
+        for (int r = 0; r < 9; ++r) in.L[r][i] = 20.0 * u(rng);
+        for (int r = 0; r < 9; ++r) in.H[r][i] = m.type == MAT_NEOH ? 0.2 * u(rng) : 0.0;
+        in.mass[i] = m.rho0;
+        in.vol[i] = 1.0 + 0.2 * u(rng);
+        for (int c = 0; c < 6; ++c) in.sig[c][i] = 1.0e3 * u(rng);
+        in.ie[i] = 1.0 + u(rng);
+        in.burn[i] = 1.0;
+      }
+      mpm3d::StressBlock vec = in, lane = in;
+      mpm3d::stress_block(m, vec, args);
+      for (int i = 0; i < mpm3d::kStressLanes; ++i) mpm3d::stress_block_lane(m, lane, i, args);
+      ASSERT_EQ(std::memcmp(&vec, &lane, sizeof vec), 0) << mpm3d::material_keyword(m.type) << " trial " << trial;
+      for (int i = 0; i < mpm3d::kStressLanes; ++i) {
+        // det(I + L dt) volume, not 1 + tr
+        double A[9];
+        for (int r = 0; r < 9; ++r) A[r] = in.L[r][i] * dt;
+        const double det = (1 + A[0]) * ((1 + A[4]) * (1 + A[8]) - A[5] * A[7]) -
+                           A[1] * (A[3] * (1 + A[8]) - A[5] * A[6]) + A[2] * (A[3] * A[7] - (1 + A[4]) * A[6]);
+        ASSERT_NEAR(vec.vol[i], in.vol[i] * det, 1e-14);
+      }
+    }
+  }
 }
