@@ -65,6 +65,7 @@ bench: build
 
 report: build
 	$(PYTHON) tools/report.py $(BUILD) --threads 2 $(REPORT_ARGS)
+	$(PYTHON) tools/current_decks.py $(BUILD) --threads 2
 
 clean:
 	rm -rf $(BUILD) $(BUILD)-fuzz $(SAN_BUILD)
