@@ -46,7 +46,8 @@ const char* kUsage =
     "  --time-step book|current  book: the initial dt for the whole run; current: dt\n"
     "                     recomputed after every step from the wave speed plus the largest\n"
     "                     particle velocity, as the current MPM3D-F90 (default: current for\n"
-    "                     decks with its solver keywords, neoh, UVFp, vsin; else book)\n"
+    "                     decks with its solver keywords, neoh, UVFp, vsin, QuLo,\n"
+    "                     Damp; else book)\n"
     "  --particle-order blocks|deck  storage order of the particles (default blocks: sorted by\n"
     "                     patch-sized blocks of cells, so each thread's patches hold a run of\n"
     "                     memory; deck: as read). Outputs are in deck order either way\n"
@@ -324,7 +325,10 @@ int run_main(int argc, char** argv) {
       last_ckpt_path = path;
     };
     int interrupted = 0;
-    while (sim.time < end_time - eps && (opt.max_steps < 0 || sim.steps < opt.max_steps)) {
+    // QuLo without --end-time: on past the end time until the load has settled.
+    const bool settle = m.load_ramp_time > 0.0 && opt.end_time <= 0.0;
+    while ((settle ? !sim.quasi_static_done() : sim.time < end_time - eps) &&
+           (opt.max_steps < 0 || sim.steps < opt.max_steps)) {
       const auto t0 = std::chrono::steady_clock::now();
       dt_min = std::min(dt_min, m.dt);
       dt_max = std::max(dt_max, m.dt);

@@ -179,6 +179,14 @@ Model DeckReader::read() {
     } else if (k == "smoo") {  // the current version's smoothed pressure (an output)
       if (std::find(m_.anim_vars.begin(), m_.anim_vars.end(), "spre") == m_.anim_vars.end())
         m_.anim_vars.push_back("spre");
+    } else if (k == "qulo") {
+      m_.load_ramp_time = ts_.real("the load ramp time");
+      if (!(m_.load_ramp_time > 0.0)) fail(key.line, "'QuLo': the load ramp time must be positive");
+      m_.dt_per_step = true;
+    } else if (k == "damp") {
+      m_.damping = ts_.real("the damping coefficient");
+      if (!(m_.damping >= 0.0)) fail(key.line, "'Damp': the damping coefficient must not be negative");
+      m_.dt_per_step = true;
     } else if (k == "uvfp") {  // the current version's volume update from F
       m_.uvf = true;
       m_.dt_per_step = true;

@@ -53,8 +53,12 @@ struct Model {
   // The current version's time step: dtscale min over the materials of h / (c + v_max),
   // recomputed after every step (v_max: the largest particle velocity component); else the
   // initial dt throughout. On for decks with the current version's solver keywords (neoh,
-  // UVFp, vsin) unless the command line says otherwise (--time-step).
+  // UVFp, vsin, QuLo, Damp) unless the command line says otherwise (--time-step).
   bool dt_per_step = false;
+  // Quasi-static loading (QuLo T, Damp c): loads ramp over T; -c m v joins the body force.
+  // With QuLo the run goes on past endtime, as the current version's, until the kinetic
+  // share of the energy is below 0.005 and the time above 100 (quasi_static_done).
+  double load_ramp_time = 0.0, damping = 0.0;
   // spre (smoothed pressure, 'smoo'): computed when written (update_smoothed_pressure).
   mutable std::vector<double> spre;
   std::vector<std::string> warnings;

@@ -147,7 +147,9 @@ void Simulation::bind() {
   c.patch_cells = grid.patch_cells;
   for (int f = 0; f < 6; ++f) c.fix[f] = grid.fix[f];
   c.scheme = model.scheme;
-  c.has_body_force = (model.has_gravity || model.has_loads) ? 1 : 0;
+  c.has_body_force = (model.has_gravity || model.has_loads || model.damping > 0.0) ? 1 : 0;
+  c.load_ramp_time = model.load_ramp_time;
+  c.damping = model.damping;
   // GIMP: 27-node stencils, patch buffers with a halo of one node layer.
   c.psize = model.gimp ? P.psize.data() : nullptr;
   c.shape = model.gimp ? 1 : 0;

@@ -34,6 +34,11 @@ class Simulation {
   Simulation& operator=(const Simulation&) = delete;
 
   void step();  // one explicit step; throws HealthError (see health_check)
+  // QuLo's end of the run (the current version's rule): past the end time, the kinetic
+  // share of the energy below 0.005 and the time above 100.
+  bool quasi_static_done() const {
+    return time > model.endtime && kinetic / (kinetic + internal) < 0.005 && time > 100.0;
+  }
   void set_stages(const StageTable& t) { stages_ = t; }
   // Redefines the background grid (restart): the lattice (origin, cell h, deck_nc cells,
   // patch size) and the window of cells off .. off + nc - 1 on it.

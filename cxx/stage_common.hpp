@@ -79,9 +79,21 @@ __attribute__((always_inline)) inline void p2g_particle(const StepContext* c, in
     for (int s = 0; s < 6; ++s) vs[s] = c->sig[6 * p + s] * volp;
     if (with_body) {
       const double* g = c->gravity + 3 * c->body[p];
-      for (int a = 0; a < 3; ++a) {
-        fb[a] = mp * g[a];
-        if (c->fext) fb[a] = fb[a] + c->fext[3 * p + a];
+      if (c->load_ramp_time > 0.0 || c->damping > 0.0) {
+        // Quasi-static loading, in the current version's order: the load (ramped until
+        // load_ramp_time, c->time being the end of this step), the damping, gravity.
+        const bool ramp = c->load_ramp_time > 0.0 && c->time < c->load_ramp_time;
+        for (int a = 0; a < 3; ++a) {
+          double f = 0.0;
+          if (c->fext) f = ramp ? (c->fext[3 * p + a] / c->load_ramp_time) * c->time : c->fext[3 * p + a];
+          if (c->damping > 0.0) f = f - (c->damping * mp) * vp[a];
+          fb[a] = f + mp * g[a];
+        }
+      } else {
+        for (int a = 0; a < 3; ++a) {
+          fb[a] = mp * g[a];
+          if (c->fext) fb[a] = fb[a] + c->fext[3 * p + a];
+        }
       }
     }
   }

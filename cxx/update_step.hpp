@@ -62,6 +62,9 @@ struct StepContext {
   // Finite-strain solids (issue 16).
   double *defgrad;           // (9,np) F - I, row-major, of each particle, or null: only with neoh
   int uvf;                   // 1: volume from det(I + L dt) (UVFp, and always for neoh)
+  // Quasi-static loading (the current version's QuLo and Damp; 0: off): the point loads grow
+  // linearly over load_ramp_time, and -damping m v joins each particle's body force.
+  double load_ramp_time, damping;
   // Fields after this point are stage-internal scratch of the C++ kernels (a Fortran
   // mirror of the struct may stop before them).
   int *pscratch;       // (np) patch of each particle during binning

@@ -53,6 +53,8 @@ module mpm3d_data_in
     real(dp) :: bulk_q1 = 0.0_dp, bulk_q2 = 0.0_dp
     logical :: uvf = .false.            ! volume from det(I + L dt): UVFp, or a neoh material
     logical :: dt_per_step = .false.    ! the current version's dt, recomputed every step
+    real(dp) :: load_ramp_time = 0.0_dp ! QuLo: loads ramp over this time (0: off)
+    real(dp) :: damping = 0.0_dp        ! Damp: -damping m v joins the body force
   end type model_t
 
   public :: read_deck, is_output_variable
@@ -318,6 +320,15 @@ contains
       case ('gimp')
         m%gimp = .true.
       case ('smoo')  ! the current version's smoothed pressure: an output of mpm3d only
+      case ('qulo')
+        m%load_ramp_time = ts%real('the load ramp time')
+        if (.not. (m%load_ramp_time > 0.0_dp)) call ts%fail(key%line, "'QuLo': the load ramp time must be positive")
+        m%dt_per_step = .true.
+      case ('damp')
+        m%damping = ts%real('the damping coefficient')
+        if (.not. (m%damping >= 0.0_dp)) &
+          call ts%fail(key%line, "'Damp': the damping coefficient must not be negative")
+        m%dt_per_step = .true.
       case ('uvfp')  ! the current version's volume update from F
         m%uvf = .true.
         m%dt_per_step = .true.

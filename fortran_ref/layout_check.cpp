@@ -6,15 +6,15 @@
 
 #include "update_step.hpp"
 
-// The Fortran mirror stops after uvf: later fields are C++-internal scratch.
+// The Fortran mirror stops after damping: later fields are C++-internal scratch.
 
-extern "C" void mpm3d_f_context_layout(size_t out[15]);
+extern "C" void mpm3d_f_context_layout(size_t out[16]);
 extern "C" void mpm3d_f_step_constants(int out[14]);
 
 int main() {
-  size_t f[15];
+  size_t f[16];
   mpm3d_f_context_layout(f);
-  const size_t c[15] = {sizeof(StepContext),
+  const size_t c[16] = {sizeof(StepContext),
                        offsetof(StepContext, result),
                        offsetof(StepContext, np),
                        offsetof(StepContext, fix),
@@ -28,16 +28,17 @@ int main() {
                        offsetof(StepContext, psize),
                        offsetof(StepContext, ncontact),
                        offsetof(StepContext, defgrad),
-                       offsetof(StepContext, uvf)};
-  const char* what[15] = {"sizeof(StepContext)", "offsetof(result)", "offsetof(np)", "offsetof(fix)",
+                       offsetof(StepContext, uvf),
+                       offsetof(StepContext, damping)};
+  const char* what[16] = {"sizeof(StepContext)", "offsetof(result)", "offsetof(np)", "offsetof(fix)",
                          "offsetof(reduce_block)", "sizeof(MaterialParams)", "offsetof(eos_e0)",
                          "offsetof(eos_type)", "offsetof(bulk_q2)", "offsetof(dp_tension)", "offsetof(cell_off)",
                          "offsetof(psize)", "offsetof(ncontact)",
-                         "offsetof(defgrad)", "offsetof(uvf)"};
+                         "offsetof(defgrad)", "offsetof(uvf)", "offsetof(damping)"};
   int bad = 0;
-  for (int i = 0; i < 15; ++i) {
+  for (int i = 0; i < 16; ++i) {
     // sizeof(StepContext) may exceed the Fortran size by the C++ scratch fields only.
-    const bool ok = i == 0 ? (f[0] <= c[0] && f[0] >= offsetof(StepContext, uvf) + sizeof(int))
+    const bool ok = i == 0 ? (f[0] <= c[0] && f[0] >= offsetof(StepContext, damping) + sizeof(double))
                            : c[i] == f[i];
     std::printf("%-24s C %4zu  Fortran %4zu%s\n", what[i], c[i], f[i], ok ? "" : "  MISMATCH");
     if (!ok) bad = 1;

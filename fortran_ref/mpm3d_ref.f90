@@ -37,7 +37,7 @@ program mpm3d_ref
   integer :: woff(3), wnc(3)
   real(dp) :: end_time, time, eps, kinetic, internal, rv, initial_total, momentum(3)
   real(dp) :: external_work    ! bound of the work of gravity and loads: sum |f.v| dt (health check)
-  logical :: quiet, order_blocks
+  logical :: quiet, order_blocks, settle, end_time_given
   character(len=4096) :: arg
 
   ! ---------------------------------------------------------------- command line
@@ -112,6 +112,7 @@ program mpm3d_ref
 
   ! ---------------------------------------------------------------- set-up
   call read_deck(deck, model)
+  end_time_given = end_time > 0.0_dp
   if (end_time <= 0.0_dp) end_time = model%endtime
   np = model%particles%np
   if (regrid_every < 0) regrid_every = model%regrid_every
@@ -179,7 +180,9 @@ program mpm3d_ref
   rc = 0
   external_work = 0.0_dp
   eps = 1.0e-9_dp * model%dt
-  do while (time < end_time - eps .and. (max_steps < 0 .or. steps < max_steps))
+  ! QuLo without --end-time: on past the end time until the load has settled (as mpm3d).
+  settle = model%load_ramp_time > 0.0_dp .and. .not. end_time_given
+  do while (running() .and. (max_steps < 0 .or. steps < max_steps))
     call step()
     steps = steps + 1
     time = time + model%dt
@@ -230,6 +233,15 @@ contains
     end associate
     wdt = w * model%dt
   end function dt_work_of_body_forces
+
+  ! Whether the time loop goes on (Simulation::quasi_static_done with QuLo).
+  logical function running()
+    if (settle) then
+      running = .not. (time > model%endtime .and. kinetic / (kinetic + internal) < 0.005_dp .and. time > 100.0_dp)
+    else
+      running = time < end_time - eps
+    end if
+  end function running
 
   ! The current version's dt from the particle velocities (Simulation::velocity_time_step):
   ! dtscale min over the materials of h / (c + v_max).
@@ -335,7 +347,9 @@ contains
     ctx%patch_cells = grid%patch_cells
     ctx%fix = grid%fix
     ctx%scheme = model%scheme
-    ctx%has_body_force = merge(1, 0, model%has_gravity .or. model%has_loads)
+    ctx%has_body_force = merge(1, 0, model%has_gravity .or. model%has_loads .or. model%damping > 0.0_dp)
+    ctx%load_ramp_time = model%load_ramp_time
+    ctx%damping = model%damping
     ctx%bulk_q1 = model%bulk_q1
     ctx%bulk_q2 = model%bulk_q2
     ! GIMP: 27-node stencils, patch buffers with a halo of one node layer.

@@ -51,7 +51,7 @@ contains
     real(dp), pointer :: buf(:,:,:), lx(:,:), v(:,:), sig(:,:), mass(:), vol(:), fext(:,:), grav(:,:)
     real(dp), pointer :: psize(:)
     integer(c_int), pointer :: pstart(:), ppart(:), slots(:), cell(:), body(:)
-    real(dp) :: sn(27), sg(3, 27), vs(6), fb(3), mp, volp, mn, gx, gy, gz, fx, fy, fz
+    real(dp) :: sn(27), sg(3, 27), vs(6), fb(3), mp, volp, mn, gx, gy, gz, fx, fy, fz, f
     integer :: pc, qq, q, slot, idx, p, base, s, a, k, ln, nk
     integer :: ci(3), o(3)
     logical :: has_fext, body_force, gimp
@@ -100,10 +100,27 @@ contains
             vs(s) = sig(s, p) * volp
           end do
           if (body_force) then
-            do a = 1, 3
-              fb(a) = mp * grav(a, body(p) + 1)
-              if (has_fext) fb(a) = fb(a) + fext(a, p)
-            end do
+            if (c%load_ramp_time > 0.0_dp .or. c%damping > 0.0_dp) then
+              ! Quasi-static loading (as p2g_particle, cxx/stage_common.hpp): the load, ramped
+              ! until load_ramp_time, the damping, gravity.
+              do a = 1, 3
+                f = 0.0_dp
+                if (has_fext) then
+                  if (c%load_ramp_time > 0.0_dp .and. c%time < c%load_ramp_time) then
+                    f = (fext(a, p) / c%load_ramp_time) * c%time
+                  else
+                    f = fext(a, p)
+                  end if
+                end if
+                if (c%damping > 0.0_dp) f = f - (c%damping * mp) * v(a, p)
+                fb(a) = f + mp * grav(a, body(p) + 1)
+              end do
+            else
+              do a = 1, 3
+                fb(a) = mp * grav(a, body(p) + 1)
+                if (has_fext) fb(a) = fb(a) + fext(a, p)
+              end do
+            end if
           end if
         end if
         do k = 0, nk - 1

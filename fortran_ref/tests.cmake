@@ -82,6 +82,7 @@ if(TARGET mpm3d AND TARGET mpm3d_ref)
   # vsin, 'part' loads and UVFp on a hypoelastic body, trilinear and GIMP (issue 16).
   fref_deck(free_soft_beam ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/free_soft_beam_coarse.mpm)
   fref_deck(neo_block_gimp ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/neo_block_gimp.mpm)
+  fref_deck(cantilever_quasi_static ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/cantilever_quasi_static.mpm)
   fref_deck(current_free_soft_beam ${_fref_shared}/current/FreeSoftBeam_MPM_v0p3_FreeSB_MPM.mpm)
   # GIMP with the adaptive grid (halo patches on the deck's patch lattice).
   fref_adaptive(two_blocks_gimp ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks_gimp.mpm)

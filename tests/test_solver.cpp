@@ -342,3 +342,53 @@ TEST(Solver, CurrentVersionTimeStepFollowsTheFastestParticle) {
                                      "b.mpm")
                    .dt_per_step);
 }
+
+// QuLo T: the loads grow as F t / T until T (t the end of the step), so the momentum after
+// n steps is sum_k dt_int,k F min(t_k / T, 1); Damp c: a block in uniform motion (no
+// stress) loses c m v per step, v_{k+1} = v_k (1 - c dt_int,k), whatever the grid.
+TEST(Solver, QuasiStaticLoadRampAndDamping) {
+  {
+    mpm3d::Model model = mpm3d::read_deck_text(block_deck("musl", "QuLo 1.2\nload part 22 0.0 0.0 0.5 endl\n"),
+                                               "qulo.mpm");
+    ASSERT_TRUE(model.dt_per_step);
+    mpm3d::Simulation sim(std::move(model));
+    double impulse = 0.0;
+    for (int s = 0; s < 30; ++s) {
+      const double dt = sim.model.dt, dt_int = s == 0 ? 0.5 * dt : dt;
+      sim.step();
+      impulse += dt_int * (sim.time < 1.2 ? (0.5 / 1.2) * sim.time : 0.5);
+      ASSERT_GT(lightest_node(sim), sim.model.mass_cutoff) << "step " << s + 1;
+    }
+    ASSERT_GT(sim.time, 1.2);  // both sides of the ramp
+    EXPECT_NEAR(sim.momentum[0], 0.0, 1e-13);
+    EXPECT_NEAR(sim.momentum[2], impulse, 1e-9 * impulse);
+  }
+  {
+    mpm3d::Model model =
+        mpm3d::read_deck_text(block_deck("musl", "Damp 2.0\nvelo body 1 0.1 -0.2 0.05 endv\n"), "damp.mpm");
+    mpm3d::Simulation sim(std::move(model));
+    double factor = 1.0;
+    for (int s = 0; s < 30; ++s) {
+      const double dt = sim.model.dt, dt_int = s == 0 ? 0.5 * dt : dt;
+      sim.step();
+      factor *= 1.0 - 2.0 * dt_int;
+    }
+    ASSERT_LT(factor, 0.9);
+    const auto& v = sim.model.particles.v;
+    for (int p = 0; p < sim.model.particles.np; ++p) {
+      EXPECT_NEAR(v[3 * p], 0.1 * factor, 1e-12) << p;
+      EXPECT_NEAR(v[3 * p + 1], -0.2 * factor, 1e-12) << p;
+      EXPECT_NEAR(v[3 * p + 2], 0.05 * factor, 1e-12) << p;
+    }
+    EXPECT_LT(max_abs(sim.model.particles.sig), 1e-9);
+  }
+  // The end of a QuLo run: past the end time, settled (kinetic share < 0.005), t > 100.
+  mpm3d::Simulation sim(mpm3d::read_deck_text(block_deck("musl", "QuLo 0.2\n"), "end.mpm"));
+  sim.model.endtime = 1.0;
+  sim.time = 150.0, sim.kinetic = 0.004, sim.internal = 1.0;
+  EXPECT_TRUE(sim.quasi_static_done());
+  sim.kinetic = 0.006;
+  EXPECT_FALSE(sim.quasi_static_done());
+  sim.kinetic = 0.004, sim.time = 99.0;
+  EXPECT_FALSE(sim.quasi_static_done());
+}
