@@ -54,8 +54,15 @@ void DeckReader::need_counts(const Token& key, bool particles, bool materials, b
   if (bodies && m_.nbbo < 0) fail(key.line, "'" + key.text + "' before 'nbbo' (number of bodies)");
 }
 
+// Keywords only the current MPM3D-F90 knows: a deck that uses one is read and run with the
+// current version's behaviours where the two versions differ (Model::current_version).
+static const std::vector<std::string> kCurrentKeywords = {"neoh", "uvfp", "vsin", "qulo", "damp", "smoo", "bimp",
+                                                          "sgmp", "tlmp", "drda", "blod", "cicl", "ksin", "nuli"};
+
 Model DeckReader::read() {
   m_.deck_path = ts_.name();
+  m_.current_version = ts_.has_keyword(kCurrentKeywords);
+  m_.dt_per_step = m_.current_version;
   while (!ts_.at_end()) {
     const Token key = ts_.next();
     const std::string k = key4(key.text);
@@ -182,14 +189,11 @@ Model DeckReader::read() {
     } else if (k == "qulo") {
       m_.load_ramp_time = ts_.real("the load ramp time");
       if (!(m_.load_ramp_time > 0.0)) fail(key.line, "'QuLo': the load ramp time must be positive");
-      m_.dt_per_step = true;
     } else if (k == "damp") {
       m_.damping = ts_.real("the damping coefficient");
       if (!(m_.damping >= 0.0)) fail(key.line, "'Damp': the damping coefficient must not be negative");
-      m_.dt_per_step = true;
     } else if (k == "uvfp") {  // the current version's volume update from F
       m_.uvf = true;
-      m_.dt_per_step = true;
     } else if (k == "hdf5") {  // extension: HDF5 + XDMF animation series
       bool on = true;
       if (!ts_.at_end() && (key4(ts_.peek().text) == "on" || key4(ts_.peek().text) == "off")) on = on_off(key);

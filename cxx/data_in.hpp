@@ -50,10 +50,15 @@ struct Model {
   int contact_line = 0;                // deck line of the cont card
   // Volume from the deformation, det(I + L dt) per step (UVFp; on with any neoh material).
   bool uvf = false;
+  // A deck with a keyword only the current MPM3D-F90 knows (neoh, UVFp, vsin, QuLo, Damp,
+  // smoo, bimp, sgmp, TLmp, drda, blod, cicl, ksin, nuli) gets the current version's
+  // behaviours where the versions differ: bloc particles numbered x fastest (the book: z
+  // fastest), and dt_per_step.
+  bool current_version = false;
   // The current version's time step: dtscale min over the materials of h / (c + v_max),
   // recomputed after every step (v_max: the largest particle velocity component); else the
-  // initial dt throughout. On for decks with the current version's solver keywords (neoh,
-  // UVFp, vsin, QuLo, Damp) unless the command line says otherwise (--time-step).
+  // initial dt throughout. current_version unless the command line says otherwise
+  // (--time-step).
   bool dt_per_step = false;
   // Quasi-static loading (QuLo T, Damp c): loads ramp over T; -c m v joins the body force.
   // With QuLo the run goes on past endtime, as the current version's, until the kinetic

@@ -135,7 +135,7 @@ void DeckReader::read_particles(const Token& key) {
         v = ts_.integer("a block count");
         if (v < 1 || v > 100000) fail(kind.line, "block counts must be positive");
       }
-      generate_block(parts_, card, o, n);
+      generate_block(parts_, card, o, n, m_.current_version);
     } else if (k == "sphe") {
       double c[3];
       for (double& v : c) v = ts_.real("the sphere centre");
@@ -191,7 +191,6 @@ void DeckReader::read_velocities(const Token& key) {
       // v_x = v0 sin(pi y / 6) from its initial y, with pi as the original's single-
       // precision constant 3.1415926535 (3.14159274...).
       const double v0 = ts_.real("a velocity");
-      m_.dt_per_step = true;
       const double pi_single = double(3.1415926535f);
       Particles& P = m_.particles;
       for (int p = 0; p < parts_.count(); ++p) {

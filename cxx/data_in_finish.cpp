@@ -95,7 +95,6 @@ void DeckReader::finish(int line) {
       fail(line, "'bulk' with a neoh material: the neo-Hookean stress has no bulk viscosity term (the current "
                  "MPM3D ignores it); remove 'bulk'");
     m_.uvf = true;
-    m_.dt_per_step = true;
     P.defgrad.assign(9 * size_t(P.np), 0.0);
   }
   // disx, disy, disz: displacements from the initial positions.

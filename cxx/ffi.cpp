@@ -173,4 +173,16 @@ bool parse_integer(const std::string& token, long& value) {
   return true;
 }
 
+bool TokenStream::has_keyword(const std::vector<std::string>& keys) const {
+  size_t i = 0;
+  if (!tokens_.empty() && key4(tokens_[0].text) == "mpm3")  // the title line is free text
+    while (i < tokens_.size() && tokens_[i].line == tokens_[0].line) ++i;
+  for (; i < tokens_.size(); ++i) {
+    const std::string k = key4(tokens_[i].text);
+    for (const auto& key : keys)
+      if (k == key) return true;
+  }
+  return false;
+}
+
 }  // namespace mpm3d

@@ -38,6 +38,8 @@ class TokenStream {
   std::string rest_of_line(const Token& after);
   void skip_line(const Token& of);
   int line() const;      // line of the next token (or the last line at the end)
+  // Whether a token after the title line is one of the keywords keys (key4 form).
+  bool has_keyword(const std::vector<std::string>& keys) const;
   const std::string& name() const { return name_; }
 
   double real(const char* what);   // next token as a real number

@@ -47,11 +47,20 @@ void check_points_room(const ParticleAppender& out, int line, long n) {
     out.fail(line, "'part poin' with " + std::to_string(n) + " points exceeds 'nbmp' = " + std::to_string(out.limit()));
 }
 
-void generate_block(ParticleAppender& out, const LatticeCard& c, const double o[3], const long n[3]) {
+void generate_block(ParticleAppender& out, const LatticeCard& c, const double o[3], const long n[3],
+                    bool x_fastest) {
   if (out.count() + n[0] * n[1] * n[2] > out.limit())
     out.fail(c.line, "block of " + std::to_string(n[0] * n[1] * n[2]) + " particles exceeds 'nbmp' = " +
                          std::to_string(out.limit()));
   const double dp = c.dp;
+  if (x_fastest) {  // the current version
+    for (long l = 0; l < n[2]; ++l)
+      for (long j = 0; j < n[1]; ++j)
+        for (long i = 0; i < n[0]; ++i)
+          out.add(c.line, c.body, c.mat, c.mass, c.vol, o[0] + (double(i) + 0.5) * dp, o[1] + (double(j) + 0.5) * dp,
+                  o[2] + (double(l) + 0.5) * dp);
+    return;
+  }
   // Book version: x outermost, z index fastest.
   for (long i = 0; i < n[0]; ++i)
     for (long j = 0; j < n[1]; ++j)

@@ -44,8 +44,10 @@ struct LatticeCard {
 // 'part poin': refuses n points when 'nbmp' leaves no room for them.
 void check_points_room(const ParticleAppender& out, int line, long n);
 // 'part bloc': n[0] x n[1] x n[2] particles at origin + (i + 1/2) dp; x index outermost, z
-// fastest (the book version). Counts in 1..100000 (checked by the reader).
-void generate_block(ParticleAppender& out, const LatticeCard& c, const double origin[3], const long n[3]);
+// fastest (the book version), or z outermost and x fastest (x_fastest: the current
+// version). Counts in 1..100000 (checked by the reader).
+void generate_block(ParticleAppender& out, const LatticeCard& c, const double origin[3], const long n[3],
+                    bool x_fastest = false);
 // 'part sphe': the lattice points centre + (i + 1/2, j + 1/2, l + 1/2) dp, i, j, l in
 // -nr .. nr-1, within nr spacings of the centre. nr in 1..10000 (checked by the reader).
 void generate_sphere(ParticleAppender& out, const LatticeCard& c, const double centre[3], long nr);

@@ -52,6 +52,8 @@ module mpm3d_data_in
     logical :: has_bulk = .false.       ! 'bulk q1 q2': artificial bulk viscosity
     real(dp) :: bulk_q1 = 0.0_dp, bulk_q2 = 0.0_dp
     logical :: uvf = .false.            ! volume from det(I + L dt): UVFp, or a neoh material
+    logical :: current_version = .false.  ! a keyword only the current MPM3D-F90 knows: its
+                                          ! behaviours (bloc x fastest, dt_per_step)
     logical :: dt_per_step = .false.    ! the current version's dt, recomputed every step
     real(dp) :: load_ramp_time = 0.0_dp ! QuLo: loads ramp over this time (0: off)
     real(dp) :: damping = 0.0_dp        ! Damp: -damping m v joins the body force
@@ -141,6 +143,33 @@ contains
     end if
   end subroutine warn
 
+  ! Whether a token after the title line is a keyword only the current MPM3D-F90 knows (as
+  ! kCurrentKeywords, cxx/data_in.cpp).
+  logical function has_current_keyword(ts) result(found)
+    type(token_stream), intent(in) :: ts
+    character(len=4), parameter :: KEYS(14) = [character(len=4) :: 'neoh', 'uvfp', 'vsin', 'qulo', &
+        'damp', 'smoo', 'bimp', 'sgmp', 'tlmp', 'drda', 'blod', 'cicl', 'ksin', 'nuli']
+    integer :: i, first
+    character(len=:), allocatable :: k
+    found = .false.
+    first = 1
+    if (ts%ntok > 0) then
+      if (key4(ts%text_of(ts%tok(1))) == 'mpm3') then   ! the title line is free text
+        do while (first <= ts%ntok)
+          if (ts%tok(first)%line /= ts%tok(1)%line) exit
+          first = first + 1
+        end do
+      end if
+    end if
+    do i = first, ts%ntok
+      k = key4(ts%text_of(ts%tok(i)))
+      if (any(KEYS == k)) then
+        found = .true.
+        return
+      end if
+    end do
+  end function has_current_keyword
+
   ! Reads the deck at path; input errors end the program (mpm3d_ffi: fatal).
   subroutine read_deck(path, m)
     character(len=*), intent(in) :: path
@@ -156,6 +185,8 @@ contains
     integer :: box_line(3), dcell_line   ! where the box and the cell size were set
 
     call ts_open(ts, path)
+    m%current_version = has_current_keyword(ts)
+    m%dt_per_step = m%current_version
     m%deck_path = path
     m%title = ''
     allocate(m%bodies(4), m%curves(4))
@@ -323,15 +354,12 @@ contains
       case ('qulo')
         m%load_ramp_time = ts%real('the load ramp time')
         if (.not. (m%load_ramp_time > 0.0_dp)) call ts%fail(key%line, "'QuLo': the load ramp time must be positive")
-        m%dt_per_step = .true.
       case ('damp')
         m%damping = ts%real('the damping coefficient')
         if (.not. (m%damping >= 0.0_dp)) &
           call ts%fail(key%line, "'Damp': the damping coefficient must not be negative")
-        m%dt_per_step = .true.
       case ('uvfp')  ! the current version's volume update from F
         m%uvf = .true.
-        m%dt_per_step = .true.
       case ('cont')
         if (ts%at_end()) call ts%fail(key%line, "'cont' needs 'lagr mu normbody'")
         t = ts%next()

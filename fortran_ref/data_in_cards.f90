@@ -203,7 +203,7 @@ contains
           nb(a) = ts%integer('a block count')
           if (nb(a) < 1 .or. nb(a) > 100000) call ts%fail(kind%line, 'block counts must be positive')
         end do
-        call generate_block(ts, m%particles, m%bodies(m%nbodies), m%nbmp, card, o, nb)
+        call generate_block(ts, m%particles, m%bodies(m%nbodies), m%nbmp, card, o, nb, m%current_version)
       else if (k == 'sphe') then
         cc = read_vec3(ts, 'the sphere centre')
         nr = ts%integer('the sphere radius in spacings')
@@ -265,7 +265,6 @@ contains
         ! The current version's free soft beam (length 6 along y): v_x = v0 sin(pi y / 6)
         ! from the initial y, pi as the original's single-precision constant.
         v(1) = ts%real('a velocity')
-        m%dt_per_step = .true.
         do p = 1, n_defined(m)
           m%particles%v(1, p) = v(1) * sin((real(3.1415926535, dp) * m%particles%x(2, p)) / 6.0_dp)
           m%particles%v(2, p) = 0.0_dp

@@ -102,7 +102,6 @@ contains
       if (m%has_bulk) call ts%fail(line, "'bulk' with a neoh material: the neo-Hookean stress has no bulk " // &
                                    "viscosity term (the current MPM3D ignores it); remove 'bulk'")
       m%uvf = .true.
-      m%dt_per_step = .true.
       allocate(m%particles%defgrad(9, m%particles%np))
       m%particles%defgrad = 0.0_dp
     end if

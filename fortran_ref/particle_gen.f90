@@ -85,7 +85,7 @@ contains
 
   ! 'part bloc': nb(1) x nb(2) x nb(3) particles at o + (i + 1/2) dp; x index outermost, z
   ! fastest (the book version). Counts in 1..100000 (checked by the reader).
-  subroutine generate_block(ts, p, b, nbmp, c, o, nb)
+  subroutine generate_block(ts, p, b, nbmp, c, o, nb, x_fastest)
     type(token_stream), intent(in) :: ts
     type(particles_t), intent(inout) :: p
     type(body_t), intent(inout) :: b
@@ -93,12 +93,26 @@ contains
     type(lattice_card_t), intent(in) :: c
     real(dp), intent(in) :: o(3)
     integer(int64), intent(in) :: nb(3)
+    logical, intent(in) :: x_fastest   ! the current version's order (the book: z fastest)
     integer(int64) :: i, j, l
     real(dp) :: dpp
     if (n_defined(b) + nb(1) * nb(2) * nb(3) > nbmp) &
       call ts%fail(c%line, 'block of ' // itoa(nb(1) * nb(2) * nb(3)) // &
                    " particles exceeds 'nbmp' = " // itoa(int(nbmp, int64)))
     dpp = c%spacing
+    if (x_fastest) then
+      do l = 0, nb(3) - 1
+        do j = 0, nb(2) - 1
+          do i = 0, nb(1) - 1
+            call add_particle(ts, p, b, nbmp, c%line, c%body, c%mat, c%mass, c%vol, &
+                              o(1) + ((real(i, dp) + 0.5_dp) * dpp), &
+                              o(2) + ((real(j, dp) + 0.5_dp) * dpp), &
+                              o(3) + ((real(l, dp) + 0.5_dp) * dpp))
+          end do
+        end do
+      end do
+      return
+    end if
     ! Book version: x outermost, z index fastest.
     do i = 0, nb(1) - 1
       do j = 0, nb(2) - 1

@@ -141,6 +141,18 @@ TEST(DataIn, CurrentVersionNeoHookeanVsinPartLoadDisplacements) {
   ASSERT_EQ(m.mats.size(), 1u);
   EXPECT_EQ(m.mats[0].type, MAT_NEOH);
   EXPECT_TRUE(m.uvf);
+  // A deck of the current version: its block order, x fastest (particle i + 2 (j + 3 l)),
+  // and its time step.
+  EXPECT_TRUE(m.current_version);
+  EXPECT_TRUE(m.dt_per_step);
+  for (int l = 0; l < 2; ++l)
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 2; ++i) {
+        const int p = i + 2 * (j + 3 * l);
+        EXPECT_EQ(P.x[3 * p + 0], 1.0 + 0.5 * (i + 0.5)) << p;
+        EXPECT_EQ(P.x[3 * p + 1], 1.5 + 0.5 * (j + 0.5)) << p;
+        EXPECT_EQ(P.x[3 * p + 2], 2.0 + 0.5 * (l + 0.5)) << p;
+      }
   ASSERT_EQ(P.defgrad.size(), 9u * 12u);
   for (double h : P.defgrad) EXPECT_EQ(h, 0.0);
   ASSERT_EQ(P.x0.size(), P.x.size());
@@ -161,9 +173,15 @@ TEST(DataIn, CurrentVersionNeoHookeanVsinPartLoadDisplacements) {
   // UVFp alone: the volume update of any model, no deformation gradient carried.
   mpm3d::Model u = mpm3d::read_deck_text(deck("1 elas 2.0 200.0 0.25", "UVFp\n"), "u.mpm");
   EXPECT_TRUE(u.uvf);
+  EXPECT_TRUE(u.current_version);
   EXPECT_TRUE(u.particles.defgrad.empty());
   EXPECT_TRUE(u.particles.x0.empty());
-  EXPECT_FALSE(mpm3d::read_deck_text(deck("1 elas 2.0 200.0 0.25"), "e.mpm").uvf);
+  const mpm3d::Model book = mpm3d::read_deck_text(deck("1 elas 2.0 200.0 0.25"), "e.mpm");
+  EXPECT_FALSE(book.uvf);
+  EXPECT_FALSE(book.current_version);
+  EXPECT_FALSE(book.dt_per_step);
+  // A title is free text: a keyword in it does not make a current deck.
+  EXPECT_FALSE(mpm3d::read_deck_text("mpm3d neoh Damp test\n" + deck("1 elas 2.0 200.0 0.25"), "t.mpm").current_version);
 }
 
 TEST(DataIn, NeoHookeanWithBulkViscosityIsRefused) {
