@@ -64,6 +64,9 @@ struct Model {
   // With QuLo the run goes on past endtime, as the current version's, until the kinetic
   // share of the energy is below 0.005 and the time above 100 (quasi_static_done).
   double load_ramp_time = 0.0, damping = 0.0;
+  // drda: after a step in which the kinetic energy did not grow, every particle stops
+  // (velocities and kinetic energy zero): the current version's dynamic relaxation.
+  bool dynamic_relaxation = false;
   // spre (smoothed pressure, 'smoo'): computed when written (update_smoothed_pressure).
   mutable std::vector<double> spre;
   std::vector<std::string> warnings;

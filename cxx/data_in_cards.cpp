@@ -108,7 +108,7 @@ void DeckReader::read_particles(const Token& key) {
       const double x = ts_.real("x"), y = ts_.real("y"), z = ts_.real("z");
       parts_.add(pt.line, int(m_.bodies.size()) - 1, mat, mass, vol, x, y, z);
     }
-  } else if (k == "bloc" || k == "sphe" || k == "cyli") {
+  } else if (k == "bloc" || k == "sphe" || k == "cyli" || k == "blod" || k == "cicl") {
     const int mat = material();
     const double rho = ts_.real("the density");
     const double dp = ts_.real("the particle spacing");
@@ -127,7 +127,7 @@ void DeckReader::read_particles(const Token& key) {
     card.mass = mass;
     card.vol = vol;
     card.dp = dp;
-    if (k == "bloc") {
+    if (k == "bloc" || k == "blod") {
       double o[3];
       long n[3];
       for (double& v : o) v = ts_.real("the block origin");
@@ -135,7 +135,23 @@ void DeckReader::read_particles(const Token& key) {
         v = ts_.integer("a block count");
         if (v < 1 || v > 100000) fail(kind.line, "block counts must be positive");
       }
-      generate_block(parts_, card, o, n, m_.current_version);
+      if (k == "bloc") {
+        generate_block(parts_, card, o, n, m_.current_version);
+      } else {
+        // 'blod ... hx hy hz nr': the hole's axis through (hx, hy) along z (hz unused, as in
+        // the current version), radius nr spacings.
+        const double hx = ts_.real("the hole axis x"), hy = ts_.real("the hole axis y");
+        ts_.real("the hole axis z");
+        const long nr = ts_.integer("the hole radius in spacings");
+        if (nr < 0 || nr > 100000) fail(kind.line, "hole radius (in spacings) must lie in 0..100000");
+        generate_block_with_hole(parts_, card, o, n, hx, hy, nr);
+      }
+    } else if (k == "cicl") {
+      double o[3];
+      for (double& v : o) v = ts_.real("the disc centre");
+      const long nr = ts_.integer("the disc radius in spacings");
+      if (nr < 1 || nr > 100000) fail(kind.line, "disc radius (in spacings) must lie in 1..100000");
+      generate_disc(parts_, card, o, nr);
     } else if (k == "sphe") {
       double c[3];
       for (double& v : c) v = ts_.real("the sphere centre");
@@ -152,7 +168,7 @@ void DeckReader::read_particles(const Token& key) {
       generate_cylinder(parts_, card, cx, cy, z0, radius, length);
     }
   } else {
-    fail(kind.line, "unknown particle card '" + kind.text + "' (poin, bloc, sphe or cyli)");
+    fail(kind.line, "unknown particle card '" + kind.text + "' (poin, bloc, sphe, cyli, blod or cicl)");
   }
   Body& back = m_.bodies.back();
   back.count = parts_.count() - back.first;
@@ -198,8 +214,54 @@ void DeckReader::read_velocities(const Token& key) {
         P.v[3 * size_t(p) + 1] = 0.0;
         P.v[3 * size_t(p) + 2] = 0.0;
       }
+    } else if (k == "ksin") {
+      // The current version's built-in field of its 'ksin' example: with body 1, the first
+      // 4 rows of 320 particles get v_x = v0 sin(pi ((m - 1/2) dc)), m the particle's place
+      // in its row, dc = 0.003125 (the constants as the original writes them, pi and dc in
+      // single precision); another body number sets nothing.
+      const double v0 = ts_.real("a velocity");
+      const long ib = ts_.integer("a body number");
+      if (ib == 1) {
+        const int n = 320, rows = 4;
+        if (parts_.count() < n * rows)
+          fail(t.line, "'ksin' sets particles 1.." + std::to_string(n * rows) + ", only " +
+                           std::to_string(parts_.count()) + " are defined");
+        const double dc = double(0.003125f), pi_single = double(3.1415926535f);
+        for (int p = 0; p < n * rows; ++p) {
+          const int m = p % n + 1;
+          double* v = &m_.particles.v[3 * size_t(p)];
+          v[0] = v0 * std::sin(pi_single * (double(m - 1) * dc + dc / 2.0));
+          v[1] = 0.0;
+          v[2] = 0.0;
+        }
+      }
+    } else if (k == "nuli") {
+      // The current version's built-in Euler-beam mode of its 'nuli' example: the first 128
+      // rows of 384 particles get v_y = A W (c1 (sinh qx + sin qx) - c2 (cosh qx + cos qx)),
+      // x = (m - 1/2) dc, with the original's beam constants (q = 78.83, dc = 1.5625e-4,
+      // L = 0.06, E = 318e9, h = 0.01, rho = 1845, nu = 0.054, in single precision as it
+      // writes them), c1 = cosh qL - cos qL, c2 = sinh qL - sin qL, A = y0 / (2 c2),
+      // W = q^2 sqrt(E h^2 / (12 rho (1 - nu^2))); y0 from the card.
+      const double y0 = ts_.real("an amplitude");
+      const int n = 384, rows = 128;
+      if (parts_.count() < n * rows)
+        fail(t.line, "'nuli' sets particles 1.." + std::to_string(n * rows) + ", only " +
+                         std::to_string(parts_.count()) + " are defined");
+      const double dc = double(0.00015625f), q = double(78.83f), len = double(0.06f);
+      const double c1 = std::cosh(q * len) - std::cos(q * len), c2 = std::sinh(q * len) - std::sin(q * len);
+      const double a = y0 / (2.0 * c2);
+      const double e = double(318e9f), hh = double(0.01f), nu = double(0.054f);
+      const double w = (q * q) * std::sqrt(((e * hh) * hh) / ((12.0 * 1845.0) * (1.0 - nu * nu)));
+      for (int p = 0; p < n * rows; ++p) {
+        const int m = p % n + 1;
+        const double x = double(m - 1) * dc + dc / 2.0;
+        double* v = &m_.particles.v[3 * size_t(p)];
+        v[0] = 0.0;
+        v[1] = (a * w) * (c1 * (std::sinh(q * x) + std::sin(q * x)) - c2 * (std::cosh(q * x) + std::cos(q * x)));
+        v[2] = 0.0;
+      }
     } else {
-      fail(t.line, "in 'velo': expected 'node', 'body', 'vsin' or 'endv', found '" + t.text + "'");
+      fail(t.line, "in 'velo': expected 'node', 'body', 'vsin', 'ksin', 'nuli' or 'endv', found '" + t.text + "'");
     }
   }
 }

@@ -105,4 +105,28 @@ void generate_cylinder(ParticleAppender& out, const LatticeCard& c, double cx, d
     }
 }
 
+void generate_block_with_hole(ParticleAppender& out, const LatticeCard& c, const double o[3], const long n[3],
+                              double hx, double hy, long nr) {
+  const double dp = c.dp;
+  const double r2 = (double(nr) * dp) * (double(nr) * dp);
+  for (long l = 0; l < n[2]; ++l)
+    for (long j = 0; j < n[1]; ++j)
+      for (long i = 0; i < n[0]; ++i) {
+        const double x = o[0] + (double(i) + 0.5) * dp, y = o[1] + (double(j) + 0.5) * dp;
+        if ((x - hx) * (x - hx) + (y - hy) * (y - hy) < r2) continue;
+        out.add(c.line, c.body, c.mat, c.mass, c.vol, x, y, o[2] + (double(l) + 0.5) * dp);
+      }
+}
+
+void generate_disc(ParticleAppender& out, const LatticeCard& c, const double o[3], long nr) {
+  const double dp = c.dp;
+  const double r2 = (double(nr) * dp) * (double(nr) * dp);
+  for (long i = -nr; i < nr; ++i)
+    for (long j = -nr; j < nr; ++j) {
+      const double x = o[0] + (double(i) + 0.5) * dp, y = o[1] + (double(j) + 0.5) * dp;
+      if (!((x - o[0]) * (x - o[0]) + (y - o[1]) * (y - o[1]) < r2)) continue;
+      out.add(c.line, c.body, c.mat, c.mass, c.vol, x, y, o[2] + 0.5 * dp);
+    }
+}
+
 }  // namespace mpm3d

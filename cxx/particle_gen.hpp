@@ -56,4 +56,14 @@ void generate_sphere(ParticleAppender& out, const LatticeCard& c, const double c
 void generate_cylinder(ParticleAppender& out, const LatticeCard& c, double cx, double cy, double z0, double radius,
                        double length);
 
+// 'part blod' (the current version): the block of generate_block, x fastest, without the
+// particles inside the circular hole of radius nr dp around the axis through (hx, hy)
+// parallel to z (kept where (x - hx)^2 + (y - hy)^2 >= (nr dp)^2).
+void generate_block_with_hole(ParticleAppender& out, const LatticeCard& c, const double origin[3], const long n[3],
+                              double hx, double hy, long nr);
+// 'part cicl' (the current version): a disc one particle thick in the plane z0 + dp/2, the
+// points (x0 + (i + 1/2) dp, y0 + (j + 1/2) dp) for i, j in -nr .. nr-1 (i outermost) closer
+// than nr dp to (x0, y0).
+void generate_disc(ParticleAppender& out, const LatticeCard& c, const double origin[3], long nr);
+
 }  // namespace mpm3d

@@ -242,6 +242,7 @@ void Simulation::ensure_patch_buffers() {
 
 void Simulation::step() {
   StepContext* c = &ctx;
+  const double kinetic_before = kinetic;
   c->dt = model.dt;
   c->dt_int = steps == 0 ? 0.5 * model.dt : model.dt;  // first step: momentum with dt/2
   c->time = time + model.dt;  // the end of this step (programmed burn)
@@ -276,6 +277,10 @@ void Simulation::step() {
   time += model.dt;
   if (ctx.has_body_force) external_work += dt_work_of_body_forces();
   if (model.dt_per_step) model.dt = velocity_time_step();
+  if (model.dynamic_relaxation && kinetic - kinetic_before <= 0.0) {
+    std::fill(model.particles.v.begin(), model.particles.v.end(), 0.0);
+    kinetic = 0.0;
+  }
   health_check();
 }
 

@@ -57,6 +57,7 @@ module mpm3d_data_in
     logical :: dt_per_step = .false.    ! the current version's dt, recomputed every step
     real(dp) :: load_ramp_time = 0.0_dp ! QuLo: loads ramp over this time (0: off)
     real(dp) :: damping = 0.0_dp        ! Damp: -damping m v joins the body force
+    logical :: dynamic_relaxation = .false.  ! drda: stop every particle when KE did not grow
   end type model_t
 
   public :: read_deck, is_output_variable
@@ -358,6 +359,8 @@ contains
         m%damping = ts%real('the damping coefficient')
         if (.not. (m%damping >= 0.0_dp)) &
           call ts%fail(key%line, "'Damp': the damping coefficient must not be negative")
+      case ('drda')  ! dynamic-relaxation damping (the current version)
+        m%dynamic_relaxation = .true.
       case ('uvfp')  ! the current version's volume update from F
         m%uvf = .true.
       case ('cont')

@@ -178,7 +178,7 @@ contains
         call add_particle(ts, m%particles, m%bodies(m%nbodies), m%nbmp, pt%line, m%nbodies - 1, mat, mass, vol, &
                           x, y, z)
       end do
-    case ('bloc', 'sphe', 'cyli')
+    case ('bloc', 'sphe', 'cyli', 'blod', 'cicl')
       mat = read_material_id(ts, m)
       rho = ts%real('the density')
       dpp = ts%real('the particle spacing')
@@ -197,13 +197,28 @@ contains
       card%mass = mass
       card%vol = vol
       card%spacing = dpp
-      if (k == 'bloc') then
+      if (k == 'bloc' .or. k == 'blod') then
         o = read_vec3(ts, 'the block origin')
         do a = 1, 3
           nb(a) = ts%integer('a block count')
           if (nb(a) < 1 .or. nb(a) > 100000) call ts%fail(kind%line, 'block counts must be positive')
         end do
-        call generate_block(ts, m%particles, m%bodies(m%nbodies), m%nbmp, card, o, nb, m%current_version)
+        if (k == 'bloc') then
+          call generate_block(ts, m%particles, m%bodies(m%nbodies), m%nbmp, card, o, nb, m%current_version)
+        else
+          ! 'blod ... hx hy hz nr': the hole's axis through (hx, hy) along z (hz unused).
+          cx = ts%real('the hole axis x')
+          cy = ts%real('the hole axis y')
+          z0 = ts%real('the hole axis z')
+          nr = ts%integer('the hole radius in spacings')
+          if (nr < 0 .or. nr > 100000) call ts%fail(kind%line, 'hole radius (in spacings) must lie in 0..100000')
+          call generate_block_with_hole(ts, m%particles, m%bodies(m%nbodies), m%nbmp, card, o, nb, cx, cy, nr)
+        end if
+      else if (k == 'cicl') then
+        o = read_vec3(ts, 'the disc centre')
+        nr = ts%integer('the disc radius in spacings')
+        if (nr < 1 .or. nr > 100000) call ts%fail(kind%line, 'disc radius (in spacings) must lie in 1..100000')
+        call generate_disc(ts, m%particles, m%bodies(m%nbodies), m%nbmp, card, o, nr)
       else if (k == 'sphe') then
         cc = read_vec3(ts, 'the sphere centre')
         nr = ts%integer('the sphere radius in spacings')
@@ -222,7 +237,7 @@ contains
       end if
     case default
       call ts%fail(kind%line, "unknown particle card '" // ts%text_of(kind) // &
-                   "' (poin, bloc, sphe or cyli)")
+                   "' (poin, bloc, sphe, cyli, blod or cicl)")
     end select
     if (m%bodies(m%nbodies)%count == 0) call ts%fail(kind%line, 'particle card generated no particles')
   end subroutine read_particles
@@ -272,8 +287,16 @@ contains
         end do
         cycle
       end if
+      if (k == 'ksin') then
+        call velocity_ksin(ts, m, t)
+        cycle
+      end if
+      if (k == 'nuli') then
+        call velocity_nuli(ts, m, t)
+        cycle
+      end if
       if (k /= 'node' .and. k /= 'body') &
-        call ts%fail(t%line, "in 'velo': expected 'node', 'body', 'vsin' or 'endv', found '" // &
+        call ts%fail(t%line, "in 'velo': expected 'node', 'body', 'vsin', 'ksin', 'nuli' or 'endv', found '" // &
                      ts%text_of(t) // "'")
       call read_particle_range(ts, m, t, k, 'velocity for', first, count)
       v = read_vec3(ts, 'a velocity')
@@ -284,6 +307,61 @@ contains
       end do
     end do
   end subroutine read_velocities
+
+  ! 'ksin v0 ibody' (the current version's built-in field, as cxx/data_in_cards.cpp): with
+  ! body 1, the first 4 rows of 320 particles get v_x = v0 sin(pi ((m - 1/2) dc)).
+  subroutine velocity_ksin(ts, m, t)
+    type(token_stream), intent(inout) :: ts
+    type(model_t), intent(inout) :: m
+    type(token_t), intent(in) :: t
+    integer, parameter :: n = 320, rows = 4
+    real(dp) :: v0, dc, pi_single
+    integer(int64) :: ib
+    integer :: p, j
+    v0 = ts%real('a velocity')
+    ib = ts%integer('a body number')
+    if (ib /= 1) return
+    if (n_defined(m) < n * rows) call ts%fail(t%line, "'ksin' sets particles 1.." // i2s(n * rows) // &
+                                              ', only ' // i2s(n_defined(m)) // ' are defined')
+    dc = real(0.003125, dp)
+    pi_single = real(3.1415926535, dp)
+    do p = 1, n * rows
+      j = mod(p - 1, n) + 1
+      m%particles%v(1, p) = v0 * sin(pi_single * (real(j - 1, dp) * dc + dc / 2.0_dp))
+      m%particles%v(2, p) = 0.0_dp
+      m%particles%v(3, p) = 0.0_dp
+    end do
+  end subroutine velocity_ksin
+
+  ! 'nuli y0' (the current version's built-in Euler-beam mode, as cxx/data_in_cards.cpp).
+  subroutine velocity_nuli(ts, m, t)
+    type(token_stream), intent(inout) :: ts
+    type(model_t), intent(inout) :: m
+    type(token_t), intent(in) :: t
+    integer, parameter :: n = 384, rows = 128
+    real(dp) :: y0, dc, q, len, c1, c2, a, e, hh, nu, w, x
+    integer :: p, j
+    y0 = ts%real('an amplitude')
+    if (n_defined(m) < n * rows) call ts%fail(t%line, "'nuli' sets particles 1.." // i2s(n * rows) // &
+                                              ', only ' // i2s(n_defined(m)) // ' are defined')
+    dc = real(0.00015625, dp)
+    q = real(78.83, dp)
+    len = real(0.06, dp)
+    c1 = cosh(q * len) - cos(q * len)
+    c2 = sinh(q * len) - sin(q * len)
+    a = y0 / (2.0_dp * c2)
+    e = real(318e9, dp)
+    hh = real(0.01, dp)
+    nu = real(0.054, dp)
+    w = (q * q) * sqrt(((e * hh) * hh) / ((12.0_dp * 1845.0_dp) * (1.0_dp - nu * nu)))
+    do p = 1, n * rows
+      j = mod(p - 1, n) + 1
+      x = real(j - 1, dp) * dc + dc / 2.0_dp
+      m%particles%v(1, p) = 0.0_dp
+      m%particles%v(2, p) = (a * w) * (c1 * (sinh(q * x) + sin(q * x)) - c2 * (cosh(q * x) + cos(q * x)))
+      m%particles%v(3, p) = 0.0_dp
+    end do
+  end subroutine velocity_nuli
 
   subroutine read_loads(ts, m, key)
     type(token_stream), intent(inout) :: ts

@@ -37,6 +37,7 @@ program mpm3d_ref
   integer :: woff(3), wnc(3)
   real(dp) :: end_time, time, eps, kinetic, internal, rv, initial_total, momentum(3)
   real(dp) :: external_work    ! bound of the work of gravity and loads: sum |f.v| dt (health check)
+  real(dp) :: kinetic_before   ! drda: the kinetic energy before the step
   logical :: quiet, order_blocks, settle, end_time_given
   character(len=4096) :: arg
 
@@ -183,6 +184,7 @@ program mpm3d_ref
   ! QuLo without --end-time: on past the end time until the load has settled (as mpm3d).
   settle = model%load_ramp_time > 0.0_dp .and. .not. end_time_given
   do while (running() .and. (max_steps < 0 .or. steps < max_steps))
+    kinetic_before = kinetic
     call step()
     steps = steps + 1
     time = time + model%dt
@@ -191,6 +193,11 @@ program mpm3d_ref
     momentum = ctx%result(3:5)
     if (ctx%has_body_force /= 0) external_work = external_work + dt_work_of_body_forces()
     if (model%dt_per_step) model%dt = velocity_time_step()
+    ! drda: every particle stops after a step in which the kinetic energy did not grow.
+    if (model%dynamic_relaxation .and. kinetic - kinetic_before <= 0.0_dp) then
+      model%particles%v = 0.0_dp
+      kinetic = 0.0_dp
+    end if
     if (.not. healthy()) then
       rc = 3
       exit

@@ -20,7 +20,8 @@ module mpm3d_particle_gen
   ! Every routine appends to the particle arrays p (grown as particles come, at most to nbmp)
   ! the particles of the card's body b, the last body read (b%count grows). Errors end the
   ! program with the deck's name and the card's line (ts%fail).
-  public :: add_particle, check_points_room, generate_block, generate_sphere, generate_cylinder
+  public :: add_particle, check_points_room, generate_block, generate_sphere, generate_cylinder, &
+            generate_block_with_hole, generate_disc
   public :: is_finite   ! also the reader's test of a finite number
 
 contains
@@ -200,5 +201,56 @@ contains
       end do
     end do
   end subroutine generate_cylinder
+
+  ! 'part blod' (the current version): generate_block's lattice, x fastest, without the
+  ! particles inside the hole of radius nr dp around the axis through (hx, hy) along z.
+  subroutine generate_block_with_hole(ts, p, b, nbmp, c, o, nb, hx, hy, nr)
+    type(token_stream), intent(in) :: ts
+    type(particles_t), intent(inout) :: p
+    type(body_t), intent(inout) :: b
+    integer, intent(in) :: nbmp
+    type(lattice_card_t), intent(in) :: c
+    real(dp), intent(in) :: o(3), hx, hy
+    integer(int64), intent(in) :: nb(3), nr
+    integer(int64) :: i, j, l
+    real(dp) :: dpp, r2, x, y
+    dpp = c%spacing
+    r2 = (real(nr, dp) * dpp) * (real(nr, dp) * dpp)
+    do l = 0, nb(3) - 1
+      do j = 0, nb(2) - 1
+        do i = 0, nb(1) - 1
+          x = o(1) + ((real(i, dp) + 0.5_dp) * dpp)
+          y = o(2) + ((real(j, dp) + 0.5_dp) * dpp)
+          if (((x - hx) * (x - hx)) + ((y - hy) * (y - hy)) < r2) cycle
+          call add_particle(ts, p, b, nbmp, c%line, c%body, c%mat, c%mass, c%vol, x, y, &
+                            o(3) + ((real(l, dp) + 0.5_dp) * dpp))
+        end do
+      end do
+    end do
+  end subroutine generate_block_with_hole
+
+  ! 'part cicl' (the current version): a disc one particle thick in the plane z0 + dp/2, the
+  ! points (x0 + (i + 1/2) dp, y0 + (j + 1/2) dp), i, j in -nr .. nr-1, closer than nr dp.
+  subroutine generate_disc(ts, p, b, nbmp, c, o, nr)
+    type(token_stream), intent(in) :: ts
+    type(particles_t), intent(inout) :: p
+    type(body_t), intent(inout) :: b
+    integer, intent(in) :: nbmp
+    type(lattice_card_t), intent(in) :: c
+    real(dp), intent(in) :: o(3)
+    integer(int64), intent(in) :: nr
+    integer(int64) :: i, j
+    real(dp) :: dpp, r2, x, y
+    dpp = c%spacing
+    r2 = (real(nr, dp) * dpp) * (real(nr, dp) * dpp)
+    do i = -nr, nr - 1
+      do j = -nr, nr - 1
+        x = o(1) + ((real(i, dp) + 0.5_dp) * dpp)
+        y = o(2) + ((real(j, dp) + 0.5_dp) * dpp)
+        if (.not. (((x - o(1)) * (x - o(1))) + ((y - o(2)) * (y - o(2))) < r2)) cycle
+        call add_particle(ts, p, b, nbmp, c%line, c%body, c%mat, c%mass, c%vol, x, y, o(3) + 0.5_dp * dpp)
+      end do
+    end do
+  end subroutine generate_disc
 
 end module mpm3d_particle_gen

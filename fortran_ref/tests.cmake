@@ -83,6 +83,12 @@ if(TARGET mpm3d AND TARGET mpm3d_ref)
   fref_deck(free_soft_beam ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/free_soft_beam_coarse.mpm)
   fref_deck(neo_block_gimp ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/neo_block_gimp.mpm)
   fref_deck(cantilever_quasi_static ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/cantilever_quasi_static.mpm)
+  fref_deck(plate_hole_drda ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/plate_hole_drda.mpm)
+  # The current version's built-in velocity fields: the initial states (nuli's 49,152
+  # particles only at the start), ksin's strip also through its steps.
+  fref_add(fref_ksin_strip_init init ${CMAKE_SOURCE_DIR}/tests/decks/ksin_strip.mpm)
+  fref_add(fref_ksin_strip_mpm3d_ref ref ${CMAKE_SOURCE_DIR}/tests/decks/ksin_strip.mpm)
+  fref_add(fref_nuli_beam_init init ${CMAKE_SOURCE_DIR}/tests/decks/nuli_beam.mpm)
   fref_deck(current_free_soft_beam ${_fref_shared}/current/FreeSoftBeam_MPM_v0p3_FreeSB_MPM.mpm)
   # GIMP with the adaptive grid (halo patches on the deck's patch lattice).
   fref_adaptive(two_blocks_gimp ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks_gimp.mpm)

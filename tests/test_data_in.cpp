@@ -192,3 +192,65 @@ TEST(DataIn, NeoHookeanWithBulkViscosityIsRefused) {
     EXPECT_NE(std::string(e.what()).find("'bulk' with a neoh material"), std::string::npos) << e.what();
   }
 }
+
+// The current version's generators and built-in velocity fields: blod (a block, x fastest,
+// without a circular hole), cicl (a disc one particle thick), ksin and nuli.
+TEST(DataIn, CurrentVersionGeneratorsAndVelocityFields) {
+  mpm3d::Model m = mpm3d::read_deck_text(
+      "nbmp 84 nbbo 2 nmat 1 spx -2 6 spy -2 6 spz -2 6 dcel 1 endt 1\n"
+      "mate 1 neoh 1000 1e5 0.3\n"
+      "part blod 1 1 1000 0.5 0 0 0 8 8 1 2.0 2.0 0.25 2\n"
+      "part cicl 1 1 1000 0.5 3.0 3.0 1.0 3\n"
+      "endi\n",
+      "g.mpm");
+  const auto& P = m.particles;
+  // blod: 64 lattice points (0.25 + 0.5 i, 0.25 + 0.5 j), those closer than 1.0 to
+  // (2, 2) left out: the 12 with |(i, j) - (3.5, 3.5)| < 2 in half-spacings.
+  ASSERT_EQ(m.bodies.size(), 2u);
+  EXPECT_EQ(m.bodies[0].count, 52);
+  for (int p = 0; p < m.bodies[0].count; ++p) {
+    const double dx = P.x[3 * p] - 2.0, dy = P.x[3 * p + 1] - 2.0;
+    EXPECT_GE(dx * dx + dy * dy, 1.0) << p;
+    EXPECT_EQ(P.x[3 * p + 2], 0.25);
+  }
+  EXPECT_EQ(P.x[0], 0.25);  // x fastest
+  EXPECT_EQ(P.x[3], 0.75);
+  EXPECT_EQ(P.x[1], 0.25);
+  // cicl: the 36 points (3 + 0.5 (i + 1/2), 3 + 0.5 (j + 1/2)), i, j in -3..2, closer than
+  // 1.5 to (3, 3): 36 minus the 4 corners... of the 6 x 6, those with (i+1/2)^2 + (j+1/2)^2 < 9.
+  int disc = 0;
+  for (int i = -3; i < 3; ++i)
+    for (int j = -3; j < 3; ++j) disc += (i + 0.5) * (i + 0.5) + (j + 0.5) * (j + 0.5) < 9.0;
+  EXPECT_EQ(m.bodies[1].count, disc);
+  EXPECT_EQ(P.np, 52 + disc);
+  for (int p = m.bodies[1].first; p < P.np; ++p) EXPECT_EQ(P.x[3 * p + 2], 1.25) << p;
+
+  // ksin: rows of 320, v_x = v0 sin(pi (m - 1/2) dc), dc = 0.003125 (single precision).
+  mpm3d::Model k = mpm3d::read_deck_text(
+      "nbmp 1280 nbbo 1 nmat 1 spx 0 2 spy 0 1 spz 0 1 dcel 0.1 endt 1\n"
+      "mate 1 elas 1000 1e5 0.3\npart bloc 1 1 1000 0.003125 0 0 0 320 4 1\n"
+      "velo ksin 2.0 1 endv\nendi\n",
+      "k.mpm");
+  for (int p : {0, 159, 319, 320, 1279}) {
+    const int mm = p % 320 + 1;
+    const double dc = double(0.003125f);
+    EXPECT_EQ(k.particles.v[3 * p], 2.0 * std::sin(double(3.1415926535f) * (double(mm - 1) * dc + dc / 2.0))) << p;
+  }
+  EXPECT_NEAR(k.particles.v[3 * 159], 2.0, 1e-4);  // the middle of a row: sin(pi/2)
+  // nuli: rows of 384; the mode shape of a free-free beam is symmetric about its middle (to
+  // 2.4e-4 with the original's rounded eigenvalue q = 78.83).
+  mpm3d::Model u = mpm3d::read_deck_text(
+      "nbmp 49152 nbbo 1 nmat 1 spx 0 0.1 spy 0 0.03 spz 0 0.01 dcel 0.01 endt 1\n"
+      "mate 1 elas 1845 318e9 0.054\npart bloc 1 1 1845 0.00015625 0 0 0 384 128 1\n"
+      "velo nuli 0.001 endv\nendi\n",
+      "u.mpm");
+  const auto& uv = u.particles.v;
+  EXPECT_NE(uv[3 * 0 + 1], 0.0);
+  EXPECT_NEAR(uv[3 * 0 + 1], uv[3 * 383 + 1], 1e-3 * std::fabs(uv[3 * 0 + 1]));
+  // At the beam's end the mode is -2 c2 of its amplitude A = y0 / (2 c2): v = -y0 W, with
+  // W = q^2 sqrt(E h^2 / (12 rho (1 - nu^2))) (the first particle sits dc/2 from the end).
+  const double w = 78.83 * 78.83 * std::sqrt(318e9 * 0.01 * 0.01 / (12.0 * 1845.0 * (1.0 - 0.054 * 0.054)));
+  EXPECT_NEAR(uv[3 * 0 + 1], -0.001 * w, 1e-2 * 0.001 * w);  // 0.6 %: the slope over dc/2
+  EXPECT_EQ(uv[3 * 384 + 1], uv[1]);  // every row the same
+  EXPECT_EQ(uv[0], 0.0);
+}

@@ -392,3 +392,21 @@ TEST(Solver, QuasiStaticLoadRampAndDamping) {
   sim.kinetic = 0.004, sim.time = 99.0;
   EXPECT_FALSE(sim.quasi_static_done());
 }
+
+// drda: after a step in which the kinetic energy did not grow, every particle stops; while
+// it grows (a block falling under gravity) nothing is touched.
+TEST(Solver, DynamicRelaxationStopsTheParticlesWhenKineticEnergyFalls) {
+  mpm3d::Simulation coast(
+      mpm3d::read_deck_text(block_deck("musl", "drda\nDamp 1.0\nvelo body 1 0.1 0 0 endv\n"), "drda1.mpm"));
+  ASSERT_TRUE(coast.model.dynamic_relaxation);
+  ASSERT_GT(coast.kinetic, 0.0);
+  coast.step();  // damped uniform motion: the kinetic energy falls
+  EXPECT_EQ(coast.kinetic, 0.0);
+  EXPECT_EQ(max_abs(coast.model.particles.v), 0.0);
+  mpm3d::Simulation fall(mpm3d::read_deck_text(block_deck("musl", "drda\nload grav 1 0 0 -1 endl\n"), "drda2.mpm"));
+  for (int s = 0; s < 5; ++s) {
+    fall.step();
+    EXPECT_GT(fall.kinetic, 0.0) << s;
+  }
+  EXPECT_LT(fall.model.particles.v[2], 0.0);
+}
