@@ -35,6 +35,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 import hypervelocity as H  # noqa: E402
+import soft_beam as SB  # noqa: E402
 import verification as V  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -789,6 +790,8 @@ class Suite:
         L += [""]
         # Hypervelocity (tools/hypervelocity.py: its files in docs/verification/)
         L += H.section_lines()
+        # The free soft beam (tools/soft_beam.py: docs/verification/soft_beam.csv)
+        L += SB.section_lines()
         # Taylor
         L += ["## Taylor bar", ""]
         if self.legacy:
@@ -1033,6 +1036,8 @@ def main():
     s.log("hypervelocity: inputs/impact/lead_sphere_small.mpm")
     H.run_small(s.build, s.threads)
     H.make_plot()
+    s.log("free soft beam: tools/soft_beam.py")
+    SB.run(s.build, s.threads)
     s.orders()
     load1 = loadavg()
     save_results(s, load0, load1, time.time() - s.t0)
