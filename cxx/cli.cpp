@@ -236,6 +236,8 @@ int run_main(int argc, char** argv) {
     Model model = read_deck(opt.deck);
     if (opt.regrid_every >= 0) model.regrid_every = int(opt.regrid_every);
     if (!opt.time_step.empty()) model.dt_per_step = opt.time_step == "current";
+    if (model.tl && model.regrid_every > 0)
+      throw std::runtime_error(opt.deck + ": --regrid-every with 'TLmp': the reference grid of TLmp cannot move");
     {  // --out-dir: created (with its parents) when missing
       std::error_code ec;
       std::filesystem::create_directories(opt.out_dir, ec);

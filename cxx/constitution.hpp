@@ -37,6 +37,7 @@ struct StressBlock {
   double qv[kStressLanes];    // read and written only with has_q
   double burn[kStressLanes];  // programmed-burn fraction (1 except hiex)
   double H[9][kStressLanes];  // F - I: read and written only for neoh (StepContext::defgrad)
+  double pk1[9][kStressLanes];  // V0 P: read and written only under TLmp (StepContext::pk1)
 };
 struct StressBlockArgs {
   double dt;
@@ -45,6 +46,9 @@ struct StressBlockArgs {
   // Volume from the deformation: V_new = V_old det(I + L dt) instead of
   // V_old (1 + tr(L) dt) (deck keyword UVFp; always for neoh).
   bool uvf;
+  // Total Lagrangian (TLmp, neoh only): L is the velocity gradient in the reference
+  // configuration, F += L dt, and the stress comes with V0 P (pk1).
+  bool tl;
 };
 // Strain and spin increments dt sym(L), dt skew(L), new volume and stress update of all
 // kStressLanes particles of b (vector code; every lane computes what stress_update

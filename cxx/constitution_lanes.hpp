@@ -187,6 +187,46 @@ struct LaneUpdate {
     ie = ie + (0.5 * (double_dot(sig_old, de) + double_dot(sig, de))) * vavg;
   }
 
+  // Compressible neo-Hookean in total Lagrangian form (TLmp): H = F - I advanced by the
+  // reference increment dF = L0 dt; with J = det F and F^-T = cof(F) / J, the first
+  // Piola-Kirchhoff stress P = G (F - F^-T) + lambda ln J F^-T, kept as V0 P (pk), the
+  // Cauchy stress sigma = P F^T / J, the volume V0 J, and the internal energy by the
+  // trapezoid of the old and new V0 P on dF.
+  static void neo_hookean_tl(const MaterialParams& m, const T dF[9], T H[9], T mass, T pk[9], T sig[6], T& vol,
+                             T& ie) {
+    for (int r = 0; r < 9; ++r) H[r] = H[r] + dF[r];
+    T f[9];
+    for (int r = 0; r < 9; ++r) f[r] = (r % 4 == 0) ? 1.0 + H[r] : H[r];
+    const T J = det_identity_plus(H);
+    const T cof[9] = {f[4] * f[8] - f[5] * f[7], f[5] * f[6] - f[3] * f[8], f[3] * f[7] - f[4] * f[6],
+                      f[2] * f[7] - f[1] * f[8], f[0] * f[8] - f[2] * f[6], f[1] * f[6] - f[0] * f[7],
+                      f[1] * f[5] - f[2] * f[4], f[2] * f[3] - f[0] * f[5], f[0] * f[4] - f[1] * f[3]};
+    const T inv_j = 1.0 / J;
+    T ln_j;
+    for (int i = 0; i < TL::W; ++i) TL::set(ln_j, i, std::log(TL::get(J, i)));
+    const T lam_ln = m.lambda * ln_j;
+    const T v0 = mass / m.rho0;
+    T p[9];
+    for (int r = 0; r < 9; ++r) {
+      const T fit = cof[r] * inv_j;
+      p[r] = m.shear * (f[r] - fit) + lam_ln * fit;
+    }
+    const int ra[6] = {0, 1, 2, 1, 0, 0}, rb[6] = {0, 1, 2, 2, 2, 1};
+    for (int c = 0; c < 6; ++c) {
+      const int a = ra[c], b = rb[c];
+      sig[c] = inv_j * ((p[3 * a] * f[3 * b] + p[3 * a + 1] * f[3 * b + 1]) + p[3 * a + 2] * f[3 * b + 2]);
+    }
+    T work_old = TL::splat(0.0), work_new = TL::splat(0.0);
+    for (int r = 0; r < 9; ++r) {
+      const T pn = v0 * p[r];
+      work_old = work_old + pk[r] * dF[r];
+      work_new = work_new + pn * dF[r];
+      pk[r] = pn;
+    }
+    ie = ie + 0.5 * (work_old + work_new);
+    vol = v0 * J;
+  }
+
   // The whole update (contract of stress_update in constitution.hpp). temp and q are
   // read and written only when has_temp / has_q.
   static void update(const MaterialParams& m, const T de[6], const T dw[3], double dt, T mass,
@@ -309,6 +349,24 @@ void stress_block_lanes(const MaterialParams& m, StressBlock& b, int first, cons
   const T dw[3] = {(0.5 * (L[5] - L[7])) * dt, (0.5 * (L[2] - L[6])) * dt,
                    (0.5 * (L[1] - L[3])) * dt};
   const T vol_old = TL::load(b.vol + first);
+  if (a.tl) {  // TLmp (neoh only, checked by the deck reader)
+    T H[9], pk[9], dF[9], sig[6], vol, ie = TL::load(b.ie + first);
+    for (int r = 0; r < 9; ++r) {
+      H[r] = TL::load(b.H[r] + first);
+      pk[r] = TL::load(b.pk1[r] + first);
+      dF[r] = L[r] * dt;
+    }
+    U::neo_hookean_tl(m, dF, H, TL::load(b.mass + first), pk, sig, vol, ie);
+    TL::store(b.vol + first, vol);
+    for (int c = 0; c < 6; ++c) TL::store(b.sig[c] + first, sig[c]);
+    for (int r = 0; r < 9; ++r) {
+      TL::store(b.H[r] + first, H[r]);
+      TL::store(b.pk1[r] + first, pk[r]);
+    }
+    TL::store(b.ie + first, ie);
+    (void)vol_old;
+    return;
+  }
   const bool from_det = a.uvf || m.type == MAT_NEOH;
   T dL[9];
   if (from_det)

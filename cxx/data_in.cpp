@@ -192,6 +192,9 @@ Model DeckReader::read() {
     } else if (k == "damp") {
       m_.damping = ts_.real("the damping coefficient");
       if (!(m_.damping >= 0.0)) fail(key.line, "'Damp': the damping coefficient must not be negative");
+    } else if (k == "tlmp") {  // total Lagrangian MPM (the current version)
+      m_.tl = true;
+      m_.tl_line = key.line;
     } else if (k == "drda") {  // dynamic-relaxation damping (the current version)
       m_.dynamic_relaxation = true;
     } else if (k == "uvfp") {  // the current version's volume update from F

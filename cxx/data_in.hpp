@@ -67,6 +67,11 @@ struct Model {
   // drda: after a step in which the kinetic energy did not grow, every particle stops
   // (velocities and kinetic energy zero): the current version's dynamic relaxation.
   bool dynamic_relaxation = false;
+  // TLmp: total Lagrangian MPM (neoh materials only, trilinear, one velocity field, fixed
+  // grid): shape functions at the reference positions (particles.x0), F integrated, the
+  // forces from V0 P (particles.pk1).
+  bool tl = false;
+  int tl_line = 0;  // deck line of the TLmp card
   // spre (smoothed pressure, 'smoo'): computed when written (update_smoothed_pressure).
   mutable std::vector<double> spre;
   std::vector<std::string> warnings;

@@ -101,7 +101,18 @@ void DeckReader::finish(int line) {
   bool displacement = false;
   for (const auto& v : m_.anim_vars) displacement = displacement || v.compare(0, 3, "dis") == 0;
   for (const auto& c : m_.curves) displacement = displacement || c.var.compare(0, 3, "dis") == 0;
-  if (displacement) P.x0 = P.x;
+  if (m_.tl) {
+    // The combinations the current version's TLmp does not have are refused.
+    for (const auto& mp : m_.mats)
+      if (mp.type != MAT_NEOH)
+        fail(m_.tl_line, std::string("'TLmp' with a ") + material_keyword(mp.type) +
+                             " material: total Lagrangian MPM takes neoh materials only");
+    if (m_.gimp) fail(m_.tl_line, "'TLmp' with 'gimp': total Lagrangian MPM takes the trilinear shape functions only");
+    if (m_.contact) fail(m_.tl_line, "'TLmp' with 'cont': total Lagrangian MPM has one velocity field");
+    if (m_.regrid_every > 0) fail(m_.tl_line, "'TLmp' with 'adgr': the reference grid of TLmp cannot move");
+    P.pk1.assign(9 * size_t(P.np), 0.0);
+  }
+  if (displacement || m_.tl) P.x0 = P.x;
   // pt2d: TecPlot output only for the particles whose initial position lies in the box
   // (the original marks them as they are generated).
   if (m_.has_pt2d) {

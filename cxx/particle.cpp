@@ -36,6 +36,7 @@ std::vector<ParticleField> particle_fields(Particles& P) {
           {"gimp_half_size", 1, &P.psize, nullptr},
           {"deformation_gradient", 9, &P.defgrad, nullptr},
           {"initial_position", 3, &P.x0, nullptr},
+          {"first_piola_kirchhoff", 9, &P.pk1, nullptr},
           {"deck_id", 1, nullptr, &P.id}};
 }
 

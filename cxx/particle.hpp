@@ -27,7 +27,8 @@ struct Particles {
   std::vector<double> qv;                  // (np) only with 'bulk': bulk viscosity pressure
   std::vector<double> psize;               // (np) GIMP particle half-size lp, only with gimp
   std::vector<double> defgrad;             // (9,np) F - I (row-major), only with neoh
-  std::vector<double> x0;                  // (3,np) initial position, only for disx/disy/disz
+  std::vector<double> x0;                  // (3,np) initial position: disx/disy/disz, TLmp
+  std::vector<double> pk1;                 // (9,np) V0 P, first Piola-Kirchhoff stress, TLmp only
   std::vector<int32_t> id;                 // (np) deck number (0-based) of each stored
                                            // particle; empty: stored in deck order
 
@@ -73,7 +74,7 @@ struct ParticleField {
   std::vector<int32_t>* i;
 };
 std::vector<ParticleField> particle_fields(Particles& P);
-constexpr int kParticleArrays = 17;  // arrays listed by particle_fields
+constexpr int kParticleArrays = 18;  // arrays listed by particle_fields
 
 // Physical sums over all particles (deterministic, see update_step).
 struct Energies {

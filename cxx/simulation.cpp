@@ -160,6 +160,9 @@ void Simulation::bind() {
   c.cpartials = nullptr;
   c.only_comp = 0;
   c.defgrad = P.defgrad.empty() ? nullptr : P.defgrad.data();
+  c.tl = model.tl ? 1 : 0;
+  c.xbin = model.tl ? P.x0.data() : P.x.data();  // TLmp: the particles stay in their reference cells
+  c.pk1 = model.tl ? P.pk1.data() : nullptr;
   c.uvf = model.uvf ? 1 : 0;
   bind_grid();  // before the contact copy: ctx2 starts as a copy of ctx
   if (model.contact) {

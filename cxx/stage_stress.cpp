@@ -40,7 +40,8 @@ inline void velocity_gradient_gimp(const StepContext* c, const CellDecoder& dec,
 
 // What the constitutive update takes from the context besides the particles.
 inline StressBlockArgs stress_args(const StepContext* c) {
-  return StressBlockArgs{c->dt, c->temp != nullptr, c->qv != nullptr, c->bulk_q1, c->bulk_q2, c->h, c->uvf != 0};
+  return StressBlockArgs{c->dt, c->temp != nullptr, c->qv != nullptr, c->bulk_q1, c->bulk_q2, c->h, c->uvf != 0,
+                         c->tl != 0};
 }
 
 // The particle loop with the trilinear shape functions: chunks of the patch lists, each

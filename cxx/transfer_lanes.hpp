@@ -62,7 +62,7 @@ int bin_range(const StepContext* c, int lo, int hi, int* patch_of) {
     for (int i = 0; i < kLanes; ++i) i3[i] = 3 * (p + i);
     double t[3][kLanes], fl[3][kLanes];
     for (int a = 0; a < 3; ++a) {
-      const T ta = (VL::gather(c->x + a, i3) - c->origin[a]) / c->h;
+      const T ta = (VL::gather(c->xbin + a, i3) - c->origin[a]) / c->h;
       VL::store(t[a], ta);
       VL::store(fl[a], VL::floor(ta));
     }
@@ -74,7 +74,7 @@ int bin_range(const StepContext* c, int lo, int hi, int* patch_of) {
   for (; p < hi; ++p) {
     double ti[3], fi[3];
     for (int a = 0; a < 3; ++a) {
-      ti[a] = (c->x[3 * p + a] - c->origin[a]) / c->h;
+      ti[a] = (c->xbin[3 * p + a] - c->origin[a]) / c->h;
       fi[a] = std::floor(ti[a]);
     }
     finish(p, ti, fi);
@@ -238,6 +238,8 @@ inline void stress_block_load(const StepContext* c, const MaterialParams& mp, in
   b.burn[i] = c->tlight ? burn_fraction(mp, c->tlight[p], c->time) : 1.0;
   if (c->defgrad)
     for (int r = 0; r < 9; ++r) b.H[r][i] = c->defgrad[9 * size_t(p) + size_t(r)];
+  if (c->pk1)
+    for (int r = 0; r < 9; ++r) b.pk1[r][i] = c->pk1[9 * size_t(p) + size_t(r)];
 }
 
 inline void stress_block_store(StepContext* c, int p, int i, const StressBlock& b) {
@@ -249,6 +251,8 @@ inline void stress_block_store(StepContext* c, int p, int i, const StressBlock& 
   if (c->qv) c->qv[p] = b.qv[i];
   if (c->defgrad)
     for (int r = 0; r < 9; ++r) c->defgrad[9 * size_t(p) + size_t(r)] = b.H[r][i];
+  if (c->pk1)
+    for (int r = 0; r < 9; ++r) c->pk1[9 * size_t(p) + size_t(r)] = b.pk1[r][i];
 }
 
 // The stress stage of the particles list[0..count) (trilinear): velocity gradients and the

@@ -65,6 +65,13 @@ struct StepContext {
   // Quasi-static loading (the current version's QuLo and Damp; 0: off): the point loads grow
   // linearly over load_ramp_time, and -damping m v joins each particle's body force.
   double load_ramp_time, damping;
+  // Total Lagrangian MPM (the current version's TLmp): the bin stage places the particles by
+  // xbin (their reference positions; else xbin = x), the force stage takes the first
+  // Piola-Kirchhoff stress times the reference volume, pk1 (9,np, row-major), instead of
+  // sigma V, and the stress stage integrates F from the reference velocity gradient.
+  double *xbin;
+  double *pk1;               // (9,np) V0 P, or null (updated Lagrangian)
+  int tl;                    // 1: total Lagrangian
   // Fields after this point are stage-internal scratch of the C++ kernels (a Fortran
   // mirror of the struct may stop before them).
   int *pscratch;       // (np) patch of each particle during binning

@@ -6,7 +6,8 @@ module mpm3d_constitution
   implicit none
   private
 
-  public :: stress_update, neo_hookean, det_identity_plus, jaumann_rotate, eos_coefficients, yield_stress, burn_fraction, &
+  public :: stress_update, neo_hookean, neo_hookean_tl, det_identity_plus, jaumann_rotate, eos_coefficients, &
+            yield_stress, burn_fraction, &
             bulk_viscosity, dp_return
 
 contains
@@ -448,6 +449,62 @@ contains
     vavg = 0.5_dp * (vol_old + vol_new)
     ie = ie + (0.5_dp * (double_dot(sig_old, de) + double_dot(sig, de))) * vavg
   end subroutine neo_hookean
+
+  ! Compressible neo-Hookean in total Lagrangian form (TLmp), as LaneUpdate::neo_hookean_tl:
+  ! H += dF; P = G (F - F^-T) + lambda ln J F^-T with F^-T = cof(F) / J; pk = V0 P,
+  ! sigma = P F^T / J, volume V0 J, internal energy by the trapezoid of V0 P on dF.
+  subroutine neo_hookean_tl(m, df, h, mass, pk, sig, vol, ie)
+    type(material_params), intent(in) :: m
+    real(dp), intent(in) :: df(0:8), mass
+    real(dp), intent(inout) :: h(0:8), pk(0:8), ie
+    real(dp), intent(out) :: sig(6), vol
+    integer, parameter :: ra(6) = [0, 1, 2, 1, 0, 0], rb(6) = [0, 1, 2, 2, 2, 1]
+    real(dp) :: f(0:8), cof(0:8), p(0:8), jac, inv_j, ln_j, lam_ln, v0, fit, pn, work_old, work_new
+    integer :: r, c, a, b
+    do r = 0, 8
+      h(r) = h(r) + df(r)
+    end do
+    do r = 0, 8
+      if (mod(r, 4) == 0) then
+        f(r) = 1.0_dp + h(r)
+      else
+        f(r) = h(r)
+      end if
+    end do
+    jac = det_identity_plus(h)
+    cof(0) = f(4) * f(8) - f(5) * f(7)
+    cof(1) = f(5) * f(6) - f(3) * f(8)
+    cof(2) = f(3) * f(7) - f(4) * f(6)
+    cof(3) = f(2) * f(7) - f(1) * f(8)
+    cof(4) = f(0) * f(8) - f(2) * f(6)
+    cof(5) = f(1) * f(6) - f(0) * f(7)
+    cof(6) = f(1) * f(5) - f(2) * f(4)
+    cof(7) = f(2) * f(3) - f(0) * f(5)
+    cof(8) = f(0) * f(4) - f(1) * f(3)
+    inv_j = 1.0_dp / jac
+    ln_j = log(jac)
+    lam_ln = m%lambda * ln_j
+    v0 = mass / m%rho0
+    do r = 0, 8
+      fit = cof(r) * inv_j
+      p(r) = (m%shear * (f(r) - fit)) + (lam_ln * fit)
+    end do
+    do c = 1, 6
+      a = ra(c)
+      b = rb(c)
+      sig(c) = inv_j * (((p(3 * a) * f(3 * b)) + (p(3 * a + 1) * f(3 * b + 1))) + (p(3 * a + 2) * f(3 * b + 2)))
+    end do
+    work_old = 0.0_dp
+    work_new = 0.0_dp
+    do r = 0, 8
+      pn = v0 * p(r)
+      work_old = work_old + (pk(r) * df(r))
+      work_new = work_new + (pn * df(r))
+      pk(r) = pn
+    end do
+    ie = ie + 0.5_dp * (work_old + work_new)
+    vol = v0 * jac
+  end subroutine neo_hookean_tl
 
   ! Adiabatic heating of thermal Johnson-Cook materials (Taylor-Quinney 0.9).
   subroutine adiabatic_heating(m, s, deps, mass, vol_new, has_temp, temp)

@@ -58,6 +58,8 @@ module mpm3d_data_in
     real(dp) :: load_ramp_time = 0.0_dp ! QuLo: loads ramp over this time (0: off)
     real(dp) :: damping = 0.0_dp        ! Damp: -damping m v joins the body force
     logical :: dynamic_relaxation = .false.  ! drda: stop every particle when KE did not grow
+    logical :: tl = .false.             ! TLmp: total Lagrangian MPM (neoh only)
+    integer :: tl_line = 0              ! deck line of the TLmp card
   end type model_t
 
   public :: read_deck, is_output_variable
@@ -359,6 +361,9 @@ contains
         m%damping = ts%real('the damping coefficient')
         if (.not. (m%damping >= 0.0_dp)) &
           call ts%fail(key%line, "'Damp': the damping coefficient must not be negative")
+      case ('tlmp')  ! total Lagrangian MPM (the current version)
+        m%tl = .true.
+        m%tl_line = key%line
       case ('drda')  ! dynamic-relaxation damping (the current version)
         m%dynamic_relaxation = .true.
       case ('uvfp')  ! the current version's volume update from F

@@ -105,6 +105,20 @@ contains
       allocate(m%particles%defgrad(9, m%particles%np))
       m%particles%defgrad = 0.0_dp
     end if
+    if (m%tl) then
+      ! The combinations the current version's TLmp does not have are refused.
+      do i = 1, m%nmat
+        if (m%mats(i)%type /= MAT_NEOH) call ts%fail(m%tl_line, "'TLmp' with a " // &
+          trim(material_keyword(m%mats(i)%type)) // ' material: total Lagrangian MPM takes neoh materials only')
+      end do
+      if (m%gimp) call ts%fail(m%tl_line, &
+        "'TLmp' with 'gimp': total Lagrangian MPM takes the trilinear shape functions only")
+      if (m%contact) call ts%fail(m%tl_line, "'TLmp' with 'cont': total Lagrangian MPM has one velocity field")
+      if (m%regrid_every > 0) call ts%fail(m%tl_line, "'TLmp' with 'adgr': the reference grid of TLmp cannot move")
+      allocate(m%particles%pk1(9, m%particles%np), m%particles%x0(3, m%particles%np))
+      m%particles%pk1 = 0.0_dp
+      m%particles%x0 = m%particles%x
+    end if
     if (m%has_bulk) then
       allocate(m%particles%qv(m%particles%np))
       m%particles%qv = 0.0_dp

@@ -118,6 +118,8 @@ program mpm3d_ref
   np = model%particles%np
   if (regrid_every < 0) regrid_every = model%regrid_every
   if (time_step >= 0) model%dt_per_step = time_step == 1
+  if (model%tl .and. regrid_every > 0) &
+    call fatal(deck // ": --regrid-every with 'TLmp': the reference grid of TLmp cannot move")
   ! The two contact grids share one node numbering: no adaptive window with contact (as mpm3d).
   if (model%contact) regrid_every = 0
   halo = merge(1, 0, model%gimp)   ! GIMP stencils reach one node beyond a patch's cells
@@ -366,6 +368,14 @@ contains
     ctx%defgrad = c_null_ptr
     if (allocated(model%particles%defgrad)) ctx%defgrad = c_loc(model%particles%defgrad)
     ctx%uvf = merge(1, 0, model%uvf)
+    ctx%tl = merge(1, 0, model%tl)
+    ctx%pk1 = c_null_ptr
+    if (model%tl) then
+      ctx%xbin = c_loc(model%particles%x0)   ! the particles stay in their reference cells
+      ctx%pk1 = c_loc(model%particles%pk1)
+    else
+      ctx%xbin = c_loc(model%particles%x)
+    end if
     ctx%patch_halo = grid%patch_halo
     call bind_grid()      ! before the contact copy: ctx2 starts as a copy of ctx
     if (model%contact) then

@@ -27,6 +27,8 @@ module mpm3d_particle
     real(dp), allocatable :: qv(:)      ! only with 'bulk': bulk viscosity pressure
     real(dp), allocatable :: psize(:)   ! only with gimp: particle half-size lp
     real(dp), allocatable :: defgrad(:,:)  ! (9,np) only with neoh: F - I, row-major
+    real(dp), allocatable :: x0(:,:)       ! (3,np) reference positions, TLmp only
+    real(dp), allocatable :: pk1(:,:)      ! (9,np) V0 P, TLmp only
     integer(c_int), allocatable :: id(:)  ! deck number (0-based) of each stored particle
   end type particles_t
 
@@ -45,6 +47,8 @@ contains
     if (allocated(p%qv)) deallocate(p%qv)
     if (allocated(p%psize)) deallocate(p%psize)
     if (allocated(p%defgrad)) deallocate(p%defgrad)
+    if (allocated(p%x0)) deallocate(p%x0)
+    if (allocated(p%pk1)) deallocate(p%pk1)
     allocate(p%x(3, n), p%v(3, n), p%sig(6, n), p%mass(n), p%vol(n), p%epeff(n), p%ie(n), &
              p%mat(n), p%body(n))
     p%x = 0.0_dp
@@ -167,6 +171,8 @@ contains
     if (allocated(p%qv)) p%qv = p%qv(from)
     if (allocated(p%psize)) p%psize = p%psize(from)
     if (allocated(p%defgrad)) p%defgrad = p%defgrad(:, from)
+    if (allocated(p%x0)) p%x0 = p%x0(:, from)
+    if (allocated(p%pk1)) p%pk1 = p%pk1(:, from)
     p%id = p%id(from)
   end subroutine particles_order_by_blocks
 

@@ -23,7 +23,7 @@ contains
     logical :: inside, filter
     pc = c%patch_cells
     call view_components(c, filter, body, bcomp)     ! contact: this context's component only
-    call c_f_pointer(c%x, x, [3, c%np])
+    call c_f_pointer(c%xbin, x, [3, c%np])   ! the reference positions under TLmp
     call c_f_pointer(c%lx, lx, [3, c%np])
     call view_patch_lists(c, start, ppart, slots, cell)
     ! start(q + 1) is C's start[q].

@@ -66,6 +66,9 @@ module mpm3d_stage_common
     integer(c_int) :: uvf = 0              ! 1: volume from det(I + L dt) (UVFp, neoh)
     real(c_double) :: load_ramp_time = 0.0_c_double   ! QuLo: loads ramp over this time; 0 off
     real(c_double) :: damping = 0.0_c_double          ! Damp: -damping m v in the body force
+    type(c_ptr) :: xbin = c_null_ptr       ! positions the bin stage places: x, or the reference ones (TLmp)
+    type(c_ptr) :: pk1 = c_null_ptr        ! (9,np) V0 P (TLmp), or null
+    integer(c_int) :: tl = 0               ! 1: total Lagrangian MPM
   end type step_context
 
   public :: view_buffers, gimp_stencil
@@ -152,7 +155,7 @@ contains
   ! Layout of step_context and material_params as this compiler sees them (for the
   ! layout test against the C structs): sizes and a few offsets, in bytes.
   subroutine mpm3d_f_context_layout(out) bind(C, name='mpm3d_f_context_layout')
-    integer(c_size_t), intent(out) :: out(16)
+    integer(c_size_t), intent(out) :: out(17)
     type(step_context), target :: c
     type(material_params), target :: m(2)
     out(1) = c_sizeof(c)
@@ -171,6 +174,7 @@ contains
     out(14) = transfer(c_loc(c%defgrad), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
     out(15) = transfer(c_loc(c%uvf), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
     out(16) = transfer(c_loc(c%damping), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
+    out(17) = transfer(c_loc(c%tl), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
   end subroutine mpm3d_f_context_layout
 
 end module mpm3d_stage_common

@@ -51,7 +51,11 @@ contains
     real(dp), pointer :: buf(:,:,:), lx(:,:), v(:,:), sig(:,:), mass(:), vol(:), fext(:,:), grav(:,:)
     real(dp), pointer :: psize(:)
     integer(c_int), pointer :: pstart(:), ppart(:), slots(:), cell(:), body(:)
-    real(dp) :: sn(27), sg(3, 27), vs(6), fb(3), mp, volp, mn, gx, gy, gz, fx, fy, fz, f
+    real(dp) :: sn(27), sg(3, 27), vs(9), fb(3), mp, volp, mn, gx, gy, gz, fx, fy, fz, f
+    real(dp), pointer :: pk1(:,:)
+    ! The stress times the volume as a 3x3 matrix (row i: force component i): sigma V from
+    ! the Voigt stress, or V0 P under TLmp (as p2g_particle, cxx/stage_common.hpp).
+    integer, parameter :: VOIGT(9) = [1, 6, 5, 6, 2, 4, 5, 4, 3]
     integer :: pc, qq, q, slot, idx, p, base, s, a, k, ln, nk
     integer :: ci(3), o(3)
     logical :: has_fext, body_force, gimp
@@ -78,6 +82,7 @@ contains
     else
       nullify(fext)
     end if
+    if (c%tl /= 0) call c_f_pointer(c%pk1, pk1, [9, c%np])
     if (body_force) then
       call c_f_pointer(c%gravity, grav, [3, max(c%nbody, 1)])
     else
@@ -96,8 +101,12 @@ contains
         fb = 0.0_dp
         if (with_forces) then
           volp = vol(p)
-          do s = 1, 6
-            vs(s) = sig(s, p) * volp
+          do s = 1, 9
+            if (c%tl /= 0) then
+              vs(s) = pk1(s, p)
+            else
+              vs(s) = sig(VOIGT(s), p) * volp
+            end if
           end do
           if (body_force) then
             if (c%load_ramp_time > 0.0_dp .or. c%damping > 0.0_dp) then
@@ -136,9 +145,9 @@ contains
             gx = sg(1, k + 1)
             gy = sg(2, k + 1)
             gz = sg(3, k + 1)
-            fx = -(((vs(1) * gx) + (vs(6) * gy)) + (vs(5) * gz))
-            fy = -(((vs(6) * gx) + (vs(2) * gy)) + (vs(4) * gz))
-            fz = -(((vs(5) * gx) + (vs(4) * gy)) + (vs(3) * gz))
+            fx = -(((vs(1) * gx) + (vs(2) * gy)) + (vs(3) * gz))
+            fy = -(((vs(4) * gx) + (vs(5) * gy)) + (vs(6) * gz))
+            fz = -(((vs(7) * gx) + (vs(8) * gy)) + (vs(9) * gz))
             if (body_force) then
               fx = (sn(k + 1) * fb(1)) + fx
               fy = (sn(k + 1) * fb(2)) + fy

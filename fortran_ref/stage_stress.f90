@@ -4,7 +4,7 @@ module mpm3d_stage_stress
   use, intrinsic :: iso_c_binding
   use mpm3d_material
   use mpm3d_grid, only: shape_linear
-  use mpm3d_constitution, only: stress_update, burn_fraction, neo_hookean, det_identity_plus
+  use mpm3d_constitution, only: stress_update, burn_fraction, neo_hookean, neo_hookean_tl, det_identity_plus
   use mpm3d_stage_common
   implicit none
   private
@@ -17,7 +17,7 @@ contains
   subroutine mpm3d_f_stress(c) bind(C, name='mpm3d_f_stress')
     type(step_context), intent(inout) :: c
     real(dp), pointer :: lx(:,:), sig(:,:), mass(:), vol(:), epeff(:), ie(:), temp(:)
-    real(dp), pointer :: tlight(:), qv(:), defgrad(:,:)
+    real(dp), pointer :: tlight(:), qv(:), defgrad(:,:), pk1(:,:)
     real(dp), pointer :: gmass(:), gmom(:,:), psize(:)
     integer(c_int), pointer :: cell(:), mat(:), body(:), bcomp(:)
     type(material_params), pointer :: mats(:)
@@ -52,6 +52,7 @@ contains
     has_q = c_associated(c%qv)
     if (has_q) call c_f_pointer(c%qv, qv, [c%np])
     if (c_associated(c%defgrad)) call c_f_pointer(c%defgrad, defgrad, [9, c%np])
+    if (c%tl /= 0) call c_f_pointer(c%pk1, pk1, [9, c%np])
     tdummy = 0.0_dp
     qdummy = 0.0_dp
     do p = 1, c%np
@@ -84,6 +85,13 @@ contains
       dw(2) = (0.5_dp * (lg(2) - lg(6))) * dt
       dw(3) = (0.5_dp * (lg(1) - lg(3))) * dt
       vol_old = vol(p)
+      if (c%tl /= 0) then   ! TLmp (neoh only): lg is the gradient in the reference configuration
+        do k = 0, 8
+          dl(k) = lg(k) * dt
+        end do
+        call neo_hookean_tl(mats(mat(p) + 1), dl, defgrad(:, p), mass(p), pk1(:, p), sig(:, p), vol(p), ie(p))
+        cycle
+      end if
       neoh = mats(mat(p) + 1)%type == MAT_NEOH
       if (c%uvf /= 0 .or. neoh) then
         ! UVFp and neoh: the volume from the deformation, det(I + L dt)

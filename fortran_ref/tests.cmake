@@ -89,6 +89,9 @@ if(TARGET mpm3d AND TARGET mpm3d_ref)
   fref_add(fref_ksin_strip_init init ${CMAKE_SOURCE_DIR}/tests/decks/ksin_strip.mpm)
   fref_add(fref_ksin_strip_mpm3d_ref ref ${CMAKE_SOURCE_DIR}/tests/decks/ksin_strip.mpm)
   fref_add(fref_nuli_beam_init init ${CMAKE_SOURCE_DIR}/tests/decks/nuli_beam.mpm)
+  # Total Lagrangian MPM (TLmp): our coarse soft cantilever and the public soft beam.
+  fref_deck(soft_beam_tl ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/soft_beam_tl.mpm)
+  fref_deck(current_soft_beam_tl ${_fref_shared}/current/SoftBeam_SBTL_0p1mesh_SBTL.mpm)
   fref_deck(current_free_soft_beam ${_fref_shared}/current/FreeSoftBeam_MPM_v0p3_FreeSB_MPM.mpm)
   # GIMP with the adaptive grid (halo patches on the deck's patch lattice).
   fref_adaptive(two_blocks_gimp ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks_gimp.mpm)

@@ -254,3 +254,26 @@ TEST(DataIn, CurrentVersionGeneratorsAndVelocityFields) {
   EXPECT_EQ(uv[3 * 384 + 1], uv[1]);  // every row the same
   EXPECT_EQ(uv[0], 0.0);
 }
+
+// TLmp: what the current version's total Lagrangian MPM does not have is refused, naming
+// both keywords; a neoh deck with TLmp carries the reference positions and V0 P.
+TEST(DataIn, TotalLagrangianCombinationsAreRefused) {
+  const mpm3d::Model tl = mpm3d::read_deck_text(deck("1 neoh 1100 17e6 0.3", "TLmp\n"), "tl.mpm");
+  EXPECT_TRUE(tl.tl);
+  EXPECT_EQ(tl.particles.pk1.size(), 9u * 12u);
+  ASSERT_EQ(tl.particles.x0.size(), tl.particles.x.size());
+  struct Case {
+    std::string mate, extra;
+    const char* word;
+  } cases[] = {{"1 elas 2.0 200.0 0.25", "TLmp\n", "'TLmp' with a elas material"},
+               {"1 neoh 1100 17e6 0.3", "TLmp\ngimp\n", "'TLmp' with 'gimp'"},
+               {"1 neoh 1100 17e6 0.3", "TLmp\nadgr 5\n", "'TLmp' with 'adgr'"}};
+  for (const auto& c : cases) {
+    try {
+      mpm3d::read_deck_text(deck(c.mate, c.extra), "tlr.mpm");
+      ADD_FAILURE() << "accepted: " << c.extra;
+    } catch (const mpm3d::DeckError& e) {
+      EXPECT_NE(std::string(e.what()).find(c.word), std::string::npos) << e.what();
+    }
+  }
+}

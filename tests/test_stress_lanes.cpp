@@ -266,3 +266,49 @@ TEST(StressLanes, NeoHookeanAndUvfLanesEqualOneLaneAtATime) {
     }
   }
 }
+
+// TLmp: the total Lagrangian neo-Hookean update. From rest through one reference increment
+// dF the Cauchy stress is that of the updated Lagrangian form for the same F (uniaxial
+// stretch), V0 P = V0 (G (F - F^-T) + lambda ln J F^-T) is kept, the volume is V0 J; and
+// every lane of the vector update equals the lane-by-lane one, bit for bit.
+TEST(StressLanes, TotalLagrangianNeoHookean) {
+  const MaterialParams m = neo_hookean();
+  const double G = m.young / (2.0 * (1.0 + m.poisson));
+  const double lam = m.young * m.poisson / ((1.0 + m.poisson) * (1.0 - 2.0 * m.poisson));
+  const double dt = 1.0e-3, e = 0.05, v0 = 1.0;
+  mpm3d::StressBlock b{};
+  b.L[0][0] = e / dt;
+  b.mass[0] = m.rho0 * v0;
+  b.vol[0] = v0;
+  const mpm3d::StressBlockArgs tl{dt, false, false, 0.0, 0.0, 0.0, true, true};
+  mpm3d::stress_block_lane(m, b, 0, tl);
+  const double J = 1.0 + e;
+  EXPECT_NEAR(b.sig[0][0], (G * (J * J - 1.0) + lam * std::log(J)) / J, 1e-9 * G);
+  EXPECT_NEAR(b.sig[1][0], lam * std::log(J) / J, 1e-9 * G);
+  EXPECT_NEAR(b.pk1[0][0], v0 * (G * (J - 1.0 / J) + lam * std::log(J) / J), 1e-9 * G);
+  EXPECT_NEAR(b.pk1[4][0], v0 * lam * std::log(J), 1e-9 * G);
+  EXPECT_EQ(b.pk1[1][0], 0.0);
+  EXPECT_NEAR(b.vol[0], v0 * J, 1e-15);
+  EXPECT_NEAR(b.H[0][0], e, 1e-15);
+  // The work of the step: the trapezoid of V0 P on dF, from zero.
+  EXPECT_NEAR(b.ie[0], 0.5 * b.pk1[0][0] * e, 1e-12 * G);
+
+  std::mt19937_64 rng(20261126);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 500; ++trial) {
+    mpm3d::StressBlock in{};
+    for (int i = 0; i < mpm3d::kStressLanes; ++i) {
+      for (int r = 0; r < 9; ++r) in.L[r][i] = 20.0 * u(rng);
+      for (int r = 0; r < 9; ++r) in.H[r][i] = 0.2 * u(rng);
+      for (int r = 0; r < 9; ++r) in.pk1[r][i] = 1.0e3 * u(rng);
+      in.mass[i] = m.rho0 * (1.0 + 0.1 * u(rng));
+      in.vol[i] = 1.0 + 0.2 * u(rng);
+      in.ie[i] = 1.0 + u(rng);
+      in.burn[i] = 1.0;
+    }
+    mpm3d::StressBlock vec = in, lane = in;
+    mpm3d::stress_block(m, vec, tl);
+    for (int i = 0; i < mpm3d::kStressLanes; ++i) mpm3d::stress_block_lane(m, lane, i, tl);
+    ASSERT_EQ(std::memcmp(&vec, &lane, sizeof vec), 0) << "trial " << trial;
+  }
+}

@@ -34,6 +34,8 @@ mpm3d_thread_test(free_soft_beam ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/free_so
 mpm3d_thread_test(neo_block_gimp ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/neo_block_gimp.mpm 88)
 mpm3d_thread_test(cantilever_quasi_static ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/cantilever_quasi_static.mpm 300)
 mpm3d_thread_test(plate_hole_drda ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/plate_hole_drda.mpm 300)
+mpm3d_thread_test(soft_beam_tl ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/soft_beam_tl.mpm 400)
+mpm3d_thread_test(current_soft_beam_tl ${CMAKE_SOURCE_DIR}/../shared/decks/current/SoftBeam_SBTL_0p1mesh_SBTL.mpm 300)
 mpm3d_thread_test(current_free_soft_beam ${CMAKE_SOURCE_DIR}/../shared/decks/current/FreeSoftBeam_MPM_v0p3_FreeSB_MPM.mpm 300)
 # The particles' storage order (tests/particle_order.sh): deck order keeps every bit too.
 mpm3d_thread_test(two_blocks_deck_order ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks.mpm 207 --particle-order deck)
