@@ -73,17 +73,12 @@ __attribute__((always_inline)) inline void p2g_particle(const StepContext* c, in
                                                         bool with_body, NodeOf node) {
   const double mp = c->mass[p];
   const double* vp = c->v + 3 * p;
-  // The stress times the volume as a 3x3 matrix, row i giving force component i: sigma V
-  // (symmetric), or V0 P under TLmp (pk1).
-  double vs[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, fb[3] = {0, 0, 0};
+  // sigma V (Voigt), or under TLmp V0 P (pk, a 3x3 matrix, row i giving force component i).
+  double vs[6] = {0, 0, 0, 0, 0, 0}, fb[3] = {0, 0, 0};
+  const double* pk = c->pk1 ? c->pk1 + 9 * size_t(p) : nullptr;
   if (with_forces) {
-    if (c->pk1) {
-      for (int s = 0; s < 9; ++s) vs[s] = c->pk1[9 * p + s];
-    } else {
-      const double volp = c->vol[p];
-      const int voigt[9] = {0, 5, 4, 5, 1, 3, 4, 3, 2};
-      for (int s = 0; s < 9; ++s) vs[s] = c->sig[6 * p + voigt[s]] * volp;
-    }
+    const double volp = c->vol[p];
+    for (int s = 0; s < 6; ++s) vs[s] = c->sig[6 * p + s] * volp;
     if (with_body) {
       const double* g = c->gravity + 3 * c->body[p];
       if (c->load_ramp_time > 0.0 || c->damping > 0.0) {
@@ -115,9 +110,16 @@ __attribute__((always_inline)) inline void p2g_particle(const StepContext* c, in
     }
     if (with_forces) {
       const double gx = G[3 * k], gy = G[3 * k + 1], gz = G[3 * k + 2];
-      double fx = -((vs[0] * gx + vs[1] * gy) + vs[2] * gz);
-      double fy = -((vs[3] * gx + vs[4] * gy) + vs[5] * gz);
-      double fz = -((vs[6] * gx + vs[7] * gy) + vs[8] * gz);
+      double fx, fy, fz;
+      if (pk) {
+        fx = -((pk[0] * gx + pk[1] * gy) + pk[2] * gz);
+        fy = -((pk[3] * gx + pk[4] * gy) + pk[5] * gz);
+        fz = -((pk[6] * gx + pk[7] * gy) + pk[8] * gz);
+      } else {
+        fx = -((vs[0] * gx + vs[5] * gy) + vs[4] * gz);
+        fy = -((vs[5] * gx + vs[1] * gy) + vs[3] * gz);
+        fz = -((vs[4] * gx + vs[3] * gy) + vs[2] * gz);
+      }
       if (with_body) {
         fx = N[k] * fb[0] + fx;
         fy = N[k] * fb[1] + fy;
