@@ -158,9 +158,14 @@ struct LaneUpdate {
   // B - I = H + H^T + H H^T (kept in H so that small strains lose no digits),
   // sigma = (G (B - I) + lambda ln J I) / J. No Jaumann rotation: the stress is a function
   // of F. Internal energy by the trapezoid of the old and new stress on de, as the
-  // hypoelastic path.
+  // hypoelastic path. With bulk viscosity (has_q; the current version has it on by
+  // default), as the current version applies it to neoh: q (bulk_viscosity at the new
+  // density) where the new mean stress is compressive, kept in qv and carried by the stored
+  // stress (sigma - q I), its work q tr(de) in the energy; the old stress enters the
+  // trapezoid without its q.
   static void neo_hookean(const MaterialParams& m, const T dL[9], const T de[6], T H[9], T vol_old, T vol_new,
-                          T sig[6], T& ie) {
+                          T sig[6], T& ie, bool has_q, T& qv, T mass, double dt, double q1, double q2,
+                          double qlen) {
     T hn[9];
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j)
@@ -181,10 +186,21 @@ struct LaneUpdate {
     const T lam_ln = m.lambda * ln_j;
     T sig_old[6];
     for (int c = 0; c < 6; ++c) sig_old[c] = sig[c];
+    if (has_q)
+      for (int c = 0; c < 3; ++c) sig_old[c] = sig_old[c] + qv;
     for (int c = 0; c < 3; ++c) sig[c] = inv_j * (m.shear * bm[c] + lam_ln);
     for (int c = 3; c < 6; ++c) sig[c] = inv_j * (m.shear * bm[c]);
     const T vavg = 0.5 * (vol_old + vol_new);
-    ie = ie + (0.5 * (double_dot(sig_old, de) + double_dot(sig, de))) * vavg;
+    T work = double_dot(sig_old, de) + double_dot(sig, de);
+    if (has_q) {
+      const T dkk = (de[0] + de[1]) + de[2];
+      const T mean = ((sig[0] + sig[1]) + sig[2]) / 3.0;
+      const T q = bulk_viscosity(mass / vol_new, qlen, m.wave_speed, dkk / dt, q1, q2);
+      qv = TL::select(mean < 0.0, q, TL::splat(0.0));
+      work = work - 2.0 * (qv * dkk);
+      for (int c = 0; c < 3; ++c) sig[c] = sig[c] - qv;
+    }
+    ie = ie + (0.5 * work) * vavg;
   }
 
   // Compressible neo-Hookean in total Lagrangian form (TLmp): H = F - I advanced by the
@@ -375,13 +391,15 @@ void stress_block_lanes(const MaterialParams& m, StressBlock& b, int first, cons
   T sig[6];
   for (int c = 0; c < 6; ++c) sig[c] = TL::load(b.sig[c] + first);
   if (m.type == MAT_NEOH) {
-    T H[9], ie = TL::load(b.ie + first);
+    T H[9], ie = TL::load(b.ie + first), qv = TL::load(b.qv + first);
     for (int r = 0; r < 9; ++r) H[r] = TL::load(b.H[r] + first);
-    U::neo_hookean(m, dL, de, H, vol_old, vol_new, sig, ie);
+    U::neo_hookean(m, dL, de, H, vol_old, vol_new, sig, ie, a.has_q, qv, TL::load(b.mass + first), dt, a.q1, a.q2,
+                   a.qlen);
     TL::store(b.vol + first, vol_new);
     for (int c = 0; c < 6; ++c) TL::store(b.sig[c] + first, sig[c]);
     for (int r = 0; r < 9; ++r) TL::store(b.H[r] + first, H[r]);
     TL::store(b.ie + first, ie);
+    TL::store(b.qv + first, qv);
     return;
   }
   T epeff = TL::load(b.epeff + first), ie = TL::load(b.ie + first);

@@ -86,14 +86,18 @@ void DeckReader::finish(int line) {
       P.tlight[size_t(p)] = dmin / mp.det_vel;
     }
   }
+  // The current version has artificial bulk viscosity on by default (1.5, 0.06), applied to
+  // the stress (the book computes it only where 'bulk' asks).
+  if (m_.current_version && !m_.has_bulk) {
+    m_.has_bulk = true;
+    m_.bulk_q1 = 1.5;
+    m_.bulk_q2 = 0.06;
+  }
   if (m_.has_bulk) P.qv.assign(size_t(P.np), 0.0);
   // neoh: each particle carries F - I (zero at the start); the volume follows det F.
   bool neoh = false;
   for (const auto& mp : m_.mats) neoh = neoh || mp.type == MAT_NEOH;
   if (neoh) {
-    if (m_.has_bulk)
-      fail(line, "'bulk' with a neoh material: the neo-Hookean stress has no bulk viscosity term (the current "
-                 "MPM3D ignores it); remove 'bulk'");
     m_.uvf = true;
     P.defgrad.assign(9 * size_t(P.np), 0.0);
   }
@@ -159,7 +163,8 @@ void DeckReader::finish(int line) {
   // dt = dtscale * h / c_max (the dilatational wave speed, D for hiex, c for null), fixed
   // for the run as in the original. With bulk viscosity the stable step of a material at
   // rest is h / (Q + sqrt(Q^2 + c^2)) with Q = q2 c: dt = dtscale h / (c_max (q2 + sqrt(1 + q2^2))).
-  if (m_.has_bulk)
+  // The current version's dt has no bulk viscosity term.
+  if (m_.has_bulk && !m_.current_version)
     m_.dt = (m_.dtscale * m_.dcell) / (c_max * (m_.bulk_q2 + std::sqrt(1.0 + m_.bulk_q2 * m_.bulk_q2)));
   else
     m_.dt = m_.dtscale * m_.dcell / c_max;

@@ -415,12 +415,15 @@ contains
   ! Compressible neo-Hookean (neoh), as LaneUpdate::neo_hookean: H = F - I advanced by
   ! dL = L dt as H + (dL + dL H); J = det F, B - I = H + H^T + H H^T,
   ! sigma = (G (B - I) + lambda ln J I) / J; internal energy by the trapezoid on de.
-  subroutine neo_hookean(m, dl, de, h, vol_old, vol_new, sig, ie)
+  ! With bulk viscosity (has_q), as the current version applies it to neoh: q where the new
+  ! mean stress is compressive, in qv and in the stored stress, its work in the energy.
+  subroutine neo_hookean(m, dl, de, h, vol_old, vol_new, sig, ie, has_q, qv, mass, dt, q1, q2, qlen)
     type(material_params), intent(in) :: m
-    real(dp), intent(in) :: dl(0:8), de(6), vol_old, vol_new
-    real(dp), intent(inout) :: h(0:8), sig(6), ie
+    real(dp), intent(in) :: dl(0:8), de(6), vol_old, vol_new, mass, dt, q1, q2, qlen
+    logical, intent(in) :: has_q
+    real(dp), intent(inout) :: h(0:8), sig(6), ie, qv
     integer, parameter :: ra(6) = [0, 1, 2, 1, 0, 0], rb(6) = [0, 1, 2, 2, 2, 1]
-    real(dp) :: hn(0:8), bm(6), sig_old(6), jac, ln_j, inv_j, lam_ln, vavg
+    real(dp) :: hn(0:8), bm(6), sig_old(6), jac, ln_j, inv_j, lam_ln, vavg, work, dkk, mean, q
     integer :: i, k, c, a, b
     do i = 0, 2
       do k = 0, 2
@@ -440,6 +443,11 @@ contains
     inv_j = 1.0_dp / jac
     lam_ln = m%lambda * ln_j
     sig_old = sig
+    if (has_q) then
+      do c = 1, 3
+        sig_old(c) = sig_old(c) + qv
+      end do
+    end if
     do c = 1, 3
       sig(c) = inv_j * (m%shear * bm(c) + lam_ln)
     end do
@@ -447,7 +455,22 @@ contains
       sig(c) = inv_j * (m%shear * bm(c))
     end do
     vavg = 0.5_dp * (vol_old + vol_new)
-    ie = ie + (0.5_dp * (double_dot(sig_old, de) + double_dot(sig, de))) * vavg
+    work = double_dot(sig_old, de) + double_dot(sig, de)
+    if (has_q) then
+      dkk = (de(1) + de(2)) + de(3)
+      mean = ((sig(1) + sig(2)) + sig(3)) / 3.0_dp
+      q = bulk_viscosity(mass / vol_new, qlen, m%wave_speed, dkk / dt, q1, q2)
+      if (mean < 0.0_dp) then
+        qv = q
+      else
+        qv = 0.0_dp
+      end if
+      work = work - 2.0_dp * (qv * dkk)
+      do c = 1, 3
+        sig(c) = sig(c) - qv
+      end do
+    end if
+    ie = ie + (0.5_dp * work) * vavg
   end subroutine neo_hookean
 
   ! Compressible neo-Hookean in total Lagrangian form (TLmp), as LaneUpdate::neo_hookean_tl:

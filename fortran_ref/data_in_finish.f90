@@ -99,8 +99,6 @@ contains
     end if
     ! neoh: each particle carries F - I (zero at the start); the volume follows det F.
     if (any(m%mats(1:m%nmat)%type == MAT_NEOH)) then
-      if (m%has_bulk) call ts%fail(line, "'bulk' with a neoh material: the neo-Hookean stress has no bulk " // &
-                                   "viscosity term (the current MPM3D ignores it); remove 'bulk'")
       m%uvf = .true.
       allocate(m%particles%defgrad(9, m%particles%np))
       m%particles%defgrad = 0.0_dp
@@ -118,6 +116,12 @@ contains
       allocate(m%particles%pk1(9, m%particles%np), m%particles%x0(3, m%particles%np))
       m%particles%pk1 = 0.0_dp
       m%particles%x0 = m%particles%x
+    end if
+    ! The current version has bulk viscosity on by default (1.5, 0.06), applied to the stress.
+    if (m%current_version .and. .not. m%has_bulk) then
+      m%has_bulk = .true.
+      m%bulk_q1 = 1.5_dp
+      m%bulk_q2 = 0.06_dp
     end if
     if (m%has_bulk) then
       allocate(m%particles%qv(m%particles%np))
@@ -174,7 +178,7 @@ contains
     end if
     ! dt = dtscale * h / c_max (the dilatational wave speed, D for hiex, c for null), fixed
     ! for the run; with bulk viscosity dtscale h / (c_max (q2 + sqrt(1 + q2^2))).
-    if (m%has_bulk) then
+    if (m%has_bulk .and. .not. m%current_version) then   ! the current version's dt has no q term
       m%dt = (m%dtscale * m%dcell) / (c_max * (m%bulk_q2 + sqrt(1.0_dp + (m%bulk_q2 * m%bulk_q2))))
     else
       m%dt = (m%dtscale * m%dcell) / c_max

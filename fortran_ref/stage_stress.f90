@@ -103,7 +103,13 @@ contains
         vol_new = vol_old * (1.0_dp + ((de(1) + de(2)) + de(3)))
       end if
       if (neoh) then
-        call neo_hookean(mats(mat(p) + 1), dl, de, defgrad(:, p), vol_old, vol_new, sig(:, p), ie(p))
+        if (has_q) then
+          call neo_hookean(mats(mat(p) + 1), dl, de, defgrad(:, p), vol_old, vol_new, sig(:, p), ie(p), &
+                           .true., qv(p), mass(p), dt, c%bulk_q1, c%bulk_q2, c%h)
+        else
+          call neo_hookean(mats(mat(p) + 1), dl, de, defgrad(:, p), vol_old, vol_new, sig(:, p), ie(p), &
+                           .false., qdummy, mass(p), dt, c%bulk_q1, c%bulk_q2, c%h)
+        end if
         vol(p) = vol_new
         cycle
       end if
