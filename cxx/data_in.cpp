@@ -151,7 +151,13 @@ Model DeckReader::read() {
     } else if (k == "seos") {
       read_eos(key);
     } else if (k == "outr") {
-      m_.anim_vars.push_back(output_var(key.line));
+      // A variable asked for twice is written once (the animation files name their
+      // variables; an HDF5 frame cannot hold two datasets of one name).
+      const std::string v = output_var(key.line);
+      if (std::find(m_.anim_vars.begin(), m_.anim_vars.end(), v) == m_.anim_vars.end())
+        m_.anim_vars.push_back(v);
+      else
+        m_.warnings.push_back("line " + std::to_string(key.line) + ": 'outr " + v + "' given again: written once");
     } else if (k == "curv") {
       CurveRequest c;
       c.var = output_var(key.line);

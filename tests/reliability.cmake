@@ -18,6 +18,12 @@ mpm3d_restart_test(two_blocks_adaptive ${CMAKE_SOURCE_DIR}/inputs/impact/two_blo
 # contact at the checkpoint's step are part of the state: /simulation/contact_marks).
 mpm3d_restart_test(spheres ${CMAKE_SOURCE_DIR}/inputs/contact/spheres.mpm 60 25)
 mpm3d_restart_test(gimp_contact_usf ${CMAKE_SOURCE_DIR}/fortran_ref/testdecks/gimp_contact_usf.mpm 60 25)
+# The current version's state: F - I and the bulk viscosity of neoh with the time step
+# recomputed every step, V0 P of TLmp, the quasi-static ramp and damping, drda.
+mpm3d_restart_test(free_soft_beam ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/free_soft_beam_coarse.mpm 120 50)
+mpm3d_restart_test(soft_beam_tl ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/soft_beam_tl.mpm 120 50)
+mpm3d_restart_test(cantilever_quasi_static ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/cantilever_quasi_static.mpm 120 50)
+mpm3d_restart_test(plate_hole_drda ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/plate_hole_drda.mpm 120 50)
 
 foreach(sig TERM INT)
   add_test(NAME restart.signal_${sig}

@@ -282,3 +282,14 @@ TEST(DataIn, TotalLagrangianCombinationsAreRefused) {
     }
   }
 }
+
+// An output variable asked for twice is written once, with a warning (an HDF5 frame cannot
+// hold two datasets of one name: the series failed on such a deck).
+TEST(DataIn, RepeatedOutrIsWrittenOnce) {
+  const mpm3d::Model m = mpm3d::read_deck_text(deck("1 elas 2.0 200.0 0.25", "outr pres\noutr seqv\noutr pres\n"), "r.mpm");
+  ASSERT_EQ(m.anim_vars.size(), 2u);
+  EXPECT_EQ(m.anim_vars[0], "pres");
+  EXPECT_EQ(m.anim_vars[1], "seqv");
+  ASSERT_EQ(m.warnings.size(), 1u);
+  EXPECT_NE(m.warnings[0].find("'outr pres' given again"), std::string::npos) << m.warnings[0];
+}
