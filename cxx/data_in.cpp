@@ -239,6 +239,10 @@ Model DeckReader::read() {
       ended_ = true;
       finish(key.line);
       break;
+    } else if (k == "bimp" || k == "sgmp") {
+      fail(key.line, "'" + key.text + "': the current MPM3D-F90's " +
+                         (k == "bimp" ? std::string("B-spline shape functions are") : std::string("smoothed-gradient MPM is")) +
+                         " not implemented yet (docs/DECK_FORMAT.md)");
     } else {
       fail(key.line, "unknown keyword '" + key.text + "'");
     }

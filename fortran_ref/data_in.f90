@@ -387,6 +387,12 @@ contains
         ended = .true.
         call finish(ts, m, key%line, box_line, dcell_line)
         exit
+      case ('bimp')
+        call ts%fail(key%line, "'" // kt // "': the current MPM3D-F90's B-spline shape functions are not " // &
+                     'implemented yet (docs/DECK_FORMAT.md)')
+      case ('sgmp')
+        call ts%fail(key%line, "'" // kt // "': the current MPM3D-F90's smoothed-gradient MPM is not " // &
+                     'implemented yet (docs/DECK_FORMAT.md)')
       case default
         call ts%fail(key%line, "unknown keyword '" // kt // "'")
       end select

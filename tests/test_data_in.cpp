@@ -293,3 +293,17 @@ TEST(DataIn, RepeatedOutrIsWrittenOnce) {
   ASSERT_EQ(m.warnings.size(), 1u);
   EXPECT_NE(m.warnings[0].find("'outr pres' given again"), std::string::npos) << m.warnings[0];
 }
+
+// The current version's methods not implemented yet say so (not "unknown keyword").
+TEST(DataIn, CurrentVersionMethodsNotYetImplementedSaySo) {
+  for (const char* k : {"bimp", "sgmp"}) {
+    try {
+      mpm3d::read_deck_text(deck("1 neoh 1100 17e6 0.3", std::string(k) + "\n"), "n.mpm");
+      ADD_FAILURE() << k << " accepted";
+    } catch (const mpm3d::DeckError& e) {
+      const std::string w = e.what();
+      EXPECT_NE(w.find("not implemented yet"), std::string::npos) << w;
+      EXPECT_EQ(w.find("unknown keyword"), std::string::npos) << w;
+    }
+  }
+}
