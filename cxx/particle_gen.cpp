@@ -53,20 +53,15 @@ void generate_block(ParticleAppender& out, const LatticeCard& c, const double o[
     out.fail(c.line, "block of " + std::to_string(n[0] * n[1] * n[2]) + " particles exceeds 'nbmp' = " +
                          std::to_string(out.limit()));
   const double dp = c.dp;
-  if (x_fastest) {  // the current version
-    for (long l = 0; l < n[2]; ++l)
-      for (long j = 0; j < n[1]; ++j)
-        for (long i = 0; i < n[0]; ++i)
-          out.add(c.line, c.body, c.mat, c.mass, c.vol, o[0] + (double(i) + 0.5) * dp, o[1] + (double(j) + 0.5) * dp,
-                  o[2] + (double(l) + 0.5) * dp);
-    return;
+  // Particle k of the card: the book numbers z fastest (x outermost), the current version x
+  // fastest (z outermost).
+  for (long k = 0; k < n[0] * n[1] * n[2]; ++k) {
+    const long i = x_fastest ? k % n[0] : k / (n[2] * n[1]);
+    const long j = x_fastest ? (k / n[0]) % n[1] : (k / n[2]) % n[1];
+    const long l = x_fastest ? k / (n[0] * n[1]) : k % n[2];
+    out.add(c.line, c.body, c.mat, c.mass, c.vol, o[0] + (double(i) + 0.5) * dp, o[1] + (double(j) + 0.5) * dp,
+            o[2] + (double(l) + 0.5) * dp);
   }
-  // Book version: x outermost, z index fastest.
-  for (long i = 0; i < n[0]; ++i)
-    for (long j = 0; j < n[1]; ++j)
-      for (long l = 0; l < n[2]; ++l)
-        out.add(c.line, c.body, c.mat, c.mass, c.vol, o[0] + (double(i) + 0.5) * dp, o[1] + (double(j) + 0.5) * dp,
-                o[2] + (double(l) + 0.5) * dp);
 }
 
 void generate_sphere(ParticleAppender& out, const LatticeCard& c, const double centre[3], long nr) {

@@ -95,35 +95,28 @@ contains
     real(dp), intent(in) :: o(3)
     integer(int64), intent(in) :: nb(3)
     logical, intent(in) :: x_fastest   ! the current version's order (the book: z fastest)
-    integer(int64) :: i, j, l
+    integer(int64) :: i, j, l, k
     real(dp) :: dpp
     if (n_defined(b) + nb(1) * nb(2) * nb(3) > nbmp) &
       call ts%fail(c%line, 'block of ' // itoa(nb(1) * nb(2) * nb(3)) // &
                    " particles exceeds 'nbmp' = " // itoa(int(nbmp, int64)))
     dpp = c%spacing
-    if (x_fastest) then
-      do l = 0, nb(3) - 1
-        do j = 0, nb(2) - 1
-          do i = 0, nb(1) - 1
-            call add_particle(ts, p, b, nbmp, c%line, c%body, c%mat, c%mass, c%vol, &
-                              o(1) + ((real(i, dp) + 0.5_dp) * dpp), &
-                              o(2) + ((real(j, dp) + 0.5_dp) * dpp), &
-                              o(3) + ((real(l, dp) + 0.5_dp) * dpp))
-          end do
-        end do
-      end do
-      return
-    end if
-    ! Book version: x outermost, z index fastest.
-    do i = 0, nb(1) - 1
-      do j = 0, nb(2) - 1
-        do l = 0, nb(3) - 1
-          call add_particle(ts, p, b, nbmp, c%line, c%body, c%mat, c%mass, c%vol, &
-                            o(1) + ((real(i, dp) + 0.5_dp) * dpp), &
-                            o(2) + ((real(j, dp) + 0.5_dp) * dpp), &
-                            o(3) + ((real(l, dp) + 0.5_dp) * dpp))
-        end do
-      end do
+    ! Particle k of the card: the book numbers z fastest (x outermost), the current version
+    ! x fastest (z outermost).
+    do k = 0, nb(1) * nb(2) * nb(3) - 1
+      if (x_fastest) then
+        i = mod(k, nb(1))
+        j = mod(k / nb(1), nb(2))
+        l = k / (nb(1) * nb(2))
+      else
+        l = mod(k, nb(3))
+        j = mod(k / nb(3), nb(2))
+        i = k / (nb(3) * nb(2))
+      end if
+      call add_particle(ts, p, b, nbmp, c%line, c%body, c%mat, c%mass, c%vol, &
+                        o(1) + ((real(i, dp) + 0.5_dp) * dpp), &
+                        o(2) + ((real(j, dp) + 0.5_dp) * dpp), &
+                        o(3) + ((real(l, dp) + 0.5_dp) * dpp))
     end do
   end subroutine generate_block
 
