@@ -144,7 +144,7 @@ void DeckReader::read_particles(const Token& key) {
         ts_.real("the hole axis z");
         const long nr = ts_.integer("the hole radius in spacings");
         if (nr < 0 || nr > 100000) fail(kind.line, "hole radius (in spacings) must lie in 0..100000");
-        generate_block_with_hole(parts_, card, o, n, hx, hy, nr);
+        generate_block(parts_, card, o, n, true, hx, hy, nr);
       }
     } else if (k == "cicl") {
       double o[3];

@@ -48,19 +48,21 @@ void check_points_room(const ParticleAppender& out, int line, long n) {
 }
 
 void generate_block(ParticleAppender& out, const LatticeCard& c, const double o[3], const long n[3],
-                    bool x_fastest) {
-  if (out.count() + n[0] * n[1] * n[2] > out.limit())
+                    bool x_fastest, double hx, double hy, long nr) {
+  if (nr == 0 && out.count() + n[0] * n[1] * n[2] > out.limit())  // a hole leaves fewer
     out.fail(c.line, "block of " + std::to_string(n[0] * n[1] * n[2]) + " particles exceeds 'nbmp' = " +
                          std::to_string(out.limit()));
   const double dp = c.dp;
+  const double r2 = (double(nr) * dp) * (double(nr) * dp);
   // Particle k of the card: the book numbers z fastest (x outermost), the current version x
   // fastest (z outermost).
   for (long k = 0; k < n[0] * n[1] * n[2]; ++k) {
     const long i = x_fastest ? k % n[0] : k / (n[2] * n[1]);
     const long j = x_fastest ? (k / n[0]) % n[1] : (k / n[2]) % n[1];
     const long l = x_fastest ? k / (n[0] * n[1]) : k % n[2];
-    out.add(c.line, c.body, c.mat, c.mass, c.vol, o[0] + (double(i) + 0.5) * dp, o[1] + (double(j) + 0.5) * dp,
-            o[2] + (double(l) + 0.5) * dp);
+    const double x = o[0] + (double(i) + 0.5) * dp, y = o[1] + (double(j) + 0.5) * dp;
+    if (nr > 0 && (x - hx) * (x - hx) + (y - hy) * (y - hy) < r2) continue;
+    out.add(c.line, c.body, c.mat, c.mass, c.vol, x, y, o[2] + (double(l) + 0.5) * dp);
   }
 }
 
@@ -98,19 +100,6 @@ void generate_cylinder(ParticleAppender& out, const LatticeCard& c, double cx, d
       for (long l = 0; l < nz; ++l)
         out.add(c.line, c.body, c.mat, c.mass, c.vol, cx + a * dp, cy + bb * dp, z0 + (double(l) + 0.5) * dp);
     }
-}
-
-void generate_block_with_hole(ParticleAppender& out, const LatticeCard& c, const double o[3], const long n[3],
-                              double hx, double hy, long nr) {
-  const double dp = c.dp;
-  const double r2 = (double(nr) * dp) * (double(nr) * dp);
-  for (long l = 0; l < n[2]; ++l)
-    for (long j = 0; j < n[1]; ++j)
-      for (long i = 0; i < n[0]; ++i) {
-        const double x = o[0] + (double(i) + 0.5) * dp, y = o[1] + (double(j) + 0.5) * dp;
-        if ((x - hx) * (x - hx) + (y - hy) * (y - hy) < r2) continue;
-        out.add(c.line, c.body, c.mat, c.mass, c.vol, x, y, o[2] + (double(l) + 0.5) * dp);
-      }
 }
 
 void generate_disc(ParticleAppender& out, const LatticeCard& c, const double o[3], long nr) {

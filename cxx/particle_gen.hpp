@@ -45,9 +45,11 @@ struct LatticeCard {
 void check_points_room(const ParticleAppender& out, int line, long n);
 // 'part bloc': n[0] x n[1] x n[2] particles at origin + (i + 1/2) dp; x index outermost, z
 // fastest (the book version), or z outermost and x fastest (x_fastest: the current
-// version). Counts in 1..100000 (checked by the reader).
+// version). Counts in 1..100000 (checked by the reader). 'part blod' (the current version):
+// nr > 0 leaves out the particles inside the circular hole of radius nr dp around the axis
+// through (hx, hy) parallel to z (kept where (x - hx)^2 + (y - hy)^2 >= (nr dp)^2).
 void generate_block(ParticleAppender& out, const LatticeCard& c, const double origin[3], const long n[3],
-                    bool x_fastest = false);
+                    bool x_fastest = false, double hx = 0.0, double hy = 0.0, long nr = 0);
 // 'part sphe': the lattice points centre + (i + 1/2, j + 1/2, l + 1/2) dp, i, j, l in
 // -nr .. nr-1, within nr spacings of the centre. nr in 1..10000 (checked by the reader).
 void generate_sphere(ParticleAppender& out, const LatticeCard& c, const double centre[3], long nr);
@@ -56,11 +58,6 @@ void generate_sphere(ParticleAppender& out, const LatticeCard& c, const double c
 void generate_cylinder(ParticleAppender& out, const LatticeCard& c, double cx, double cy, double z0, double radius,
                        double length);
 
-// 'part blod' (the current version): the block of generate_block, x fastest, without the
-// particles inside the circular hole of radius nr dp around the axis through (hx, hy)
-// parallel to z (kept where (x - hx)^2 + (y - hy)^2 >= (nr dp)^2).
-void generate_block_with_hole(ParticleAppender& out, const LatticeCard& c, const double origin[3], const long n[3],
-                              double hx, double hy, long nr);
 // 'part cicl' (the current version): a disc one particle thick in the plane z0 + dp/2, the
 // points (x0 + (i + 1/2) dp, y0 + (j + 1/2) dp) for i, j in -nr .. nr-1 (i outermost) closer
 // than nr dp to (x0, y0).

@@ -204,7 +204,8 @@ contains
           if (nb(a) < 1 .or. nb(a) > 100000) call ts%fail(kind%line, 'block counts must be positive')
         end do
         if (k == 'bloc') then
-          call generate_block(ts, m%particles, m%bodies(m%nbodies), m%nbmp, card, o, nb, m%current_version)
+          call generate_block(ts, m%particles, m%bodies(m%nbodies), m%nbmp, card, o, nb, m%current_version, &
+                              0.0_dp, 0.0_dp, 0_int64)
         else
           ! 'blod ... hx hy hz nr': the hole's axis through (hx, hy) along z (hz unused).
           cx = ts%real('the hole axis x')
@@ -212,7 +213,7 @@ contains
           z0 = ts%real('the hole axis z')
           nr = ts%integer('the hole radius in spacings')
           if (nr < 0 .or. nr > 100000) call ts%fail(kind%line, 'hole radius (in spacings) must lie in 0..100000')
-          call generate_block_with_hole(ts, m%particles, m%bodies(m%nbodies), m%nbmp, card, o, nb, cx, cy, nr)
+          call generate_block(ts, m%particles, m%bodies(m%nbodies), m%nbmp, card, o, nb, .true., cx, cy, nr)
         end if
       else if (k == 'cicl') then
         o = read_vec3(ts, 'the disc centre')

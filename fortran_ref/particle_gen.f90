@@ -20,8 +20,7 @@ module mpm3d_particle_gen
   ! Every routine appends to the particle arrays p (grown as particles come, at most to nbmp)
   ! the particles of the card's body b, the last body read (b%count grows). Errors end the
   ! program with the deck's name and the card's line (ts%fail).
-  public :: add_particle, check_points_room, generate_block, generate_sphere, generate_cylinder, &
-            generate_block_with_hole, generate_disc
+  public :: add_particle, check_points_room, generate_block, generate_sphere, generate_cylinder, generate_disc
   public :: is_finite   ! also the reader's test of a finite number
 
 contains
@@ -86,7 +85,9 @@ contains
 
   ! 'part bloc': nb(1) x nb(2) x nb(3) particles at o + (i + 1/2) dp; x index outermost, z
   ! fastest (the book version). Counts in 1..100000 (checked by the reader).
-  subroutine generate_block(ts, p, b, nbmp, c, o, nb, x_fastest)
+  ! nr > 0 ('part blod', the current version): without the particles inside the hole of
+  ! radius nr dp around the axis through (hx, hy) along z (as cxx/particle_gen.cpp).
+  subroutine generate_block(ts, p, b, nbmp, c, o, nb, x_fastest, hx, hy, nr)
     type(token_stream), intent(in) :: ts
     type(particles_t), intent(inout) :: p
     type(body_t), intent(inout) :: b
@@ -95,12 +96,15 @@ contains
     real(dp), intent(in) :: o(3)
     integer(int64), intent(in) :: nb(3)
     logical, intent(in) :: x_fastest   ! the current version's order (the book: z fastest)
+    real(dp), intent(in) :: hx, hy
+    integer(int64), intent(in) :: nr
     integer(int64) :: i, j, l, k
-    real(dp) :: dpp
-    if (n_defined(b) + nb(1) * nb(2) * nb(3) > nbmp) &
+    real(dp) :: dpp, r2, x, y
+    if (nr == 0 .and. n_defined(b) + nb(1) * nb(2) * nb(3) > nbmp) &
       call ts%fail(c%line, 'block of ' // itoa(nb(1) * nb(2) * nb(3)) // &
                    " particles exceeds 'nbmp' = " // itoa(int(nbmp, int64)))
     dpp = c%spacing
+    r2 = (real(nr, dp) * dpp) * (real(nr, dp) * dpp)
     ! Particle k of the card: the book numbers z fastest (x outermost), the current version
     ! x fastest (z outermost).
     do k = 0, nb(1) * nb(2) * nb(3) - 1
@@ -113,9 +117,12 @@ contains
         j = mod(k / nb(3), nb(2))
         i = k / (nb(3) * nb(2))
       end if
-      call add_particle(ts, p, b, nbmp, c%line, c%body, c%mat, c%mass, c%vol, &
-                        o(1) + ((real(i, dp) + 0.5_dp) * dpp), &
-                        o(2) + ((real(j, dp) + 0.5_dp) * dpp), &
+      x = o(1) + ((real(i, dp) + 0.5_dp) * dpp)
+      y = o(2) + ((real(j, dp) + 0.5_dp) * dpp)
+      if (nr > 0) then
+        if (((x - hx) * (x - hx)) + ((y - hy) * (y - hy)) < r2) cycle
+      end if
+      call add_particle(ts, p, b, nbmp, c%line, c%body, c%mat, c%mass, c%vol, x, y, &
                         o(3) + ((real(l, dp) + 0.5_dp) * dpp))
     end do
   end subroutine generate_block
@@ -194,33 +201,6 @@ contains
       end do
     end do
   end subroutine generate_cylinder
-
-  ! 'part blod' (the current version): generate_block's lattice, x fastest, without the
-  ! particles inside the hole of radius nr dp around the axis through (hx, hy) along z.
-  subroutine generate_block_with_hole(ts, p, b, nbmp, c, o, nb, hx, hy, nr)
-    type(token_stream), intent(in) :: ts
-    type(particles_t), intent(inout) :: p
-    type(body_t), intent(inout) :: b
-    integer, intent(in) :: nbmp
-    type(lattice_card_t), intent(in) :: c
-    real(dp), intent(in) :: o(3), hx, hy
-    integer(int64), intent(in) :: nb(3), nr
-    integer(int64) :: i, j, l
-    real(dp) :: dpp, r2, x, y
-    dpp = c%spacing
-    r2 = (real(nr, dp) * dpp) * (real(nr, dp) * dpp)
-    do l = 0, nb(3) - 1
-      do j = 0, nb(2) - 1
-        do i = 0, nb(1) - 1
-          x = o(1) + ((real(i, dp) + 0.5_dp) * dpp)
-          y = o(2) + ((real(j, dp) + 0.5_dp) * dpp)
-          if (((x - hx) * (x - hx)) + ((y - hy) * (y - hy)) < r2) cycle
-          call add_particle(ts, p, b, nbmp, c%line, c%body, c%mat, c%mass, c%vol, x, y, &
-                            o(3) + ((real(l, dp) + 0.5_dp) * dpp))
-        end do
-      end do
-    end do
-  end subroutine generate_block_with_hole
 
   ! 'part cicl' (the current version): a disc one particle thick in the plane z0 + dp/2, the
   ! points (x0 + (i + 1/2) dp, y0 + (j + 1/2) dp), i, j in -nr .. nr-1, closer than nr dp.
