@@ -295,6 +295,8 @@ int run_main(int argc, char** argv) {
     if (opt.patch_given && restarted && opt.patch_cells != patch_cells)
       head << "\n  warning: --patch-cells ignored: a restart keeps the checkpoint's " << patch_cells;
     if (m.gimp) head << "\n  GIMP shape functions (27 nodes)";
+    if (m.bspline) head << "\n  quadratic B-spline shape functions (27 nodes)";
+    if (m.fix_layers() == 2) head << "\n  two node layers held on each fixed or symmetric face";
     if (m.contact)
       head << "\n  contact between components 1 and 2, friction " << m.contact_mu << ", normals from "
            << (m.contact_normbody == 0 ? std::string("both components") : "component " + std::to_string(m.contact_normbody));

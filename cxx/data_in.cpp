@@ -222,6 +222,10 @@ Model DeckReader::read() {
       m_.has_bulk = true;
     } else if (k == "gimp") {
       m_.gimp = true;
+      gimp_line_ = key.line;
+    } else if (k == "bimp") {
+      m_.bspline = true;
+      bimp_line_ = key.line;
     } else if (k == "cont") {
       if (ts_.at_end()) fail(key.line, "'cont' needs 'lagr mu normbody'");
       const Token& how = ts_.next();
@@ -239,10 +243,8 @@ Model DeckReader::read() {
       ended_ = true;
       finish(key.line);
       break;
-    } else if (k == "bimp" || k == "sgmp") {
-      fail(key.line, "'" + key.text + "': the current MPM3D-F90's " +
-                         (k == "bimp" ? std::string("B-spline shape functions are") : std::string("smoothed-gradient MPM is")) +
-                         " not implemented yet (docs/DECK_FORMAT.md)");
+    } else if (k == "sgmp") {
+      fail(key.line, "'" + key.text + "': the current MPM3D-F90's smoothed-gradient MPM is not implemented yet (docs/DECK_FORMAT.md)");
     } else {
       fail(key.line, "unknown keyword '" + key.text + "'");
     }

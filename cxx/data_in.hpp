@@ -44,6 +44,12 @@ struct Model {
   double mass_cutoff = 0.0;
   int regrid_every = 0;  // adaptive grid: redefine the grid every N steps (adgr; 0 off)
   bool gimp = false;                   // uGIMP shape functions (particles.psize set)
+  bool bspline = false;                // bimp: the current version's quadratic B-splines
+  // Shape functions of the stages (StepContext::shape): 0 trilinear, 1 uGIMP, 2 B-spline.
+  int shape() const { return gimp ? 1 : (bspline ? 2 : 0); }
+  // Node layers fixed on each fixed or symmetric face: the current version fixes two with
+  // the 27-node stencils (the nodes one cell outside the face's cells reach the particles).
+  int fix_layers() const { return (current_version && shape() != 0) ? 2 : 1; }
   bool contact = false;                // cont: multi-velocity contact of components 1, 2
   double contact_mu = 0.0;             // Coulomb friction coefficient
   int contact_normbody = 0;            // normals from component 1, 2, or 0 (both)

@@ -112,6 +112,7 @@ void DeckReader::finish(int line) {
         fail(m_.tl_line, std::string("'TLmp' with a ") + material_keyword(mp.type) +
                              " material: total Lagrangian MPM takes neoh materials only");
     if (m_.gimp) fail(m_.tl_line, "'TLmp' with 'gimp': total Lagrangian MPM takes the trilinear shape functions only");
+    if (m_.bspline) fail(m_.tl_line, "'TLmp' with 'bimp': total Lagrangian MPM takes the trilinear shape functions only");
     if (m_.contact) fail(m_.tl_line, "'TLmp' with 'cont': total Lagrangian MPM has one velocity field");
     if (m_.regrid_every > 0) fail(m_.tl_line, "'TLmp' with 'adgr': the reference grid of TLmp cannot move");
     P.pk1.assign(9 * size_t(P.np), 0.0);
@@ -141,6 +142,12 @@ void DeckReader::finish(int line) {
     if (mp.eos_type != EOS_NONE) P.ie[p] = mp.eos_e0 * (P.mass[p] / mp.rho0);
     if (thermal) P.temp[p] = mp.t_room;
   }
+  if (m_.gimp && m_.bspline)
+    fail(std::max(gimp_line_, bimp_line_), "'gimp' with 'bimp': a deck takes one kind of shape functions");
+  if (m_.bspline)
+    for (int a = 0; a < 3; ++a)
+      if (std::floor((m_.box_hi[a] - m_.box_lo[a]) / m_.dcell + 0.5) < 2.0)
+        fail(bimp_line_, "'bimp' needs at least two cells along each axis");
   // GIMP particle half-size lp: half the spacing of bloc/sphe/cyli particles, half the
   // cube root of the volume of poin particles; at most h/2 (the 27-node stencil).
   if (m_.gimp) {

@@ -126,14 +126,44 @@ inline void gimp_1d(double lx, int o, double l, double inv_h, double* w, double*
   }
 }
 
-// uGIMP shape functions of the 27 nodes of a particle's stencil: local node
-// k = a + 3 b + 9 c sits at offset (o[0] + a, o[1] + b, o[2] + c) from the base node of the
-// particle's cell. Same products as shape_linear: N = (wx * wy) * wz, dN/dx = (gx * wy) * wz.
-inline void shape_gimp(const double* lx, const int* o, double l, double inv_h, double* N, double* G) {
-  double wx[3], wy[3], wz[3], gx[3], gy[3], gz[3];
-  gimp_1d(lx[0], o[0], l, inv_h, wx, gx);
-  gimp_1d(lx[1], o[1], l, inv_h, wy, gy);
-  gimp_1d(lx[2], o[2], l, inv_h, wz, gz);
+// The quadratic B-spline weights of the current MPM3D-F90 ('bimp') of the three nodes at
+// offsets o, o+1, o+2 from the base node of the particle's cell, lx = s in [0,1) the local
+// coordinate in the cell. The current program's stencil is always the nodes base-1, base,
+// base+1 with the uniform quadratic B-spline blending functions
+//   N(base-1) = (1-s)^2 / 2,   N(base) = 1/2 + s - s^2,   N(base+1) = s^2 / 2,
+// i.e. node i carries the quadratic B-spline centred half a cell above it (at the centre
+// of cell i, docs/DECK_FORMAT.md "bimp"). o = -1 inside the grid; in the first cell
+// (no node base-1) o = 0 and the weight of base-1 is dropped. g = dN/dx.
+inline void bspline_1d(double s, int o, double inv_h, double* w, double* g) {
+  for (int k = 0; k < 3; ++k) {
+    const int m = o + k;
+    double n = 0.0, d = 0.0;
+    if (m == -1) {
+      const double t = 1.0 - s;
+      n = 0.5 * (t * t);
+      d = -t;
+    } else if (m == 0) {
+      n = (0.5 + s) - s * s;
+      d = 1.0 - 2.0 * s;
+    } else if (m == 1) {
+      n = 0.5 * (s * s);
+      d = s;
+    }
+    w[k] = n;
+    g[k] = d * inv_h;
+  }
+}
+
+// Stencil offset of one axis with B-splines: the nodes base-1 .. base+1, or base .. base+2
+// in the grid's first cell (cell index i).
+inline int bspline_offset(int i) { return i > 0 ? -1 : 0; }
+
+// Tensor products of the 27 nodes of a stencil from the 1-D weights w and derivatives g:
+// local node k = a + 3 b + 9 c sits at offset (o[0] + a, o[1] + b, o[2] + c) from the base
+// node of the particle's cell. Same products as shape_linear: N = (wx * wy) * wz,
+// dN/dx = (gx * wy) * wz.
+inline void shape_27(const double* wx, const double* wy, const double* wz, const double* gx, const double* gy,
+                     const double* gz, double* N, double* G) {
   for (int c = 0; c < 3; ++c)
     for (int b = 0; b < 3; ++b)
       for (int a = 0; a < 3; ++a) {
@@ -143,6 +173,24 @@ inline void shape_gimp(const double* lx, const int* o, double l, double inv_h, d
         G[3 * k + 1] = (wx[a] * gy[b]) * wz[c];
         G[3 * k + 2] = (wx[a] * wy[b]) * gz[c];
       }
+}
+
+// uGIMP shape functions of the 27 nodes of a particle's stencil (shape_27).
+inline void shape_gimp(const double* lx, const int* o, double l, double inv_h, double* N, double* G) {
+  double wx[3], wy[3], wz[3], gx[3], gy[3], gz[3];
+  gimp_1d(lx[0], o[0], l, inv_h, wx, gx);
+  gimp_1d(lx[1], o[1], l, inv_h, wy, gy);
+  gimp_1d(lx[2], o[2], l, inv_h, wz, gz);
+  shape_27(wx, wy, wz, gx, gy, gz, N, G);
+}
+
+// The current version's quadratic B-spline shape functions of the 27 nodes (shape_27).
+inline void shape_bspline(const double* lx, const int* o, double inv_h, double* N, double* G) {
+  double wx[3], wy[3], wz[3], gx[3], gy[3], gz[3];
+  bspline_1d(lx[0], o[0], inv_h, wx, gx);
+  bspline_1d(lx[1], o[1], inv_h, wy, gy);
+  bspline_1d(lx[2], o[2], inv_h, wz, gz);
+  shape_27(wx, wy, wz, gx, gy, gz, N, G);
 }
 
 // Stencil offset of one axis: the three nodes nearest the particle (o = -1 in the lower

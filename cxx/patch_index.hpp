@@ -116,9 +116,9 @@ inline void for_owned_nodes(const StepContext* c, const OwnedNodes& o, F&& f) {
       for (int i = o.lo[0]; i < o.hi[0]; ++i) f(i + c->nn[0] * (j + c->nn[1] * k));
 }
 
-// GIMP stencil of one particle: its cell (i, j, k), the stencil offsets o and the 27
-// weights and gradients; node (a, b, c) of the stencil is grid node
-// (i + o0 + a, j + o1 + b, k + o2 + c).
+// 27-node stencil of one particle (shape 1 GIMP, 2 B-spline): its cell (i, j, k), the
+// stencil offsets o and the 27 weights and gradients; node (a, b, c) of the stencil is grid
+// node (i + o0 + a, j + o1 + b, k + o2 + c).
 struct GimpStencil {
   int ci[3], o[3];
   double N[27], G[81];
@@ -127,6 +127,11 @@ struct GimpStencil {
 inline void gimp_stencil(const StepContext* c, const CellDecoder& dec, int p, GimpStencil& s) {
   dec(c->cell[p], s.ci[0], s.ci[1], s.ci[2]);
   const double* lx = c->lx + 3 * p;
+  if (c->shape == 2) {
+    for (int a = 0; a < 3; ++a) s.o[a] = bspline_offset(s.ci[a]);
+    shape_bspline(lx, s.o, c->inv_h, s.N, s.G);
+    return;
+  }
   for (int a = 0; a < 3; ++a) s.o[a] = gimp_offset(lx[a], s.ci[a], c->nc[a]);
   shape_gimp(lx, s.o, c->psize[p] * c->inv_h, c->inv_h, s.N, s.G);
 }

@@ -27,10 +27,11 @@ Simulation::Simulation(Model m, int patch_cells, ParticleOrder order) : model(st
   // A GIMP stencil reaches one node beyond its patch's cells; the node loops find every
   // node a patch's particles touch among its own and its neighbours' nodes only when a
   // patch is at least two cells wide.
-  if (model.gimp && patch_cells < 2) throw std::invalid_argument("GIMP needs patches of at least two cells");
+  if (model.shape() != 0 && patch_cells < 2)
+    throw std::invalid_argument(std::string(model.gimp ? "GIMP" : "B-spline") + " needs patches of at least two cells");
   double hi[3];
   for (int a = 0; a < 3; ++a) hi[a] = model.box_hi[a];
-  const int halo = model.gimp ? 1 : 0;  // GIMP stencils reach one node beyond a patch's cells
+  const int halo = model.shape() != 0 ? 1 : 0;  // 27-node stencils reach one node beyond a patch's cells
   grid.define(model.box_lo, hi, model.dcell, patch_cells, halo);
   for (int f = 0; f < 6; ++f) grid.fix[f] = model.fix[f];
   grid.mass_cutoff = model.mass_cutoff;
@@ -150,9 +151,10 @@ void Simulation::bind() {
   c.has_body_force = (model.has_gravity || model.has_loads || model.damping > 0.0) ? 1 : 0;
   c.load_ramp_time = model.load_ramp_time;
   c.damping = model.damping;
-  // GIMP: 27-node stencils, patch buffers with a halo of one node layer.
+  // GIMP and B-spline: 27-node stencils, patch buffers with a halo of one node layer.
   c.psize = model.gimp ? P.psize.data() : nullptr;
-  c.shape = model.gimp ? 1 : 0;
+  c.shape = model.shape();
+  c.fix_layers = model.fix_layers();
   c.patch_halo = grid.patch_halo;
   c.body_comp = nullptr;
   c.other = nullptr;
@@ -228,7 +230,7 @@ void Simulation::set_grid(const double origin[3], double h, const int deck_nc[3]
   if (patch_cells < 1) throw std::invalid_argument("patch size must be at least one cell");
   double hi[3];
   for (int a = 0; a < 3; ++a) hi[a] = origin[a] + double(deck_nc[a]) * h;
-  grid.define(origin, hi, h, patch_cells, model.gimp ? 1 : 0);
+  grid.define(origin, hi, h, patch_cells, model.shape() != 0 ? 1 : 0);
   for (int a = 0; a < 3; ++a)
     if (grid.deck_nc[a] != deck_nc[a]) throw std::runtime_error("grid: cannot rebuild the stored grid");
   grid.set_window(off, nc);

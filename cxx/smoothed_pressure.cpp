@@ -1,7 +1,7 @@
 // The current MPM3D-F90's 'smoo': the particle pressure smoothed through the grid, an output
 // (the current program writes it as Smoothpressure and does not feed it back into the
 // stress). The pressure -sm of each particle, weighted by its volume, goes to the nodes
-// with the run's shape functions (trilinear or GIMP, on the deck's lattice):
+// with the run's shape functions (trilinear, GIMP or B-spline, on the deck's lattice):
 //   p_i = sum_p N_ip p_p V_p / sum_p N_ip V_p,
 // and comes back as spre_p = sum_i N_ip p_i. Computed only when written (output variable
 // spre, which 'smoo' adds to the animation variables), from the state of that moment.
@@ -29,11 +29,16 @@ void for_stencil(const Model& m, const int nc[3], int p, Visit&& visit) {
     ci[a] = int(std::floor(s));
     lx[a] = s - double(ci[a]);
   }
-  if (m.gimp) {
+  if (m.shape() != 0) {
     int o[3];
-    for (int a = 0; a < 3; ++a) o[a] = gimp_offset(lx[a], ci[a], nc[a]);
     double N[27], G[81];
-    shape_gimp(lx, o, P.psize[size_t(p)] * inv_h, inv_h, N, G);
+    if (m.gimp) {
+      for (int a = 0; a < 3; ++a) o[a] = gimp_offset(lx[a], ci[a], nc[a]);
+      shape_gimp(lx, o, P.psize[size_t(p)] * inv_h, inv_h, N, G);
+    } else {
+      for (int a = 0; a < 3; ++a) o[a] = bspline_offset(ci[a]);
+      shape_bspline(lx, o, inv_h, N, G);
+    }
     for (int k = 0; k < 27; ++k) {
       const int i = ci[0] + o[0] + k % 3, j = ci[1] + o[1] + (k / 3) % 3, l = ci[2] + o[2] + k / 9;
       visit(size_t(i) + size_t(nn0) * (size_t(j) + size_t(nn1) * size_t(l)), N[k]);

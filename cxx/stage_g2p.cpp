@@ -55,7 +55,7 @@ using namespace mpm3d;
 // boundary conditions on the momenta.
 extern "C" void mpm3d_cxx_g2p(StepContext* c) {
   const bool remap = c->scheme == SCHEME_MUSL;
-  if (c->shape == 1)
+  if (c->shape != 0)
     g2p_gimp(c, remap);
   else
     g2p_trilinear(c, remap);

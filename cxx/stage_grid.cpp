@@ -13,23 +13,26 @@ void apply_bc(const StepContext* c, double* a) {
     const int kind = c->fix[face];
     if (kind == 0) continue;
     const int axis = face / 2;
-    const int fixed_index = (face % 2 == 0) ? 0 : c->nn[axis] - 1;
     const int u = (axis + 1) % 3, w = (axis + 2) % 3;
-    for (int jw = 0; jw < c->nn[w]; ++jw)
-      for (int ju = 0; ju < c->nn[u]; ++ju) {
-        int idx[3];
-        idx[axis] = fixed_index;
-        idx[u] = ju;
-        idx[w] = jw;
-        const int n = idx[0] + c->nn[0] * (idx[1] + c->nn[1] * idx[2]);
-        if (kind == 1) {
-          a[3 * n + 0] = 0.0;
-          a[3 * n + 1] = 0.0;
-          a[3 * n + 2] = 0.0;
-        } else {
-          a[3 * n + axis] = 0.0;
+    const int layers = c->fix_layers > 1 ? c->fix_layers : 1;  // 0 (unset) means 1
+    for (int layer = 0; layer < layers; ++layer) {
+      const int fixed_index = (face % 2 == 0) ? layer : c->nn[axis] - 1 - layer;
+      for (int jw = 0; jw < c->nn[w]; ++jw)
+        for (int ju = 0; ju < c->nn[u]; ++ju) {
+          int idx[3];
+          idx[axis] = fixed_index;
+          idx[u] = ju;
+          idx[w] = jw;
+          const int n = idx[0] + c->nn[0] * (idx[1] + c->nn[1] * idx[2]);
+          if (kind == 1) {
+            a[3 * n + 0] = 0.0;
+            a[3 * n + 1] = 0.0;
+            a[3 * n + 2] = 0.0;
+          } else {
+            a[3 * n + axis] = 0.0;
+          }
         }
-      }
+    }
   }
 }
 
@@ -52,7 +55,7 @@ void scatter_mass_gradient(StepContext* c) {
         b[5] += mp * g[1];
         b[6] += mp * g[2];
       };
-      if (c->shape == 1) {
+      if (c->shape != 0) {
         GimpStencil st;
         gimp_stencil(c, dec, p, st);
         const int base = gimp_patch_corner(c, q3, st);

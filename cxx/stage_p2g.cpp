@@ -141,7 +141,7 @@ void scatter_p2g_gimp(StepContext* c, bool with_mass_mom, bool with_forces) {
 // buffer, one particle after the other in list order (the canonical order of each node's
 // sum); trilinear: each thread over its balanced range of patches.
 void scatter_p2g(StepContext* c, bool with_mass_mom, bool with_forces) {
-  if (c->shape == 1) {
+  if (c->shape != 0) {
     scatter_p2g_gimp(c, with_mass_mom, with_forces);
     return;
   }

@@ -130,7 +130,7 @@ using namespace mpm3d;
 // rotation, stress return, EOS, bulk viscosity, internal energy.
 extern "C" void mpm3d_cxx_stress(StepContext* c) {
   const double* gvel = node_velocities(c);
-  if (c->shape == 1)
+  if (c->shape != 0)
     stress_gimp(c, gvel);
   else
     stress_trilinear(c, gvel);

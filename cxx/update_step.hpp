@@ -54,8 +54,8 @@ struct StepContext {
   double *gnormal;           // contact: (3,nnode) sum_p m_p grad N_i(x_p) of this component
   double *cpartials;         // contact: (3,npatch) scratch of the contact-force sum
   double contact_mu;         // contact: Coulomb friction coefficient
-  int shape;                 // 0 trilinear (8 nodes), 1 uGIMP (27 nodes)
-  int patch_halo;            // node layers a patch buffer holds beyond its cells: 0 or 1 (GIMP)
+  int shape;                 // 0 trilinear (8 nodes), 1 uGIMP, 2 B-spline (27 nodes)
+  int patch_halo;            // node layers a patch buffer holds beyond its cells: 0 or 1 (27 nodes)
   int only_comp;             // 0: every particle; 1 or 2: this context's component only
   int contact_normbody;      // contact normals from component 1, 2, or 0 (both)
   int ncontact;              // contact stage: nodes corrected in this step
@@ -72,6 +72,8 @@ struct StepContext {
   double *xbin;
   double *pk1;               // (9,np) V0 P, or null (updated Lagrangian)
   int tl;                    // 1: total Lagrangian
+  int fix_layers;            // node layers the boundary conditions of a face hold: 1, or 2
+                             // (the current version with 27-node stencils)
   // Fields after this point are stage-internal scratch of the C++ kernels (a Fortran
   // mirror of the struct may stop before them).
   int *pscratch;       // (np) patch of each particle during binning

@@ -41,6 +41,8 @@ module mpm3d_data_in
     real(dp) :: mass_cutoff = 0.0_dp
     integer :: regrid_every = 0       ! adaptive grid: redefine the grid every N steps (adgr)
     logical :: gimp = .false.          ! uGIMP shape functions (particles%psize set)
+    logical :: bspline = .false.       ! bimp: the current version's quadratic B-splines
+    integer :: gimp_line = 0, bimp_line = 0  ! deck lines of gimp and bimp
     logical :: contact = .false.       ! cont: multi-velocity contact of components 1, 2
     real(dp) :: contact_mu = 0.0_dp    ! Coulomb friction coefficient
     integer :: contact_normbody = 0    ! normals from component 1, 2, or 0 (both)
@@ -62,7 +64,7 @@ module mpm3d_data_in
     integer :: tl_line = 0              ! deck line of the TLmp card
   end type model_t
 
-  public :: read_deck, is_output_variable
+  public :: read_deck, is_output_variable, model_shape, model_fix_layers
   ! For the submodules only: gfortran gives a private module procedure local linkage, which
   ! a submodule's object file cannot call.
   public :: memory_budget, megabytes, i2s, warn, n_defined, need_counts, body_index, particle_index, &
@@ -102,6 +104,25 @@ module mpm3d_data_in
   end interface
 
 contains
+
+  ! Shape functions of the stages (step_context%shape): 0 trilinear, 1 uGIMP, 2 B-spline.
+  pure integer function model_shape(m)
+    type(model_t), intent(in) :: m
+    model_shape = 0
+    if (m%gimp) then
+      model_shape = 1
+    else if (m%bspline) then
+      model_shape = 2
+    end if
+  end function model_shape
+
+  ! Node layers held on a fixed or symmetric face (cxx Model::fix_layers): two for the
+  ! current version with 27-node stencils, else one.
+  pure integer function model_fix_layers(m)
+    type(model_t), intent(in) :: m
+    model_fix_layers = 1
+    if (m%current_version .and. model_shape(m) /= 0) model_fix_layers = 2
+  end function model_fix_layers
 
   ! The machine's physical memory in bytes (glibc: _SC_PHYS_PAGES = 85, _SC_PAGESIZE = 30).
   real(dp) function memory_budget()
@@ -353,6 +374,10 @@ contains
         m%has_bulk = .true.
       case ('gimp')
         m%gimp = .true.
+        m%gimp_line = key%line
+      case ('bimp')
+        m%bspline = .true.
+        m%bimp_line = key%line
       case ('smoo')  ! the current version's smoothed pressure: an output of mpm3d only
       case ('qulo')
         m%load_ramp_time = ts%real('the load ramp time')
@@ -387,9 +412,6 @@ contains
         ended = .true.
         call finish(ts, m, key%line, box_line, dcell_line)
         exit
-      case ('bimp')
-        call ts%fail(key%line, "'" // kt // "': the current MPM3D-F90's B-spline shape functions are not " // &
-                     'implemented yet (docs/DECK_FORMAT.md)')
       case ('sgmp')
         call ts%fail(key%line, "'" // kt // "': the current MPM3D-F90's smoothed-gradient MPM is not " // &
                      'implemented yet (docs/DECK_FORMAT.md)')

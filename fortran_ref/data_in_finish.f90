@@ -111,6 +111,8 @@ contains
       end do
       if (m%gimp) call ts%fail(m%tl_line, &
         "'TLmp' with 'gimp': total Lagrangian MPM takes the trilinear shape functions only")
+      if (m%bspline) call ts%fail(m%tl_line, &
+        "'TLmp' with 'bimp': total Lagrangian MPM takes the trilinear shape functions only")
       if (m%contact) call ts%fail(m%tl_line, "'TLmp' with 'cont': total Lagrangian MPM has one velocity field")
       if (m%regrid_every > 0) call ts%fail(m%tl_line, "'TLmp' with 'adgr': the reference grid of TLmp cannot move")
       allocate(m%particles%pk1(9, m%particles%np), m%particles%x0(3, m%particles%np))
@@ -148,6 +150,16 @@ contains
         if (thermal) m%particles%temp(p) = mp%t_room
       end associate
     end do
+    if (m%gimp .and. m%bspline) call ts%fail(max(m%gimp_line, m%bimp_line), &
+      "'gimp' with 'bimp': a deck takes one kind of shape functions")
+    if (m%bspline) then
+      do a = 1, 3
+        n = (m%box_hi(a) - m%box_lo(a)) / m%dcell + 0.5_dp
+        fl = aint(n)
+        if (fl > n) fl = fl - 1.0_dp
+        if (fl < 2.0_dp) call ts%fail(m%bimp_line, "'bimp' needs at least two cells along each axis")
+      end do
+    end if
     ! GIMP particle half-size lp: half the spacing of bloc/sphe/cyli particles, half the cube
     ! root of the volume of poin particles; at most h/2 (the 27-node stencil).
     if (m%gimp) then

@@ -36,6 +36,7 @@ module mpm3d_grid
 
   public :: grid_setup, grid_define, grid_set_window, grid_window_is_box, grid_nnode, shape_linear
   public :: grid_adaptive_window, grid_count_escaped, gimp_1d, shape_gimp, gimp_offset
+  public :: bspline_1d, bspline_offset, shape_bspline
 
 contains
 
@@ -266,17 +267,78 @@ contains
     end do
   end subroutine gimp_1d
 
-  ! uGIMP shape functions of the 27 stencil nodes: local node k = a + 3 b + 9 c (0-based,
-  ! stored at k + 1) at offset (o(1) + a, o(2) + b, o(3) + c) from the cell's base node.
+  ! The current version's quadratic B-spline weights of the three nodes at offsets o, o+1,
+  ! o+2 from the base node of the particle's cell (cxx/grid.hpp bspline_1d, same
+  ! operations): (1-s)^2/2, 1/2 + s - s^2, s^2/2 on the nodes base-1, base, base+1, s in
+  ! [0,1) the local coordinate; o = 0 in the grid's first cell drops the node base-1.
+  pure subroutine bspline_1d(s, o, inv_h, w, g)
+    real(dp), intent(in) :: s, inv_h
+    integer, intent(in) :: o
+    real(dp), intent(out) :: w(3), g(3)
+    real(dp) :: n, d, t
+    integer :: k, m
+    do k = 0, 2
+      m = o + k
+      n = 0.0_dp
+      d = 0.0_dp
+      if (m == -1) then
+        t = 1.0_dp - s
+        n = 0.5_dp * (t * t)
+        d = -t
+      else if (m == 0) then
+        n = (0.5_dp + s) - s * s
+        d = 1.0_dp - 2.0_dp * s
+      else if (m == 1) then
+        n = 0.5_dp * (s * s)
+        d = s
+      end if
+      w(k + 1) = n
+      g(k + 1) = d * inv_h
+    end do
+  end subroutine bspline_1d
+
+  ! Stencil offset of one axis with B-splines (cxx bspline_offset): base-1 .. base+1, or
+  ! base .. base+2 in the grid's first cell (cell index i, 0-based).
+  pure integer function bspline_offset(i) result(o)
+    integer, intent(in) :: i
+    if (i > 0) then
+      o = -1
+    else
+      o = 0
+    end if
+  end function bspline_offset
+
+  ! uGIMP shape functions of the 27 stencil nodes (shape_27).
   pure subroutine shape_gimp(lx, o, l, inv_h, sn, sg)
     real(dp), intent(in) :: lx(3), l, inv_h
     integer, intent(in) :: o(3)
     real(dp), intent(out) :: sn(27), sg(3, 27)
     real(dp) :: wx(3), wy(3), wz(3), gx(3), gy(3), gz(3)
-    integer :: a, b, c, k
     call gimp_1d(lx(1), o(1), l, inv_h, wx, gx)
     call gimp_1d(lx(2), o(2), l, inv_h, wy, gy)
     call gimp_1d(lx(3), o(3), l, inv_h, wz, gz)
+    call shape_27(wx, wy, wz, gx, gy, gz, sn, sg)
+  end subroutine shape_gimp
+
+  ! The current version's quadratic B-spline shape functions of the 27 nodes (shape_27).
+  pure subroutine shape_bspline(lx, o, inv_h, sn, sg)
+    real(dp), intent(in) :: lx(3), inv_h
+    integer, intent(in) :: o(3)
+    real(dp), intent(out) :: sn(27), sg(3, 27)
+    real(dp) :: wx(3), wy(3), wz(3), gx(3), gy(3), gz(3)
+    call bspline_1d(lx(1), o(1), inv_h, wx, gx)
+    call bspline_1d(lx(2), o(2), inv_h, wy, gy)
+    call bspline_1d(lx(3), o(3), inv_h, wz, gz)
+    call shape_27(wx, wy, wz, gx, gy, gz, sn, sg)
+  end subroutine shape_bspline
+
+  ! Tensor products of the 27 stencil nodes from the 1-D weights w and derivatives g: local
+  ! node k = a + 3 b + 9 c (0-based, stored at k + 1) at offset (o(1) + a, o(2) + b,
+  ! o(3) + c) from the cell's base node.
+  pure subroutine shape_27(wx, wy, wz, gx, gy, gz, sn, sg)
+    real(dp), intent(in) :: wx(3), wy(3), wz(3), gx(3), gy(3), gz(3)
+    real(dp), intent(out) :: sn(27), sg(3, 27)
+    integer :: a, b, c, k
     do c = 1, 3
       do b = 1, 3
         do a = 1, 3
@@ -288,7 +350,7 @@ contains
         end do
       end do
     end do
-  end subroutine shape_gimp
+  end subroutine shape_27
 
   ! Stencil offset of one axis (cxx/grid.hpp gimp_offset): -1 in the lower half of the
   ! cell, 0 in the upper half, shifted inwards at the ends of the grid (cell i of nc).

@@ -122,8 +122,9 @@ program mpm3d_ref
     call fatal(deck // ": --regrid-every with 'TLmp': the reference grid of TLmp cannot move")
   ! The two contact grids share one node numbering: no adaptive window with contact (as mpm3d).
   if (model%contact) regrid_every = 0
-  halo = merge(1, 0, model%gimp)   ! GIMP stencils reach one node beyond a patch's cells
+  halo = merge(1, 0, model_shape(model) /= 0)   ! 27-node stencils reach one node beyond a patch's cells
   if (model%gimp .and. patch_cells < 2) call usage('GIMP needs patches of at least two cells')
+  if (model%bspline .and. patch_cells < 2) call usage('B-spline needs patches of at least two cells')
   call grid_define(grid, model%box_lo, model%box_hi, model%dcell, patch_cells, halo, err)
   if (len(err) > 0) call fatal(deck // ': ' // err)
   grid%fix = model%fix
@@ -361,10 +362,11 @@ contains
     ctx%damping = model%damping
     ctx%bulk_q1 = model%bulk_q1
     ctx%bulk_q2 = model%bulk_q2
-    ! GIMP: 27-node stencils, patch buffers with a halo of one node layer.
+    ! GIMP and B-spline: 27-node stencils, patch buffers with a halo of one node layer.
     ctx%psize = c_null_ptr
     if (model%gimp) ctx%psize = c_loc(model%particles%psize)
-    ctx%shape = merge(1, 0, model%gimp)
+    ctx%shape = model_shape(model)
+    ctx%fix_layers = model_fix_layers(model)
     ctx%defgrad = c_null_ptr
     if (allocated(model%particles%defgrad)) ctx%defgrad = c_loc(model%particles%defgrad)
     ctx%uvf = merge(1, 0, model%uvf)

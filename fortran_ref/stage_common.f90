@@ -9,7 +9,7 @@
 module mpm3d_stage_common
   use, intrinsic :: iso_c_binding
   use mpm3d_material
-  use mpm3d_grid, only: NODE_FIELDS, shape_gimp, gimp_offset
+  use mpm3d_grid, only: NODE_FIELDS, shape_gimp, gimp_offset, shape_bspline, bspline_offset
   implicit none
   private
 
@@ -57,7 +57,7 @@ module mpm3d_stage_common
     type(c_ptr) :: gnormal = c_null_ptr    ! contact: (3,nnode) sum_p m_p grad N_i(x_p), this component
     type(c_ptr) :: cpartials = c_null_ptr  ! contact: (3,npatch) scratch of the contact-force sum
     real(c_double) :: contact_mu = 0.0_dp  ! Coulomb friction coefficient
-    integer(c_int) :: shape = 0            ! 0 trilinear, 1 uGIMP
+    integer(c_int) :: shape = 0            ! 0 trilinear, 1 uGIMP, 2 B-spline
     integer(c_int) :: patch_halo = 0       ! node layers a buffer holds beyond its cells: 0, 1
     integer(c_int) :: only_comp = 0        ! 0 every particle; 1 or 2 this component only
     integer(c_int) :: contact_normbody = 0 ! normals from component 1, 2, or 0 (both)
@@ -69,6 +69,8 @@ module mpm3d_stage_common
     type(c_ptr) :: xbin = c_null_ptr       ! positions the bin stage places: x, or the reference ones (TLmp)
     type(c_ptr) :: pk1 = c_null_ptr        ! (9,np) V0 P (TLmp), or null
     integer(c_int) :: tl = 0               ! 1: total Lagrangian MPM
+    integer(c_int) :: fix_layers = 1       ! node layers a fixed face holds: 1, or 2 (current
+                                           ! version with 27-node stencils)
   end type step_context
 
   public :: view_buffers, gimp_stencil
@@ -87,8 +89,9 @@ contains
     call c_f_pointer(c%patch_buf, buf, [NODE_FIELDS, pn, c%nslot])
   end subroutine view_buffers
 
-  ! GIMP stencil of particle p (1-based): cell indices ci (0-based), offsets o, weights and
-  ! gradients of the 27 nodes (cxx gimp_stencil).
+  ! 27-node stencil (shape 1 GIMP, 2 B-spline; lp is only read with GIMP) of particle p
+  ! (1-based): cell indices ci (0-based), offsets o, weights and gradients of the 27 nodes
+  ! (cxx gimp_stencil).
   subroutine gimp_stencil(c, cl, lxp, lp, ci, o, sn, sg)
     type(step_context), intent(in) :: c
     integer, intent(in) :: cl
@@ -99,6 +102,13 @@ contains
     ci(1) = mod(cl, c%nc(1))
     ci(2) = mod(cl / c%nc(1), c%nc(2))
     ci(3) = cl / (c%nc(1) * c%nc(2))
+    if (c%shape == 2) then
+      do a = 1, 3
+        o(a) = bspline_offset(ci(a))
+      end do
+      call shape_bspline(lxp, o, c%inv_h, sn, sg)
+      return
+    end if
     do a = 1, 3
       o(a) = gimp_offset(lxp(a), ci(a), c%nc(a))
     end do
@@ -121,32 +131,35 @@ contains
   subroutine apply_bc(c, a)
     type(step_context), intent(in) :: c
     real(dp), intent(inout) :: a(:,:)
-    integer :: face, kind, axis, fixed_index, u, w, ju, jw, n
+    integer :: face, kind, axis, fixed_index, u, w, ju, jw, n, layer, layers
     integer :: idx(0:2)
+    layers = max(1, c%fix_layers)   ! 0 (unset) means 1
     do face = 0, 5
       kind = c%fix(face + 1)
       if (kind == 0) cycle
       axis = face / 2
-      if (mod(face, 2) == 0) then
-        fixed_index = 0
-      else
-        fixed_index = c%nn(axis + 1) - 1
-      end if
       u = mod(axis + 1, 3)
       w = mod(axis + 2, 3)
-      do jw = 0, c%nn(w + 1) - 1
-        do ju = 0, c%nn(u + 1) - 1
-          idx(axis) = fixed_index
-          idx(u) = ju
-          idx(w) = jw
-          n = idx(0) + c%nn(1) * (idx(1) + c%nn(2) * idx(2)) + 1
-          if (kind == 1) then
-            a(1, n) = 0.0_dp
-            a(2, n) = 0.0_dp
-            a(3, n) = 0.0_dp
-          else
-            a(axis + 1, n) = 0.0_dp
-          end if
+      do layer = 0, layers - 1
+        if (mod(face, 2) == 0) then
+          fixed_index = layer
+        else
+          fixed_index = c%nn(axis + 1) - 1 - layer
+        end if
+        do jw = 0, c%nn(w + 1) - 1
+          do ju = 0, c%nn(u + 1) - 1
+            idx(axis) = fixed_index
+            idx(u) = ju
+            idx(w) = jw
+            n = idx(0) + c%nn(1) * (idx(1) + c%nn(2) * idx(2)) + 1
+            if (kind == 1) then
+              a(1, n) = 0.0_dp
+              a(2, n) = 0.0_dp
+              a(3, n) = 0.0_dp
+            else
+              a(axis + 1, n) = 0.0_dp
+            end if
+          end do
         end do
       end do
     end do
@@ -155,7 +168,7 @@ contains
   ! Layout of step_context and material_params as this compiler sees them (for the
   ! layout test against the C structs): sizes and a few offsets, in bytes.
   subroutine mpm3d_f_context_layout(out) bind(C, name='mpm3d_f_context_layout')
-    integer(c_size_t), intent(out) :: out(17)
+    integer(c_size_t), intent(out) :: out(18)
     type(step_context), target :: c
     type(material_params), target :: m(2)
     out(1) = c_sizeof(c)
@@ -175,6 +188,7 @@ contains
     out(15) = transfer(c_loc(c%uvf), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
     out(16) = transfer(c_loc(c%damping), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
     out(17) = transfer(c_loc(c%tl), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
+    out(18) = transfer(c_loc(c%fix_layers), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
   end subroutine mpm3d_f_context_layout
 
 end module mpm3d_stage_common

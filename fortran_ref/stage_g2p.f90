@@ -22,13 +22,13 @@ contains
     real(dp) :: sn(27), sg(3, 27), acc(3), vel(3), m, r, mp, mn
     integer :: pc, qq, pn, q, slot, idx, p, base, pbase, k, n, a, ln, nk
     integer :: ci(3), o(3)
-    logical :: remap, gimp
+    logical :: remap, wide
     remap = c%scheme == SCHEME_MUSL
     pc = c%patch_cells
     qq = pc + 1 + 2 * c%patch_halo
     pn = qq * qq * qq
-    gimp = c%shape == 1
-    if (gimp) call c_f_pointer(c%psize, psize, [c%np])
+    wide = c%shape /= 0
+    if (c%shape == 1) call c_f_pointer(c%psize, psize, [c%np])
     call c_f_pointer(c%gmass, gmass, [c%nnode])
     call c_f_pointer(c%gmom, gmom, [3, c%nnode])
     call c_f_pointer(c%gforce, gforce, [3, c%nnode])
@@ -51,12 +51,12 @@ contains
         end if
         do idx = pstart(q + 1), pstart(q + 2) - 1
           p = ppart(idx + 1) + 1
-          call particle_shape(c, gimp, p, cell(p), lx, psize, ci, o, sn, sg, nk)
-          base = stencil_first_node(c, gimp, cell(p), ci, o)
+          call particle_shape(c, wide, p, cell(p), lx, psize, ci, o, sn, sg, nk)
+          base = stencil_first_node(c, wide, cell(p), ci, o)
           acc = 0.0_dp
           vel = 0.0_dp
           do k = 0, nk - 1
-            n = stencil_node(c, gimp, base, k)
+            n = stencil_node(c, wide, base, k)
             m = gmass(n)
             if (.not. (m > c%mass_cutoff)) cycle
             r = sn(k + 1) / m
@@ -70,10 +70,10 @@ contains
             x(a, p) = x(a, p) + (vel(a) * c%dt)
           end do
           if (remap) then
-            pbase = stencil_first_local(c, gimp, q, cell(p), ci, o)
+            pbase = stencil_first_local(c, wide, q, cell(p), ci, o)
             mp = mass(p)
             do k = 0, nk - 1
-              ln = stencil_local(c, gimp, pbase, k)
+              ln = stencil_local(c, wide, pbase, k)
               mn = mp * sn(k + 1)
               buf(2, ln, slot + 1) = buf(2, ln, slot + 1) + (mn * v(1, p))
               buf(3, ln, slot + 1) = buf(3, ln, slot + 1) + (mn * v(2, p))

@@ -58,12 +58,12 @@ contains
     integer, parameter :: VOIGT(9) = [1, 6, 5, 6, 2, 4, 5, 4, 3]
     integer :: pc, qq, q, slot, idx, p, base, s, a, k, ln, nk
     integer :: ci(3), o(3)
-    logical :: has_fext, body_force, gimp
+    logical :: has_fext, body_force, wide
     if (c%nslot <= 0) return
     pc = c%patch_cells
     qq = pc + 1 + 2 * c%patch_halo
-    gimp = c%shape == 1
-    if (gimp) call c_f_pointer(c%psize, psize, [c%np])
+    wide = c%shape /= 0
+    if (c%shape == 1) call c_f_pointer(c%psize, psize, [c%np])
     call view_buffers(c, buf)
     call c_f_pointer(c%patch_start, pstart, [c%npatch + 1])
     call c_f_pointer(c%patch_part, ppart, [c%np])
@@ -94,8 +94,8 @@ contains
       buf(:, :, slot + 1) = 0.0_dp
       do idx = pstart(q + 1), pstart(q + 2) - 1
         p = ppart(idx + 1) + 1
-        call particle_shape(c, gimp, p, cell(p), lx, psize, ci, o, sn, sg, nk)
-        base = stencil_first_local(c, gimp, q, cell(p), ci, o)
+        call particle_shape(c, wide, p, cell(p), lx, psize, ci, o, sn, sg, nk)
+        base = stencil_first_local(c, wide, q, cell(p), ci, o)
         mp = mass(p)
         vs = 0.0_dp
         fb = 0.0_dp
@@ -133,7 +133,7 @@ contains
           end if
         end if
         do k = 0, nk - 1
-          ln = stencil_local(c, gimp, base, k)
+          ln = stencil_local(c, wide, base, k)
           if (with_mass_mom) then
             mn = mp * sn(k + 1)
             buf(1, ln, slot + 1) = buf(1, ln, slot + 1) + mn
@@ -242,11 +242,11 @@ contains
     real(dp) :: sn(27), sg(3, 27), mp
     integer :: pc, qq, pn, q, slot, idx, p, base, k, ln, nk
     integer :: ci(3), o(3)
-    logical :: gimp
+    logical :: wide
     pc = c%patch_cells
     qq = pc + 1 + 2 * c%patch_halo
     pn = qq * qq * qq
-    gimp = c%shape == 1
+    wide = c%shape /= 0
     call c_f_pointer(c%gmass, gmass, [c%nnode])
     call c_f_pointer(c%gmom, gmom, [3, c%nnode])
     call c_f_pointer(c%gnormal, gnormal, [3, c%nnode])
@@ -258,7 +258,7 @@ contains
       call c_f_pointer(c%cell, cell, [c%np])
       call c_f_pointer(c%lx, lx, [3, c%np])
       call c_f_pointer(c%mass, mass, [c%np])
-      if (gimp) call c_f_pointer(c%psize, psize, [c%np])
+      if (c%shape == 1) call c_f_pointer(c%psize, psize, [c%np])
       do q = 0, c%npatch - 1
         slot = slots(q + 1)
         if (slot < 0) cycle
@@ -270,10 +270,10 @@ contains
         do idx = pstart(q + 1), pstart(q + 2) - 1
           p = ppart(idx + 1) + 1
           mp = mass(p)
-          call particle_shape(c, gimp, p, cell(p), lx, psize, ci, o, sn, sg, nk)
-          base = stencil_first_local(c, gimp, q, cell(p), ci, o)
+          call particle_shape(c, wide, p, cell(p), lx, psize, ci, o, sn, sg, nk)
+          base = stencil_first_local(c, wide, q, cell(p), ci, o)
           do k = 0, nk - 1
-            ln = stencil_local(c, gimp, base, k)
+            ln = stencil_local(c, wide, base, k)
             buf(5, ln, slot + 1) = buf(5, ln, slot + 1) + (mp * sg(1, k + 1))
             buf(6, ln, slot + 1) = buf(6, ln, slot + 1) + (mp * sg(2, k + 1))
             buf(7, ln, slot + 1) = buf(7, ln, slot + 1) + (mp * sg(3, k + 1))

@@ -25,10 +25,10 @@ contains
     real(dp) :: burn, qdummy, dl(0:8)
     integer :: p, cl, base, k, n, a, b, nk
     integer :: ci(3), o(3)
-    logical :: has_temp, has_tl, has_q, gimp, filter, neoh
+    logical :: has_temp, has_tl, has_q, wide, filter, neoh
     dt = c%dt
-    gimp = c%shape == 1
-    if (gimp) call c_f_pointer(c%psize, psize, [c%np])
+    wide = c%shape /= 0
+    if (c%shape == 1) call c_f_pointer(c%psize, psize, [c%np])
     call view_components(c, filter, body, bcomp)
     call c_f_pointer(c%lx, lx, [3, c%np])
     call c_f_pointer(c%sig, sig, [6, c%np])
@@ -61,11 +61,11 @@ contains
       if (filter) then
         if (other_component(c, p, body, bcomp)) cycle
       end if
-      call particle_shape(c, gimp, p, cl, lx, psize, ci, o, sn, sg, nk)
-      base = stencil_first_node(c, gimp, cl, ci, o)
+      call particle_shape(c, wide, p, cl, lx, psize, ci, o, sn, sg, nk)
+      base = stencil_first_node(c, wide, cl, ci, o)
       lg = 0.0_dp             ! lg(3a+b) = d v_a / d x_b (0-based a, b)
       do k = 0, nk - 1
-        n = stencil_node(c, gimp, base, k)
+        n = stencil_node(c, wide, base, k)
         m = gmass(n)
         if (.not. (m > c%mass_cutoff)) cycle
         do a = 0, 2

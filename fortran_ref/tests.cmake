@@ -93,6 +93,9 @@ if(TARGET mpm3d AND TARGET mpm3d_ref)
   fref_deck(soft_beam_tl ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/soft_beam_tl.mpm)
   fref_deck(current_soft_beam_tl ${_fref_shared}/current/SoftBeam_SBTL_0p1mesh_SBTL.mpm)
   fref_deck(current_free_soft_beam ${_fref_shared}/current/FreeSoftBeam_MPM_v0p3_FreeSB_MPM.mpm)
+  # B-spline MPM (bimp, two fixed node layers): our coarse Cook membrane and the public one.
+  fref_deck(cook_membrane_bimp ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/cook_membrane_bimp.mpm)
+  fref_deck(current_cook_bimp ${_fref_shared}/current/Cook_membrane_BSMPM5776p_Cookmo_Bimp.mpm)
   # GIMP with the adaptive grid (halo patches on the deck's patch lattice).
   fref_adaptive(two_blocks_gimp ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks_gimp.mpm)
   # Hypervelocity lead sphere: every variant over the first 60 steps, and the whole run

@@ -24,6 +24,7 @@ mpm3d_restart_test(free_soft_beam ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/free_s
 mpm3d_restart_test(soft_beam_tl ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/soft_beam_tl.mpm 120 50)
 mpm3d_restart_test(cantilever_quasi_static ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/cantilever_quasi_static.mpm 120 50)
 mpm3d_restart_test(plate_hole_drda ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/plate_hole_drda.mpm 120 50)
+mpm3d_restart_test(cook_membrane_bimp ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/cook_membrane_bimp.mpm 120 50)
 
 foreach(sig TERM INT)
   add_test(NAME restart.signal_${sig}

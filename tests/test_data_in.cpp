@@ -272,6 +272,8 @@ TEST(DataIn, TotalLagrangianCombinationsAreRefused) {
     const char* word;
   } cases[] = {{"1 elas 2.0 200.0 0.25", "TLmp\n", "'TLmp' with a elas material"},
                {"1 neoh 1100 17e6 0.3", "TLmp\ngimp\n", "'TLmp' with 'gimp'"},
+               {"1 neoh 1100 17e6 0.3", "TLmp\nbimp\n", "'TLmp' with 'bimp'"},
+               {"1 neoh 1100 17e6 0.3", "gimp\nbimp\n", "'gimp' with 'bimp'"},
                {"1 neoh 1100 17e6 0.3", "TLmp\nadgr 5\n", "'TLmp' with 'adgr'"}};
   for (const auto& c : cases) {
     try {
@@ -296,7 +298,7 @@ TEST(DataIn, RepeatedOutrIsWrittenOnce) {
 
 // The current version's methods not implemented yet say so (not "unknown keyword").
 TEST(DataIn, CurrentVersionMethodsNotYetImplementedSaySo) {
-  for (const char* k : {"bimp", "sgmp"}) {
+  for (const char* k : {"sgmp"}) {
     try {
       mpm3d::read_deck_text(deck("1 neoh 1100 17e6 0.3", std::string(k) + "\n"), "n.mpm");
       ADD_FAILURE() << k << " accepted";
@@ -306,4 +308,24 @@ TEST(DataIn, CurrentVersionMethodsNotYetImplementedSaySo) {
       EXPECT_EQ(w.find("unknown keyword"), std::string::npos) << w;
     }
   }
+}
+
+// bimp: the current version's B-spline shape functions (shape 2) and, with the 27-node
+// stencils of a current deck, two node layers held on the fixed faces; a book deck with
+// gimp keeps one layer.
+TEST(DataIn, BsplineDeckSetsShapeAndTwoFixedLayers) {
+  const mpm3d::Model b = mpm3d::read_deck_text(deck("1 neoh 1100 17e6 0.3", "bimp\n"), "b.mpm");
+  EXPECT_TRUE(b.bspline);
+  EXPECT_EQ(b.shape(), 2);
+  EXPECT_EQ(b.fix_layers(), 2);
+  EXPECT_TRUE(b.particles.psize.empty());
+  const mpm3d::Model g = mpm3d::read_deck_text(deck("1 neoh 1100 17e6 0.3", "gimp\n"), "g.mpm");
+  EXPECT_EQ(g.shape(), 1);
+  EXPECT_EQ(g.fix_layers(), 2);
+  const mpm3d::Model book = mpm3d::read_deck_text(deck("1 elas 2.0 200.0 0.25", "gimp\n"), "k.mpm");
+  EXPECT_EQ(book.shape(), 1);
+  EXPECT_EQ(book.fix_layers(), 1);
+  const mpm3d::Model lin = mpm3d::read_deck_text(deck("1 neoh 1100 17e6 0.3"), "l.mpm");
+  EXPECT_EQ(lin.shape(), 0);
+  EXPECT_EQ(lin.fix_layers(), 1);
 }

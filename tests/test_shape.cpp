@@ -240,3 +240,89 @@ TEST(ShapeGimp, GradientsAreTheDerivativesOfTheWeights) {
     for (int k = 0; k < 27; ++k) EXPECT_NEAR((Np[k] - Nm[k]) / (2.0 * e * h), G[3 * k + a], 1e-8);
   }
 }
+
+// The current version's quadratic B-splines ('bimp'): on the nodes base-1, base, base+1 of
+// the particle's cell, (1-s)^2/2, 1/2 + s - s^2, s^2/2, each node's spline centred half a
+// cell above the node.
+TEST(ShapeBspline, OneDimensionalWeightsByHand) {
+  double w[3], g[3];
+  mpm3d::bspline_1d(0.5, -1, 2.0, w, g);  // the cell's centre: 1/8, 3/4, 1/8
+  EXPECT_EQ(w[0], 0.125);
+  EXPECT_EQ(w[1], 0.75);
+  EXPECT_EQ(w[2], 0.125);
+  EXPECT_EQ(g[0], -1.0);  // -(1 - s) / h with h = 1/2
+  EXPECT_EQ(g[1], 0.0);
+  EXPECT_EQ(g[2], 1.0);
+  mpm3d::bspline_1d(0.0, -1, 1.0, w, g);  // the cell's base node: 1/2, 1/2, 0
+  EXPECT_EQ(w[0], 0.5);
+  EXPECT_EQ(w[1], 0.5);
+  EXPECT_EQ(w[2], 0.0);
+  EXPECT_EQ(g[0], -1.0);
+  EXPECT_EQ(g[1], 1.0);
+  EXPECT_EQ(g[2], 0.0);
+  // s = 0.2: 0.32, 0.66, 0.02.
+  mpm3d::bspline_1d(0.2, -1, 1.0, w, g);
+  EXPECT_NEAR(w[0], 0.32, 1e-15);
+  EXPECT_NEAR(w[1], 0.66, 1e-15);
+  EXPECT_NEAR(w[2], 0.02, 1e-15);
+  // The grid's first cell (o = 0): base and base+1 keep their weights, base-1's is dropped,
+  // and the third node (base+2) has none.
+  mpm3d::bspline_1d(0.2, 0, 1.0, w, g);
+  EXPECT_NEAR(w[0], 0.66, 1e-15);
+  EXPECT_NEAR(w[1], 0.02, 1e-15);
+  EXPECT_EQ(w[2], 0.0);
+  EXPECT_EQ(g[2], 0.0);
+  EXPECT_EQ(mpm3d::bspline_offset(0), 0);
+  EXPECT_EQ(mpm3d::bspline_offset(1), -1);
+  EXPECT_EQ(mpm3d::bspline_offset(7), -1);
+}
+
+TEST(ShapeBspline, PartitionOfUnityAndLinearReproductionAboutTheCellCentres) {
+  // Inside the grid: sum N = 1, sum G = 0, and a linear field given at the points half a
+  // cell above the nodes (x_k + h/2) is reproduced with its gradient.
+  const double h = 0.76, inv_h = 1.0 / h;
+  const double x0[3] = {-11.4, -3.04, 7.6};  // base node of the particle's cell
+  for (const auto& lx : sample_points()) {
+    const int o[3] = {-1, -1, -1};
+    double N[27], G[81];
+    mpm3d::shape_bspline(lx.data(), o, inv_h, N, G);
+    double sum = 0, gs[3] = {0, 0, 0}, xr[3] = {0, 0, 0}, J[3][3] = {};
+    for (int k = 0; k < 27; ++k) {
+      const int off[3] = {k % 3, (k / 3) % 3, k / 9};
+      EXPECT_GE(N[k], 0.0);
+      sum += N[k];
+      double xk[3];
+      for (int a = 0; a < 3; ++a) {
+        xk[a] = x0[a] + h * (double(o[a] + off[a]) + 0.5);
+        gs[a] += G[3 * k + a];
+        xr[a] += N[k] * xk[a];
+      }
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) J[a][b] += G[3 * k + b] * xk[a];
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-15);
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_NEAR(gs[a], 0.0, 4e-15 * inv_h);
+      EXPECT_NEAR(xr[a], x0[a] + lx[a] * h, 4e-14);
+      for (int b = 0; b < 3; ++b) EXPECT_NEAR(J[a][b], a == b ? 1.0 : 0.0, 1e-13);
+    }
+  }
+}
+
+TEST(ShapeBspline, GradientsAreTheDerivativesOfTheWeights) {
+  const double h = 2.0;
+  const double lx[3] = {0.1, 0.6, 0.85};
+  const int o[3] = {-1, -1, 0};
+  double N[27], G[81];
+  mpm3d::shape_bspline(lx, o, 1.0 / h, N, G);
+  const double e = 1e-6;
+  for (int a = 0; a < 3; ++a) {
+    double lp[3] = {lx[0], lx[1], lx[2]}, lm[3] = {lx[0], lx[1], lx[2]};
+    lp[a] += e;
+    lm[a] -= e;
+    double Np[27], Nm[27], Gd[81];
+    mpm3d::shape_bspline(lp, o, 1.0 / h, Np, Gd);
+    mpm3d::shape_bspline(lm, o, 1.0 / h, Nm, Gd);
+    for (int k = 0; k < 27; ++k) EXPECT_NEAR((Np[k] - Nm[k]) / (2.0 * e * h), G[3 * k + a], 1e-8);
+  }
+}

@@ -5,9 +5,11 @@
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "data_in.hpp"
 #include "mpm3d.hpp"
+#include "stage_common.hpp"
 
 namespace {
 
@@ -409,4 +411,30 @@ TEST(Solver, DynamicRelaxationStopsTheParticlesWhenKineticEnergyFalls) {
     EXPECT_GT(fall.kinetic, 0.0) << s;
   }
   EXPECT_LT(fall.model.particles.v[2], 0.0);
+}
+
+// The boundary conditions hold one node layer on a fixed (1) or symmetric (2) face, or two
+// (fix_layers 2: the current version with 27-node stencils).
+TEST(Solver, BoundaryConditionsHoldOneOrTwoNodeLayers) {
+  for (int layers : {1, 2}) {
+    StepContext c{};
+    c.nn[0] = 5;
+    c.nn[1] = 4;
+    c.nn[2] = 6;
+    const int fix[6] = {1, 0, 0, 2, 0, 0};  // x0 fixed, yn symmetric
+    for (int f = 0; f < 6; ++f) c.fix[f] = fix[f];
+    c.fix_layers = layers;
+    const int nnode = 5 * 4 * 6;
+    std::vector<double> a(3 * size_t(nnode), 1.0);
+    mpm3d::apply_bc(&c, a.data());
+    for (int k = 0; k < 6; ++k)
+      for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 5; ++i) {
+          const int n = i + 5 * (j + 4 * k);
+          const bool fixed = i < layers, sym = j >= 4 - layers;
+          EXPECT_EQ(a[3 * size_t(n) + 0], fixed ? 0.0 : 1.0) << layers << " " << i << " " << j;
+          EXPECT_EQ(a[3 * size_t(n) + 1], (fixed || sym) ? 0.0 : 1.0) << layers << " " << i << " " << j;
+          EXPECT_EQ(a[3 * size_t(n) + 2], fixed ? 0.0 : 1.0) << layers << " " << i << " " << j;
+        }
+  }
 }

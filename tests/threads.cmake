@@ -37,6 +37,9 @@ mpm3d_thread_test(plate_hole_drda ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/plate_
 mpm3d_thread_test(soft_beam_tl ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/soft_beam_tl.mpm 400)
 mpm3d_thread_test(current_soft_beam_tl ${CMAKE_SOURCE_DIR}/../shared/decks/current/SoftBeam_SBTL_0p1mesh_SBTL.mpm 300)
 mpm3d_thread_test(current_free_soft_beam ${CMAKE_SOURCE_DIR}/../shared/decks/current/FreeSoftBeam_MPM_v0p3_FreeSB_MPM.mpm 300)
+# B-spline MPM (bimp) with the current version's two fixed node layers.
+mpm3d_thread_test(cook_membrane_bimp ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/cook_membrane_bimp.mpm 400)
+mpm3d_thread_test(current_cook_bimp ${CMAKE_SOURCE_DIR}/../shared/decks/current/Cook_membrane_BSMPM5776p_Cookmo_Bimp.mpm 200)
 # The particles' storage order (tests/particle_order.sh): deck order keeps every bit too.
 mpm3d_thread_test(two_blocks_deck_order ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks.mpm 207 --particle-order deck)
 add_test(NAME particle_order
