@@ -236,6 +236,8 @@ int run_main(int argc, char** argv) {
     Model model = read_deck(opt.deck);
     if (opt.regrid_every >= 0) model.regrid_every = int(opt.regrid_every);
     if (!opt.time_step.empty()) model.dt_per_step = opt.time_step == "current";
+    if (model.sg && model.regrid_every > 0)
+      throw std::runtime_error(opt.deck + ": --regrid-every with 'sgmp': the cell-centre grid of sgmp does not move");
     if (model.tl && model.regrid_every > 0)
       throw std::runtime_error(opt.deck + ": --regrid-every with 'TLmp': the reference grid of TLmp cannot move");
     {  // --out-dir: created (with its parents) when missing
@@ -296,6 +298,7 @@ int run_main(int argc, char** argv) {
       head << "\n  warning: --patch-cells ignored: a restart keeps the checkpoint's " << patch_cells;
     if (m.gimp) head << "\n  GIMP shape functions (27 nodes)";
     if (m.bspline) head << "\n  quadratic B-spline shape functions (27 nodes)";
+    if (m.sg) head << "\n  smoothed-gradient MPM (sgmp): through the cell centres";
     if (m.fix_layers() == 2) head << "\n  two node layers held on each fixed or symmetric face";
     if (m.contact)
       head << "\n  contact between components 1 and 2, friction " << m.contact_mu << ", normals from "

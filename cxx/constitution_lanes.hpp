@@ -57,6 +57,10 @@ struct LaneUpdate {
       const T mu2 = TL::select(mu > 0.0, mu * mu, TL::splat(0.0));
       *a = ((c[0] + c[1] * mu) + c[2] * mu2) + c[3] * (mu * mu * mu);
       *b = (c[4] + c[5] * mu) + c[6] * mu2;
+    } else if (m.eos_type == EOS_WEAK) {
+      // p = c0^2 (rho - rho0) = rho0 c0^2 mu, independent of e.
+      *a = (m.rho0 * (c[0] * c[0])) * mu;
+      *b = TL::splat(0.0);
     } else if (m.eos_type == EOS_JWL) {
       for (int i = 0; i < TL::W; ++i) {
         double ai, bi;
@@ -312,7 +316,11 @@ struct LaneUpdate {
     for (int c = 3; c < 6; ++c) s_r[c] = sig_r[c];
     T deps = TL::splat(0.0);
     const bool fluid = m.type == MAT_HIEX || m.type == MAT_NULL;
-    if (fluid) {
+    if (fluid && m.viscosity > 0.0) {
+      // The current version's null: the viscous deviator 2 mu dev(D), D = de / dt.
+      const double two_mu = (2.0 * m.viscosity) / dt;
+      for (int c = 0; c < 6; ++c) s[c] = two_mu * dev[c];
+    } else if (fluid) {
       for (int c = 0; c < 6; ++c) s[c] = TL::splat(0.0);
     } else {
       for (int c = 0; c < 6; ++c) s[c] = s_r[c] + two_g * dev[c];

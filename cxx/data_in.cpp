@@ -244,7 +244,8 @@ Model DeckReader::read() {
       finish(key.line);
       break;
     } else if (k == "sgmp") {
-      fail(key.line, "'" + key.text + "': the current MPM3D-F90's smoothed-gradient MPM is not implemented yet (docs/DECK_FORMAT.md)");
+      m_.sg = true;
+      sgmp_line_ = key.line;
     } else {
       fail(key.line, "unknown keyword '" + key.text + "'");
     }

@@ -45,11 +45,13 @@ struct Model {
   int regrid_every = 0;  // adaptive grid: redefine the grid every N steps (adgr; 0 off)
   bool gimp = false;                   // uGIMP shape functions (particles.psize set)
   bool bspline = false;                // bimp: the current version's quadratic B-splines
+  bool sg = false;                     // sgmp: smoothed-gradient MPM through the cell centres
   // Shape functions of the stages (StepContext::shape): 0 trilinear, 1 uGIMP, 2 B-spline.
   int shape() const { return gimp ? 1 : (bspline ? 2 : 0); }
   // Node layers fixed on each fixed or symmetric face: the current version fixes two with
-  // the 27-node stencils (the nodes one cell outside the face's cells reach the particles).
-  int fix_layers() const { return (current_version && shape() != 0) ? 2 : 1; }
+  // the 27-node stencils and with sgmp (the nodes one cell in from the face reach the
+  // particles of the first cells).
+  int fix_layers() const { return (current_version && (shape() != 0 || sg)) ? 2 : 1; }
   bool contact = false;                // cont: multi-velocity contact of components 1, 2
   double contact_mu = 0.0;             // Coulomb friction coefficient
   int contact_normbody = 0;            // normals from component 1, 2, or 0 (both)

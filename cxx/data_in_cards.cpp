@@ -21,7 +21,7 @@ void DeckReader::read_materials(const Token& key) {
     MaterialParams& mp = m_.mats[size_t(num - 1)];
     const int line = typ.line;
     mp = MaterialParams{};
-    const MaterialModel* model = find_material_model(t);
+    const MaterialModel* model = find_material_model(t, m_.current_version);
     if (!model) fail(line, "unknown material type '" + typ.text + "'");
     mp.type = model->type;
     for (int k = 0; k < model->nparams; ++k) mp.*(model->params[k].field) = ts_.real(model->params[k].name);
@@ -62,8 +62,12 @@ void DeckReader::read_eos(const Token& key) {
     mp.eos_e0 = ts_.real("E0");
     if (mp.type != MAT_HIEX && mp.type != MAT_NULL) fail(key.line, "EOS type 3 (JWL) is for hiex and null materials");
     if (!(mp.eos[2] > 0.0) || !(mp.eos[3] > 0.0)) fail(key.line, "JWL R1 and R2 must be positive");
+  } else if (et == 4) {
+    mp.eos[0] = ts_.real("the weakly compressible EOS's sound speed c0");
+    if (!(mp.eos[0] > 0.0)) fail(key.line, "weakly compressible EOS: c0 must be positive");
   } else {
-    fail(key.line, "unknown EOS type " + std::to_string(et) + " (1 linear polynomial, 2 Mie-Gruneisen, 3 JWL)");
+    fail(key.line, "unknown EOS type " + std::to_string(et) +
+                       " (1 linear polynomial, 2 Mie-Gruneisen, 3 JWL, 4 weakly compressible)");
   }
   if (mp.type == MAT_DPM) fail(key.line, "a dpm material takes no equation of state");
   mp.eos_type = int(et);

@@ -28,7 +28,7 @@ class DeckReader {
   ParticleAppender parts_;  // appends the particle cards' particles to m_.particles
   bool ended_ = false;
   int box_line_[3] = {0, 0, 0}, dcell_line_ = 0;  // where the box and the cell size were set
-  int gimp_line_ = 0, bimp_line_ = 0;              // where gimp and bimp were asked for
+  int gimp_line_ = 0, bimp_line_ = 0, sgmp_line_ = 0;  // where gimp, bimp and sgmp were asked for
 
   [[noreturn]] void fail(int line, const std::string& what) { ts_.fail(line, what); }
   bool on_off(const Token& key);

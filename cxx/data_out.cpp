@@ -79,6 +79,7 @@ double var_sspd(const Model& m, int p) {
   double k = mp.lambda + (2.0 / 3.0) * mp.shear;
   if (mp.eos_type == EOS_MIE_GRUNEISEN) k = mp.rho0 * (mp.eos[0] * mp.eos[0]);
   else if (mp.eos_type == EOS_LINEAR) k = mp.eos[1];
+  else if (mp.eos_type == EOS_WEAK) k = mp.rho0 * (mp.eos[0] * mp.eos[0]);
   const double modulus = k + (4.0 / 3.0) * mp.shear;
   const double rho = m.particles.density(p);
   if (!(modulus > 0.0) || !(rho > 0.0)) return mp.wave_speed;

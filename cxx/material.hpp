@@ -19,7 +19,8 @@ enum MaterialType {
   MAT_NEOH = 11  // compressible neo-Hookean (hyperelastic, from the deformation gradient)
 };
 
-enum EosType { EOS_NONE = 0, EOS_LINEAR = 1, EOS_MIE_GRUNEISEN = 2, EOS_JWL = 3 };
+// EOS_WEAK: the current version's weakly compressible p = c0^2 (rho - rho0) (type 4).
+enum EosType { EOS_NONE = 0, EOS_LINEAR = 1, EOS_MIE_GRUNEISEN = 2, EOS_JWL = 3, EOS_WEAK = 4 };
 
 // One material set. Derived constants (shear, lambda, hardening, wave speed) are
 // computed once by the deck reader with the formulas of material.cpp. hiex and null have
@@ -53,6 +54,9 @@ struct MaterialParams {
   double dp_kphi;     // dpm: cohesion term k_phi
   double dp_qpsi;     // dpm: dilatancy coefficient q_psi
   double dp_tension;  // dpm: tension cut-off sigma_t (capped at the apex k_phi / q_phi)
+  // Appended for the current version's null (a fluid: density, bulk modulus, viscosity).
+  double bulk_modulus;  // K; wave_speed = sqrt(K / rho0)
+  double viscosity;     // dynamic viscosity mu: deviatoric stress 2 mu dev(D); 0 = none
 };
 
 }  // extern "C"

@@ -1,6 +1,8 @@
 // The material model table (material_models.hpp).
 #include "material_models.hpp"
 
+#include <cmath>
+
 namespace mpm3d {
 namespace {
 
@@ -27,6 +29,8 @@ const MaterialParam kSjc[] = {MPM3D_ELASTIC, MPM3D_JC_HARDENING, MPM3D_RATE};
 const MaterialParam kSjcf[] = {MPM3D_ELASTIC, MPM3D_JC_HARDENING, MPM3D_RATE, MPM3D_FAILURE};
 const MaterialParam kHiex[] = {{"density", &M::rho0}, {"the detonation velocity", &M::wave_speed}};
 const MaterialParam kNull[] = {{"density", &M::rho0}, {"the wave speed", &M::wave_speed}};
+// The current version's null, a viscous fluid (the dam break's water).
+const MaterialParam kNullCurrent[] = {{"density", &M::rho0}, {"the bulk modulus", &M::bulk_modulus}, {"the viscosity", &M::viscosity}};
 const MaterialParam kDpm[] = {MPM3D_ELASTIC,
                               {"q_phi", &M::dp_qphi},
                               {"k_phi", &M::dp_kphi},
@@ -56,6 +60,14 @@ std::string finish_hiex(M& m) {
   return "";
 }
 
+std::string finish_null_current(M& m) {
+  if (!(m.rho0 > 0.0)) return "density must be positive";
+  if (!(m.bulk_modulus > 0.0)) return "bulk modulus must be positive";
+  if (!(m.viscosity >= 0.0)) return "viscosity must not be negative";
+  m.wave_speed = std::sqrt(m.bulk_modulus / m.rho0);
+  return "";
+}
+
 #define MPM3D_PARAMS(a) a, int(sizeof(a) / sizeof(a[0]))
 //                                  keyword type    card                 fluid  JC     thermal finish
 const MaterialModel kModels[] = {{"elas", MAT_ELAS, MPM3D_PARAMS(kElas), false, false, false, nullptr},
@@ -69,11 +81,18 @@ const MaterialModel kModels[] = {{"elas", MAT_ELAS, MPM3D_PARAMS(kElas), false, 
                                  {"null", MAT_NULL, MPM3D_PARAMS(kNull), true, false, false, nullptr},
                                  {"dpm", MAT_DPM, MPM3D_PARAMS(kDpm), false, false, false, nullptr},
                                  {"neoh", MAT_NEOH, MPM3D_PARAMS(kElas), false, false, false, nullptr}};
+// The current version's card of a keyword whose card changed (decks with a keyword only the
+// current version knows read it).
+const MaterialModel kCurrentModels[] = {
+    {"null", MAT_NULL, MPM3D_PARAMS(kNullCurrent), true, false, false, finish_null_current}};
 #undef MPM3D_PARAMS
 
 }  // namespace
 
-const MaterialModel* find_material_model(const std::string& keyword) {
+const MaterialModel* find_material_model(const std::string& keyword, bool current_version) {
+  if (current_version)
+    for (const MaterialModel& m : kCurrentModels)
+      if (keyword == m.keyword) return &m;
   for (const MaterialModel& m : kModels)
     if (keyword == m.keyword) return &m;
   return nullptr;

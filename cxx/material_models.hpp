@@ -31,8 +31,9 @@ struct MaterialModel {
   std::string (*finish)(MaterialParams& m);
 };
 
-// The model of a deck keyword (already cut to four characters), or null.
-const MaterialModel* find_material_model(const std::string& keyword);
+// The model of a deck keyword (already cut to four characters), or null; current_version:
+// the current version's card where it differs (null: density, bulk modulus, viscosity).
+const MaterialModel* find_material_model(const std::string& keyword, bool current_version = false);
 // The model of a MaterialType, or null for an unknown type.
 const MaterialModel* material_model(int type);
 

@@ -27,11 +27,13 @@ Simulation::Simulation(Model m, int patch_cells, ParticleOrder order) : model(st
   // A GIMP stencil reaches one node beyond its patch's cells; the node loops find every
   // node a patch's particles touch among its own and its neighbours' nodes only when a
   // patch is at least two cells wide.
-  if (model.shape() != 0 && patch_cells < 2)
-    throw std::invalid_argument(std::string(model.gimp ? "GIMP" : "B-spline") + " needs patches of at least two cells");
+  if ((model.shape() != 0 || model.sg) && patch_cells < 2)
+    throw std::invalid_argument(std::string(model.gimp ? "GIMP" : model.sg ? "sgmp" : "B-spline") +
+                                " needs patches of at least two cells");
   double hi[3];
   for (int a = 0; a < 3; ++a) hi[a] = model.box_hi[a];
-  const int halo = model.shape() != 0 ? 1 : 0;  // 27-node stencils reach one node beyond a patch's cells
+  // 27-node stencils and sgmp's cell centres reach one node beyond a patch's cells.
+  const int halo = (model.shape() != 0 || model.sg) ? 1 : 0;
   grid.define(model.box_lo, hi, model.dcell, patch_cells, halo);
   for (int f = 0; f < 6; ++f) grid.fix[f] = model.fix[f];
   grid.mass_cutoff = model.mass_cutoff;
@@ -166,6 +168,10 @@ void Simulation::bind() {
   c.xbin = model.tl ? P.x0.data() : P.x.data();  // TLmp: the particles stay in their reference cells
   c.pk1 = model.tl ? P.pk1.data() : nullptr;
   c.uvf = model.uvf ? 1 : 0;
+  // sgmp: the cell centres' scratch fields (the grid window is the whole box: no regrid).
+  if (model.sg) aux_.assign(size_t(kAuxFields) * size_t(grid.nc[0]) * size_t(grid.nc[1]) * size_t(grid.nc[2]), 0.0);
+  c.aux = model.sg ? aux_.data() : nullptr;
+  c.sg = model.sg ? 1 : 0;
   bind_grid();  // before the contact copy: ctx2 starts as a copy of ctx
   if (model.contact) {
     // Two contexts over the same particles: each bins, scatters and updates the particles
@@ -230,7 +236,7 @@ void Simulation::set_grid(const double origin[3], double h, const int deck_nc[3]
   if (patch_cells < 1) throw std::invalid_argument("patch size must be at least one cell");
   double hi[3];
   for (int a = 0; a < 3; ++a) hi[a] = origin[a] + double(deck_nc[a]) * h;
-  grid.define(origin, hi, h, patch_cells, model.shape() != 0 ? 1 : 0);
+  grid.define(origin, hi, h, patch_cells, (model.shape() != 0 || model.sg) ? 1 : 0);
   for (int a = 0; a < 3; ++a)
     if (grid.deck_nc[a] != deck_nc[a]) throw std::runtime_error("grid: cannot rebuild the stored grid");
   grid.set_window(off, nc);

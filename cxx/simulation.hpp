@@ -81,6 +81,7 @@ class Simulation {
   StageTable stages_;
   std::vector<double> lx_, partials_;
   std::vector<int> cell_, pscratch_;
+  std::vector<double> aux_;  // sgmp: the cell centres' fields (kAuxFields per cell)
   std::vector<double> gravity_;
   std::vector<int> body_comp_;                        // contact: component of each body
   std::vector<double> gnormal1_, gnormal2_, cpartials_;  // contact only

@@ -23,6 +23,15 @@ void assemble(const StepContext* c, int first, int count, double* dst_mass, doub
 // components zero), 2 symmetry (normal component zero). stage_grid.cpp.
 void apply_bc(const StepContext* c, double* a);
 
+// Smoothed-gradient MPM (sgmp, stage_sg.cpp): the exchanges through the cell centres
+// (StepContext::aux, kAuxFields per cell). P2G: the nodes' mass and momentum and/or forces;
+// G2P: the particles' velocities and positions, with remap the nodes' momenta; stress: the
+// cells' velocity gradients from the node velocities gvel (each particle's:
+// sg_velocity_gradient, stage_sg.hpp).
+void sg_p2g(StepContext* c, bool with_mass_mom, bool with_forces);
+void sg_g2p(StepContext* c, bool remap);
+void sg_cell_gradients(StepContext* c, const double* gvel);
+
 namespace {
 
 // True when particle p belongs to another component than the context's (contact).
@@ -62,6 +71,30 @@ inline void for_filled_patches(const StepContext* c, F&& f) {
   }
 }
 
+// The body force of particle p: the point load (ramped with QuLo), the damping (Damp),
+// gravity, in the current version's order when either of the first two is on.
+__attribute__((always_inline)) inline void particle_body_force(const StepContext* c, int p, double fb[3]) {
+  const double mp = c->mass[p];
+  const double* vp = c->v + 3 * p;
+  const double* g = c->gravity + 3 * c->body[p];
+  if (c->load_ramp_time > 0.0 || c->damping > 0.0) {
+    // Quasi-static loading, in the current version's order: the load (ramped until
+    // load_ramp_time, c->time being the end of this step), the damping, gravity.
+    const bool ramp = c->load_ramp_time > 0.0 && c->time < c->load_ramp_time;
+    for (int a = 0; a < 3; ++a) {
+      double f = 0.0;
+      if (c->fext) f = ramp ? (c->fext[3 * p + a] / c->load_ramp_time) * c->time : c->fext[3 * p + a];
+      if (c->damping > 0.0) f = f - (c->damping * mp) * vp[a];
+      fb[a] = f + mp * g[a];
+    }
+  } else {
+    for (int a = 0; a < 3; ++a) {
+      fb[a] = mp * g[a];
+      if (c->fext) fb[a] = fb[a] + c->fext[3 * p + a];
+    }
+  }
+}
+
 // P2G contributions of particle p (weights N, gradients G) added to its kNodes nodes (8
 // trilinear, 27 GIMP), node(k) the 7 fields of stencil node k: mass and momentum
 // (with_mass_mom) and the force -V sigma G + N (m g + f_ext) (with_forces; body forces with
@@ -79,25 +112,7 @@ __attribute__((always_inline)) inline void p2g_particle(const StepContext* c, in
   if (with_forces) {
     const double volp = c->vol[p];
     for (int s = 0; s < 6; ++s) vs[s] = c->sig[6 * p + s] * volp;
-    if (with_body) {
-      const double* g = c->gravity + 3 * c->body[p];
-      if (c->load_ramp_time > 0.0 || c->damping > 0.0) {
-        // Quasi-static loading, in the current version's order: the load (ramped until
-        // load_ramp_time, c->time being the end of this step), the damping, gravity.
-        const bool ramp = c->load_ramp_time > 0.0 && c->time < c->load_ramp_time;
-        for (int a = 0; a < 3; ++a) {
-          double f = 0.0;
-          if (c->fext) f = ramp ? (c->fext[3 * p + a] / c->load_ramp_time) * c->time : c->fext[3 * p + a];
-          if (c->damping > 0.0) f = f - (c->damping * mp) * vp[a];
-          fb[a] = f + mp * g[a];
-        }
-      } else {
-        for (int a = 0; a < 3; ++a) {
-          fb[a] = mp * g[a];
-          if (c->fext) fb[a] = fb[a] + c->fext[3 * p + a];
-        }
-      }
-    }
+    if (with_body) particle_body_force(c, p, fb);
   }
   for (int k = 0; k < kNodes; ++k) {
     double* b = node(k);

@@ -55,6 +55,11 @@ using namespace mpm3d;
 // boundary conditions on the momenta.
 extern "C" void mpm3d_cxx_g2p(StepContext* c) {
   const bool remap = c->scheme == SCHEME_MUSL;
+  if (c->sg) {
+    sg_g2p(c, remap);
+    if (remap) apply_bc(c, c->gmom);
+    return;
+  }
   if (c->shape != 0)
     g2p_gimp(c, remap);
   else

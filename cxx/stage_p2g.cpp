@@ -182,6 +182,11 @@ using namespace mpm3d;
 // conditions on the momenta.
 extern "C" void mpm3d_cxx_p2g(StepContext* c) {
   const bool forces = c->scheme != SCHEME_USF;
+  if (c->sg) {
+    sg_p2g(c, true, forces);
+    apply_bc(c, c->gmom);
+    return;
+  }
   scatter_p2g(c, true, forces);
   assemble(c, 0, forces ? 7 : 4, c->gmass, c->gmom, c->gforce);
   apply_bc(c, c->gmom);
@@ -189,6 +194,10 @@ extern "C" void mpm3d_cxx_p2g(StepContext* c) {
 
 // USF: f_i with the updated stresses.
 extern "C" void mpm3d_cxx_forces(StepContext* c) {
+  if (c->sg) {
+    sg_p2g(c, false, true);
+    return;
+  }
   scatter_p2g(c, false, true);
   assemble(c, 4, 3, c->gmass, c->gmom, c->gforce);
 }

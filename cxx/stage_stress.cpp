@@ -5,6 +5,7 @@
 
 #include "constitution.hpp"
 #include "stage_common.hpp"
+#include "stage_sg.hpp"
 #include "transfer_lanes.hpp"
 #include "update_step.hpp"
 
@@ -61,10 +62,12 @@ void stress_trilinear(StepContext* c, const double* gvel) {
   });
 }
 
-// The particle loop with the GIMP stencils: fixed particle chunks; velocity gradients one
-// particle at a time, the update of kStressLanes consecutive particles of one material at
-// a time (stress_block; a shorter run lane by lane).
-void stress_gimp(StepContext* c, const double* gvel) {
+// The particle loop of the 27-node stencils and of sgmp: fixed particle chunks; velocity
+// gradients one particle at a time (gradient(dec, p, L)), the update of kStressLanes
+// consecutive particles of one material at a time (stress_block; a shorter run lane by
+// lane).
+template <class Gradient>
+void stress_particles(StepContext* c, Gradient&& gradient) {
   const CellDecoder dec(c);
   const StressBlockArgs args = stress_args(c);
   const bool filter = c->only_comp > 0;
@@ -91,7 +94,7 @@ void stress_gimp(StepContext* c, const double* gvel) {
       if (n > 0 && c->mat[p] != mat) flush();
       mat = c->mat[p];
       double L[9];
-      velocity_gradient_gimp(c, dec, p, gvel, L);
+      gradient(dec, p, L);
       for (int r = 0; r < 9; ++r) b.L[r][n] = L[r];
       stress_block_load(c, c->mats[mat], p, n, b);
       part[n++] = p;
@@ -130,8 +133,12 @@ using namespace mpm3d;
 // rotation, stress return, EOS, bulk viscosity, internal energy.
 extern "C" void mpm3d_cxx_stress(StepContext* c) {
   const double* gvel = node_velocities(c);
-  if (c->shape != 0)
-    stress_gimp(c, gvel);
-  else
+  if (c->sg) {
+    sg_cell_gradients(c, gvel);
+    stress_particles(c, [&](const CellDecoder& dec, int p, double* L) { sg_velocity_gradient(c, dec, p, L); });
+  } else if (c->shape != 0) {
+    stress_particles(c, [&](const CellDecoder& dec, int p, double* L) { velocity_gradient_gimp(c, dec, p, gvel, L); });
+  } else {
     stress_trilinear(c, gvel);
+  }
 }

@@ -73,7 +73,11 @@ struct StepContext {
   double *pk1;               // (9,np) V0 P, or null (updated Lagrangian)
   int tl;                    // 1: total Lagrangian
   int fix_layers;            // node layers the boundary conditions of a face hold: 1, or 2
-                             // (the current version with 27-node stencils)
+                             // (the current version with 27-node stencils or sgmp)
+  // Smoothed-gradient MPM (the current version's sgmp): the stages exchange through the
+  // cell centres, aux (kAuxFields, ncell) their scratch fields (stage_sg.cpp); else null, 0.
+  double *aux;
+  int sg;
   // Fields after this point are stage-internal scratch of the C++ kernels (a Fortran
   // mirror of the struct may stop before them).
   int *pscratch;       // (np) patch of each particle during binning
@@ -109,6 +113,7 @@ void mpm3d_f_recontact(StepContext* c);
 namespace mpm3d {
 
 extern const char* const kStageNames[ST_COUNT];
+constexpr int kAuxFields = 32;  // doubles per cell in StepContext::aux (sgmp)
 constexpr int kReduceFields = 5;
 
 // The stage table: which implementation each stage uses (cxx/stages.cpp).

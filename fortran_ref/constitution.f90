@@ -89,6 +89,10 @@ contains
       a = ((m%eos(1) * (1.0_dp - (m%eos(5) / r1v))) * exp(-r1v)) + &
           ((m%eos(2) * (1.0_dp - (m%eos(5) / r2v))) * exp(-r2v))
       b = m%eos(5) / vv
+    else if (m%eos_type == EOS_WEAK) then
+      ! p = c0^2 (rho - rho0) = rho0 c0^2 mu, independent of e.
+      a = (m%rho0 * (m%eos(1) * m%eos(1))) * mu
+      b = 0.0_dp
     else if (m%eos_type == EOS_LINEAR) then
       if (mu > 0.0_dp) then
         mu2 = mu * mu
@@ -284,7 +288,7 @@ contains
     real(dp), intent(inout) :: sig(6), epeff, ie, temp, q
     logical, intent(in) :: has_temp, has_q
     real(dp) :: sig_r(6), dev(6), s(6), s_r(6)
-    real(dp) :: dkk, third, two_g, vavg, strain_rate, tp, mean_r, lam_dkk, mean, deps, p_new
+    real(dp) :: dkk, third, two_g, two_mu, vavg, strain_rate, tp, mean_r, lam_dkk, mean, deps, p_new
     real(dp) :: vol0, dv, p_old, dwork, e_star, mu, a, b, e_new, q_new, q_old, base
     logical :: failed, fluid
     integer :: c
@@ -362,7 +366,13 @@ contains
     call minus_diag(sig_r, mean_r, s_r)
     deps = 0.0_dp
     fluid = m%type == MAT_HIEX .or. m%type == MAT_NULL
-    if (fluid) then
+    if (fluid .and. m%viscosity > 0.0_dp) then
+      ! The current version's null: the viscous deviator 2 mu dev(D), D = de / dt.
+      two_mu = (2.0_dp * m%viscosity) / dt
+      do c = 1, 6
+        s(c) = two_mu * dev(c)
+      end do
+    else if (fluid) then
       do c = 1, 6
         s(c) = 0.0_dp
       end do

@@ -42,7 +42,8 @@ module mpm3d_data_in
     integer :: regrid_every = 0       ! adaptive grid: redefine the grid every N steps (adgr)
     logical :: gimp = .false.          ! uGIMP shape functions (particles%psize set)
     logical :: bspline = .false.       ! bimp: the current version's quadratic B-splines
-    integer :: gimp_line = 0, bimp_line = 0  ! deck lines of gimp and bimp
+    logical :: sg = .false.            ! sgmp: smoothed-gradient MPM through the cell centres
+    integer :: gimp_line = 0, bimp_line = 0, sgmp_line = 0  ! deck lines of gimp, bimp, sgmp
     logical :: contact = .false.       ! cont: multi-velocity contact of components 1, 2
     real(dp) :: contact_mu = 0.0_dp    ! Coulomb friction coefficient
     integer :: contact_normbody = 0    ! normals from component 1, 2, or 0 (both)
@@ -117,11 +118,11 @@ contains
   end function model_shape
 
   ! Node layers held on a fixed or symmetric face (cxx Model::fix_layers): two for the
-  ! current version with 27-node stencils, else one.
+  ! current version with 27-node stencils or sgmp, else one.
   pure integer function model_fix_layers(m)
     type(model_t), intent(in) :: m
     model_fix_layers = 1
-    if (m%current_version .and. model_shape(m) /= 0) model_fix_layers = 2
+    if (m%current_version .and. (model_shape(m) /= 0 .or. m%sg)) model_fix_layers = 2
   end function model_fix_layers
 
   ! The machine's physical memory in bytes (glibc: _SC_PHYS_PAGES = 85, _SC_PAGESIZE = 30).
@@ -413,8 +414,8 @@ contains
         call finish(ts, m, key%line, box_line, dcell_line)
         exit
       case ('sgmp')
-        call ts%fail(key%line, "'" // kt // "': the current MPM3D-F90's smoothed-gradient MPM is not " // &
-                     'implemented yet (docs/DECK_FORMAT.md)')
+        m%sg = .true.
+        m%sgmp_line = key%line
       case default
         call ts%fail(key%line, "unknown keyword '" // kt // "'")
       end select

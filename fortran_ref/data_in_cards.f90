@@ -52,7 +52,7 @@ contains
       mp = material_params()
       mp%type = material_type_of(t)
       if (mp%type == 0) call ts%fail(line, "unknown material type '" // ts%text_of(typ) // "'")
-      call read_material_card(ts, mp, line)
+      call read_material_card(ts, mp, line, m%current_version)
       if (material_is_johnson_cook(mp%type)) then
         if (.not. (mp%jc_n > 0.0_dp)) call ts%fail(line, 'Johnson-Cook n must be positive')
         if (mp%jc_c /= 0.0_dp .and. .not. (mp%eps0dot > 0.0_dp)) &
@@ -102,9 +102,12 @@ contains
         call ts%fail(key%line, 'EOS type 3 (JWL) is for hiex and null materials')
       if (.not. (m%mats(mid)%eos(3) > 0.0_dp) .or. .not. (m%mats(mid)%eos(4) > 0.0_dp)) &
         call ts%fail(key%line, 'JWL R1 and R2 must be positive')
+    else if (et == 4) then
+      m%mats(mid)%eos(1) = ts%real("the weakly compressible EOS's sound speed c0")
+      if (.not. (m%mats(mid)%eos(1) > 0.0_dp)) call ts%fail(key%line, 'weakly compressible EOS: c0 must be positive')
     else
       call ts%fail(key%line, 'unknown EOS type ' // itoa(et) // &
-                   ' (1 linear polynomial, 2 Mie-Gruneisen, 3 JWL)')
+                   ' (1 linear polynomial, 2 Mie-Gruneisen, 3 JWL, 4 weakly compressible)')
     end if
     if (m%mats(mid)%type == MAT_DPM) call ts%fail(key%line, 'a dpm material takes no equation of state')
     m%mats(mid)%eos_type = int(et)

@@ -152,6 +152,18 @@ contains
     end do
     if (m%gimp .and. m%bspline) call ts%fail(max(m%gimp_line, m%bimp_line), &
       "'gimp' with 'bimp': a deck takes one kind of shape functions")
+    if (m%sg) then
+      ! What the current version's sgmp does not combine with, or we have not built, is refused.
+      if (m%gimp) call ts%fail(max(m%gimp_line, m%sgmp_line), &
+        "'sgmp' with 'gimp': smoothed-gradient MPM takes the trilinear shape functions only")
+      if (m%bspline) call ts%fail(max(m%bimp_line, m%sgmp_line), &
+        "'sgmp' with 'bimp': smoothed-gradient MPM takes the trilinear shape functions only")
+      if (m%tl) call ts%fail(max(m%tl_line, m%sgmp_line), &
+        "'sgmp' with 'TLmp': the smoothed-gradient total Lagrangian MPM is not implemented yet")
+      if (m%contact) call ts%fail(max(m%contact_line, m%sgmp_line), &
+        "'sgmp' with 'cont': smoothed-gradient MPM has one velocity field here")
+      if (m%regrid_every > 0) call ts%fail(m%sgmp_line, "'sgmp' with 'adgr': the cell-centre grid of sgmp does not move")
+    end if
     if (m%bspline) then
       do a = 1, 3
         n = (m%box_hi(a) - m%box_lo(a)) / m%dcell + 0.5_dp

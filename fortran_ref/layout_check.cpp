@@ -6,15 +6,15 @@
 
 #include "update_step.hpp"
 
-// The Fortran mirror stops after fix_layers: later fields are C++-internal scratch.
+// The Fortran mirror stops after sg: later fields are C++-internal scratch.
 
-extern "C" void mpm3d_f_context_layout(size_t out[18]);
+extern "C" void mpm3d_f_context_layout(size_t out[20]);
 extern "C" void mpm3d_f_step_constants(int out[14]);
 
 int main() {
-  size_t f[18];
+  size_t f[20];
   mpm3d_f_context_layout(f);
-  const size_t c[18] = {sizeof(StepContext),
+  const size_t c[20] = {sizeof(StepContext),
                        offsetof(StepContext, result),
                        offsetof(StepContext, np),
                        offsetof(StepContext, fix),
@@ -31,17 +31,19 @@ int main() {
                        offsetof(StepContext, uvf),
                        offsetof(StepContext, damping),
                        offsetof(StepContext, tl),
-                       offsetof(StepContext, fix_layers)};
-  const char* what[18] = {"sizeof(StepContext)", "offsetof(result)", "offsetof(np)", "offsetof(fix)",
+                       offsetof(StepContext, fix_layers),
+                       offsetof(StepContext, aux),
+                       offsetof(StepContext, sg)};
+  const char* what[20] = {"sizeof(StepContext)", "offsetof(result)", "offsetof(np)", "offsetof(fix)",
                          "offsetof(reduce_block)", "sizeof(MaterialParams)", "offsetof(eos_e0)",
                          "offsetof(eos_type)", "offsetof(bulk_q2)", "offsetof(dp_tension)", "offsetof(cell_off)",
                          "offsetof(psize)", "offsetof(ncontact)",
                          "offsetof(defgrad)", "offsetof(uvf)", "offsetof(damping)", "offsetof(tl)",
-                         "offsetof(fix_layers)"};
+                         "offsetof(fix_layers)", "offsetof(aux)", "offsetof(sg)"};
   int bad = 0;
-  for (int i = 0; i < 18; ++i) {
+  for (int i = 0; i < 20; ++i) {
     // sizeof(StepContext) may exceed the Fortran size by the C++ scratch fields only.
-    const bool ok = i == 0 ? (f[0] <= c[0] && f[0] >= offsetof(StepContext, fix_layers) + sizeof(int))
+    const bool ok = i == 0 ? (f[0] <= c[0] && f[0] >= offsetof(StepContext, sg) + sizeof(int))
                            : c[i] == f[i];
     std::printf("%-24s C %4zu  Fortran %4zu%s\n", what[i], c[i], f[i], ok ? "" : "  MISMATCH");
     if (!ok) bad = 1;

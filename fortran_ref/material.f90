@@ -13,7 +13,8 @@ module mpm3d_material
                                 MAT_SJC = 5, MAT_SJCF = 6, MAT_JCF = 7, MAT_HIEX = 8, &
                                 MAT_NULL = 9, MAT_DPM = 10, MAT_NEOH = 11
   ! EosType
-  integer, parameter, public :: EOS_NONE = 0, EOS_LINEAR = 1, EOS_MIE_GRUNEISEN = 2, EOS_JWL = 3
+  ! EOS_WEAK: the current version's weakly compressible p = c0^2 (rho - rho0) (type 4).
+  integer, parameter, public :: EOS_NONE = 0, EOS_LINEAR = 1, EOS_MIE_GRUNEISEN = 2, EOS_JWL = 3, EOS_WEAK = 4
 
   type, bind(C), public :: material_params
     real(c_double) :: rho0 = 0.0_dp        ! initial density
@@ -43,6 +44,8 @@ module mpm3d_material
     real(c_double) :: dp_kphi = 0.0_dp     ! dpm: k_phi
     real(c_double) :: dp_qpsi = 0.0_dp     ! dpm: q_psi
     real(c_double) :: dp_tension = 0.0_dp  ! dpm: tension cut-off (capped at the apex)
+    real(c_double) :: bulk_modulus = 0.0_dp  ! current null: K (wave speed sqrt(K / rho0))
+    real(c_double) :: viscosity = 0.0_dp     ! current null: dynamic viscosity mu (0: none)
   end type material_params
 
 end module mpm3d_material

@@ -82,11 +82,13 @@ contains
   end function material_is_thermal
 
   ! The numbers of a 'mate' card of type mp%type, in deck order, and the checks of the
-  ! card's own values (errors name the card's line).
-  subroutine read_material_card(ts, mp, line)
+  ! card's own values (errors name the card's line); current_version: the current version's
+  ! card where it differs (null: density, bulk modulus, viscosity).
+  subroutine read_material_card(ts, mp, line, current_version)
     type(token_stream), intent(inout) :: ts
     type(material_params), intent(inout) :: mp
     integer, intent(in) :: line
+    logical, intent(in) :: current_version
     real(dp) :: et
     if (.not. material_is_fluid(mp%type)) then
       mp%rho0 = ts%real('density')
@@ -122,7 +124,16 @@ contains
       mp%det_vel = mp%wave_speed
     case (MAT_NULL)
       mp%rho0 = ts%real('density')
-      mp%wave_speed = ts%real('the wave speed')
+      if (current_version) then
+        mp%bulk_modulus = ts%real('the bulk modulus')
+        mp%viscosity = ts%real('the viscosity')
+        if (.not. (mp%rho0 > 0.0_dp)) call ts%fail(line, 'density must be positive')
+        if (.not. (mp%bulk_modulus > 0.0_dp)) call ts%fail(line, 'bulk modulus must be positive')
+        if (.not. (mp%viscosity >= 0.0_dp)) call ts%fail(line, 'viscosity must not be negative')
+        mp%wave_speed = sqrt(mp%bulk_modulus / mp%rho0)
+      else
+        mp%wave_speed = ts%real('the wave speed')
+      end if
     case (MAT_DPM)
       mp%dp_qphi = ts%real('q_phi')
       mp%dp_kphi = ts%real('k_phi')

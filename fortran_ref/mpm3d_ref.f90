@@ -29,6 +29,7 @@ program mpm3d_ref
   type(step_context), target :: ctx, ctx2
   real(dp), allocatable, target :: lx(:,:), partials(:,:), gravity(:,:)
   real(dp), allocatable, target :: gnormal1(:,:), gnormal2(:,:), cpartials(:,:)   ! contact only
+  real(dp), allocatable, target :: aux(:,:)   ! sgmp only: the cell centres' fields
   integer(c_int), allocatable, target :: cell(:), body_comp(:)
   character(len=:), allocatable :: deck, state_path, init_path, energy_path, err
   integer(int64) :: max_steps, steps, iv
@@ -120,10 +121,14 @@ program mpm3d_ref
   if (time_step >= 0) model%dt_per_step = time_step == 1
   if (model%tl .and. regrid_every > 0) &
     call fatal(deck // ": --regrid-every with 'TLmp': the reference grid of TLmp cannot move")
+  if (model%sg .and. regrid_every > 0) &
+    call fatal(deck // ": --regrid-every with 'sgmp': the cell-centre grid of sgmp does not move")
   ! The two contact grids share one node numbering: no adaptive window with contact (as mpm3d).
   if (model%contact) regrid_every = 0
-  halo = merge(1, 0, model_shape(model) /= 0)   ! 27-node stencils reach one node beyond a patch's cells
+  ! 27-node stencils and sgmp's cell centres reach one node beyond a patch's cells.
+  halo = merge(1, 0, model_shape(model) /= 0 .or. model%sg)
   if (model%gimp .and. patch_cells < 2) call usage('GIMP needs patches of at least two cells')
+  if (model%sg .and. patch_cells < 2) call usage('sgmp needs patches of at least two cells')
   if (model%bspline .and. patch_cells < 2) call usage('B-spline needs patches of at least two cells')
   call grid_define(grid, model%box_lo, model%box_hi, model%dcell, patch_cells, halo, err)
   if (len(err) > 0) call fatal(deck // ': ' // err)
@@ -367,6 +372,14 @@ contains
     if (model%gimp) ctx%psize = c_loc(model%particles%psize)
     ctx%shape = model_shape(model)
     ctx%fix_layers = model_fix_layers(model)
+    ! sgmp: the cell centres' scratch fields (the grid window is the whole box: no regrid).
+    ctx%aux = c_null_ptr
+    ctx%sg = merge(1, 0, model%sg)
+    if (model%sg) then
+      allocate(aux(32, grid%nc(1) * grid%nc(2) * grid%nc(3)))
+      aux = 0.0_dp
+      ctx%aux = c_loc(aux)
+    end if
     ctx%defgrad = c_null_ptr
     if (allocated(model%particles%defgrad)) ctx%defgrad = c_loc(model%particles%defgrad)
     ctx%uvf = merge(1, 0, model%uvf)

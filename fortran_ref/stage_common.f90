@@ -70,11 +70,13 @@ module mpm3d_stage_common
     type(c_ptr) :: pk1 = c_null_ptr        ! (9,np) V0 P (TLmp), or null
     integer(c_int) :: tl = 0               ! 1: total Lagrangian MPM
     integer(c_int) :: fix_layers = 1       ! node layers a fixed face holds: 1, or 2 (current
-                                           ! version with 27-node stencils)
+                                           ! version with 27-node stencils or sgmp)
+    type(c_ptr) :: aux = c_null_ptr        ! sgmp: (32, ncell) the cell centres' fields
+    integer(c_int) :: sg = 0               ! 1: smoothed-gradient MPM (stage_sg.f90)
   end type step_context
 
   public :: view_buffers, gimp_stencil
-  public :: other_component, apply_bc
+  public :: other_component, apply_bc, particle_body_force
   public :: mpm3d_f_context_layout
 
 contains
@@ -124,6 +126,45 @@ contains
     if (c%only_comp > 0) other_component = bcomp(body(p) + 1) /= c%only_comp
   end function other_component
 
+  ! The body force of particle p (1-based; cxx particle_body_force): the point load (ramped
+  ! with QuLo), the damping (Damp), gravity.
+  subroutine particle_body_force(c, p, fb)
+    type(step_context), intent(in) :: c
+    integer, intent(in) :: p
+    real(dp), intent(out) :: fb(3)
+    real(dp), pointer :: mass(:), v(:,:), fext(:,:), grav(:,:)
+    integer(c_int), pointer :: body(:)
+    real(dp) :: mp, f
+    integer :: a
+    logical :: has_fext
+    call c_f_pointer(c%mass, mass, [c%np])
+    call c_f_pointer(c%v, v, [3, c%np])
+    call c_f_pointer(c%body, body, [c%np])
+    call c_f_pointer(c%gravity, grav, [3, max(c%nbody, 1)])
+    has_fext = c_associated(c%fext)
+    if (has_fext) call c_f_pointer(c%fext, fext, [3, c%np])
+    mp = mass(p)
+    if (c%load_ramp_time > 0.0_dp .or. c%damping > 0.0_dp) then
+      do a = 1, 3
+        f = 0.0_dp
+        if (has_fext) then
+          if (c%load_ramp_time > 0.0_dp .and. c%time < c%load_ramp_time) then
+            f = (fext(a, p) / c%load_ramp_time) * c%time
+          else
+            f = fext(a, p)
+          end if
+        end if
+        if (c%damping > 0.0_dp) f = f - (c%damping * mp) * v(a, p)
+        fb(a) = f + mp * grav(a, body(p) + 1)
+      end do
+    else
+      do a = 1, 3
+        fb(a) = mp * grav(a, body(p) + 1)
+        if (has_fext) fb(a) = fb(a) + fext(a, p)
+      end do
+    end if
+  end subroutine particle_body_force
+
   ! The boundary conditions live here rather than with the grid update (stage_grid.f90)
   ! because P2G, G2P (MUSL remap) and contact apply them too.
   ! Boundary conditions of the box faces on a nodal vector field (3,nnode):
@@ -168,7 +209,7 @@ contains
   ! Layout of step_context and material_params as this compiler sees them (for the
   ! layout test against the C structs): sizes and a few offsets, in bytes.
   subroutine mpm3d_f_context_layout(out) bind(C, name='mpm3d_f_context_layout')
-    integer(c_size_t), intent(out) :: out(18)
+    integer(c_size_t), intent(out) :: out(20)
     type(step_context), target :: c
     type(material_params), target :: m(2)
     out(1) = c_sizeof(c)
@@ -189,6 +230,8 @@ contains
     out(16) = transfer(c_loc(c%damping), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
     out(17) = transfer(c_loc(c%tl), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
     out(18) = transfer(c_loc(c%fix_layers), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
+    out(19) = transfer(c_loc(c%aux), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
+    out(20) = transfer(c_loc(c%sg), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
   end subroutine mpm3d_f_context_layout
 
 end module mpm3d_stage_common

@@ -6,6 +6,7 @@ module mpm3d_stage_g2p
   use mpm3d_grid, only: shape_linear
   use mpm3d_stage_common
   use mpm3d_stage_p2g, only: assemble
+  use mpm3d_stage_sg, only: sg_g2p
   implicit none
   private
 
@@ -24,6 +25,14 @@ contains
     integer :: ci(3), o(3)
     logical :: remap, wide
     remap = c%scheme == SCHEME_MUSL
+    if (c%sg /= 0) then
+      call sg_g2p(c, remap)
+      if (remap) then
+        call c_f_pointer(c%gmom, gmom, [3, c%nnode])
+        call apply_bc(c, gmom)
+      end if
+      return
+    end if
     pc = c%patch_cells
     qq = pc + 1 + 2 * c%patch_halo
     pn = qq * qq * qq

@@ -6,6 +6,7 @@ module mpm3d_stage_p2g
   use mpm3d_material, only: dp
   use mpm3d_grid, only: NODE_FIELDS, shape_linear
   use mpm3d_stage_common
+  use mpm3d_stage_sg, only: sg_p2g
   implicit none
   private
 
@@ -21,10 +22,15 @@ contains
     real(dp), pointer :: gmass(:), gmom(:,:), gforce(:,:)
     logical :: forces
     forces = c%scheme /= SCHEME_USF
-    call scatter_p2g(c, .true., forces)
     call c_f_pointer(c%gmass, gmass, [c%nnode])
     call c_f_pointer(c%gmom, gmom, [3, c%nnode])
     call c_f_pointer(c%gforce, gforce, [3, c%nnode])
+    if (c%sg /= 0) then
+      call sg_p2g(c, .true., forces)
+      call apply_bc(c, gmom)
+      return
+    end if
+    call scatter_p2g(c, .true., forces)
     if (forces) then
       call assemble(c, 0, 7, gmass, gmom, gforce)
     else
@@ -37,6 +43,10 @@ contains
   subroutine mpm3d_f_forces(c) bind(C, name='mpm3d_f_forces')
     type(step_context), intent(inout) :: c
     real(dp), pointer :: gmass(:), gmom(:,:), gforce(:,:)
+    if (c%sg /= 0) then
+      call sg_p2g(c, .false., .true.)
+      return
+    end if
     call scatter_p2g(c, .false., .true.)
     call c_f_pointer(c%gmass, gmass, [c%nnode])
     call c_f_pointer(c%gmom, gmom, [3, c%nnode])
@@ -48,17 +58,17 @@ contains
   subroutine scatter_p2g(c, with_mass_mom, with_forces)
     type(step_context), intent(inout) :: c
     logical, intent(in) :: with_mass_mom, with_forces
-    real(dp), pointer :: buf(:,:,:), lx(:,:), v(:,:), sig(:,:), mass(:), vol(:), fext(:,:), grav(:,:)
+    real(dp), pointer :: buf(:,:,:), lx(:,:), v(:,:), sig(:,:), mass(:), vol(:)
     real(dp), pointer :: psize(:)
-    integer(c_int), pointer :: pstart(:), ppart(:), slots(:), cell(:), body(:)
-    real(dp) :: sn(27), sg(3, 27), vs(9), fb(3), mp, volp, mn, gx, gy, gz, fx, fy, fz, f
+    integer(c_int), pointer :: pstart(:), ppart(:), slots(:), cell(:)
+    real(dp) :: sn(27), sg(3, 27), vs(9), fb(3), mp, volp, mn, gx, gy, gz, fx, fy, fz
     real(dp), pointer :: pk1(:,:)
     ! The stress times the volume as a 3x3 matrix (row i: force component i): sigma V from
     ! the Voigt stress, or V0 P under TLmp (as p2g_particle, cxx/stage_common.hpp).
     integer, parameter :: VOIGT(9) = [1, 6, 5, 6, 2, 4, 5, 4, 3]
-    integer :: pc, qq, q, slot, idx, p, base, s, a, k, ln, nk
+    integer :: pc, qq, q, slot, idx, p, base, s, k, ln, nk
     integer :: ci(3), o(3)
-    logical :: has_fext, body_force, wide
+    logical :: body_force, wide
     if (c%nslot <= 0) return
     pc = c%patch_cells
     qq = pc + 1 + 2 * c%patch_halo
@@ -69,25 +79,13 @@ contains
     call c_f_pointer(c%patch_part, ppart, [c%np])
     call c_f_pointer(c%patch_slot, slots, [c%npatch])
     call c_f_pointer(c%cell, cell, [c%np])
-    call c_f_pointer(c%body, body, [c%np])
     call c_f_pointer(c%lx, lx, [3, c%np])
     call c_f_pointer(c%v, v, [3, c%np])
     call c_f_pointer(c%sig, sig, [6, c%np])
     call c_f_pointer(c%mass, mass, [c%np])
     call c_f_pointer(c%vol, vol, [c%np])
     body_force = c%has_body_force /= 0
-    has_fext = c_associated(c%fext)
-    if (has_fext) then
-      call c_f_pointer(c%fext, fext, [3, c%np])
-    else
-      nullify(fext)
-    end if
     if (c%tl /= 0) call c_f_pointer(c%pk1, pk1, [9, c%np])
-    if (body_force) then
-      call c_f_pointer(c%gravity, grav, [3, max(c%nbody, 1)])
-    else
-      nullify(grav)
-    end if
     do q = 0, c%npatch - 1
       slot = slots(q + 1)
       if (slot < 0) cycle
@@ -108,29 +106,7 @@ contains
               vs(s) = sig(VOIGT(s), p) * volp
             end if
           end do
-          if (body_force) then
-            if (c%load_ramp_time > 0.0_dp .or. c%damping > 0.0_dp) then
-              ! Quasi-static loading (as p2g_particle, cxx/stage_common.hpp): the load, ramped
-              ! until load_ramp_time, the damping, gravity.
-              do a = 1, 3
-                f = 0.0_dp
-                if (has_fext) then
-                  if (c%load_ramp_time > 0.0_dp .and. c%time < c%load_ramp_time) then
-                    f = (fext(a, p) / c%load_ramp_time) * c%time
-                  else
-                    f = fext(a, p)
-                  end if
-                end if
-                if (c%damping > 0.0_dp) f = f - (c%damping * mp) * v(a, p)
-                fb(a) = f + mp * grav(a, body(p) + 1)
-              end do
-            else
-              do a = 1, 3
-                fb(a) = mp * grav(a, body(p) + 1)
-                if (has_fext) fb(a) = fb(a) + fext(a, p)
-              end do
-            end if
-          end if
+          if (body_force) call particle_body_force(c, p, fb)
         end if
         do k = 0, nk - 1
           ln = stencil_local(c, wide, base, k)

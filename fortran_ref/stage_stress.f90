@@ -6,6 +6,7 @@ module mpm3d_stage_stress
   use mpm3d_grid, only: shape_linear
   use mpm3d_constitution, only: stress_update, burn_fraction, neo_hookean, neo_hookean_tl, det_identity_plus
   use mpm3d_stage_common
+  use mpm3d_stage_sg, only: sg_cell_gradients, sg_velocity_gradient
   implicit none
   private
 
@@ -55,26 +56,31 @@ contains
     if (c%tl /= 0) call c_f_pointer(c%pk1, pk1, [9, c%np])
     tdummy = 0.0_dp
     qdummy = 0.0_dp
+    if (c%sg /= 0) call sg_cell_gradients(c)
     do p = 1, c%np
       cl = cell(p)
       if (cl < 0) cycle
       if (filter) then
         if (other_component(c, p, body, bcomp)) cycle
       end if
-      call particle_shape(c, wide, p, cl, lx, psize, ci, o, sn, sg, nk)
-      base = stencil_first_node(c, wide, cl, ci, o)
-      lg = 0.0_dp             ! lg(3a+b) = d v_a / d x_b (0-based a, b)
-      do k = 0, nk - 1
-        n = stencil_node(c, wide, base, k)
-        m = gmass(n)
-        if (.not. (m > c%mass_cutoff)) cycle
-        do a = 0, 2
-          va = gmom(a + 1, n) / m
-          do b = 0, 2
-            lg(3 * a + b) = lg(3 * a + b) + (va * sg(b + 1, k + 1))
+      if (c%sg /= 0) then
+        call sg_velocity_gradient(c, cl, lx(:, p), lg)
+      else
+        call particle_shape(c, wide, p, cl, lx, psize, ci, o, sn, sg, nk)
+        base = stencil_first_node(c, wide, cl, ci, o)
+        lg = 0.0_dp             ! lg(3a+b) = d v_a / d x_b (0-based a, b)
+        do k = 0, nk - 1
+          n = stencil_node(c, wide, base, k)
+          m = gmass(n)
+          if (.not. (m > c%mass_cutoff)) cycle
+          do a = 0, 2
+            va = gmom(a + 1, n) / m
+            do b = 0, 2
+              lg(3 * a + b) = lg(3 * a + b) + (va * sg(b + 1, k + 1))
+            end do
           end do
         end do
-      end do
+      end if
       de(1) = lg(0) * dt
       de(2) = lg(4) * dt
       de(3) = lg(8) * dt

@@ -96,6 +96,15 @@ if(TARGET mpm3d AND TARGET mpm3d_ref)
   # B-spline MPM (bimp, two fixed node layers): our coarse Cook membrane and the public one.
   fref_deck(cook_membrane_bimp ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/cook_membrane_bimp.mpm)
   fref_deck(current_cook_bimp ${_fref_shared}/current/Cook_membrane_BSMPM5776p_Cookmo_Bimp.mpm)
+  # Smoothed-gradient MPM (sgmp): our Cook membrane (MUSL), USF blocks under gravity, the
+  # public Cook membrane and the one-dimensional detonation.
+  fref_deck(cook_membrane_sgmp ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/cook_membrane_sgmp.mpm)
+  fref_deck(sg_usf_blocks ${CMAKE_SOURCE_DIR}/tests/decks/sg_usf_blocks.mpm)
+  fref_deck(current_cook_sg ${_fref_shared}/current/Cook_membrane_SG5776p_Cookmo_SG.mpm)
+  fref_add(fref_current_sgdeto1k_mpm3d_ref ref ${_fref_shared}/current/SGDeto1k.mpm)
+  # The current version's null water with its weakly compressible EOS, sgmp: the dam break.
+  fref_deck(dam_break_coarse ${CMAKE_SOURCE_DIR}/inputs/fluids/dam_break_coarse.mpm)
+  fref_add(fref_current_dam_break_mpm3d_ref ref ${_fref_shared}/current/DamBreak_SGMPM_Dam_SGR2.mpm)
   # GIMP with the adaptive grid (halo patches on the deck's patch lattice).
   fref_adaptive(two_blocks_gimp ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks_gimp.mpm)
   # Hypervelocity lead sphere: every variant over the first 60 steps, and the whole run

@@ -25,6 +25,8 @@ mpm3d_restart_test(soft_beam_tl ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/soft_bea
 mpm3d_restart_test(cantilever_quasi_static ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/cantilever_quasi_static.mpm 120 50)
 mpm3d_restart_test(plate_hole_drda ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/plate_hole_drda.mpm 120 50)
 mpm3d_restart_test(cook_membrane_bimp ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/cook_membrane_bimp.mpm 120 50)
+mpm3d_restart_test(cook_membrane_sgmp ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/cook_membrane_sgmp.mpm 120 50)
+mpm3d_restart_test(dam_break_coarse ${CMAKE_SOURCE_DIR}/inputs/fluids/dam_break_coarse.mpm 120 50)
 
 foreach(sig TERM INT)
   add_test(NAME restart.signal_${sig}

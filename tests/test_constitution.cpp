@@ -480,3 +480,34 @@ TEST(Eos, StressUpdateWithMieGruneisenEnergyCoupling) {
   expect_stress(t.sig, -pt, -pt, -pt, 0, 0, 0, 2.0, 1e-12);
   EXPECT_NEAR(t.ie, -0.5 * pt * 0.1, 1e-12);
 }
+
+// The current version's null water: the weakly compressible EOS p = c0^2 (rho - rho0)
+// (independent of the internal energy) and the viscous deviator 2 mu dev(D), D = de / dt.
+// rho0 = 1000, c0 = 10: compressed from V 1 to 0.998 (mass 1000: rho = 1002.004...),
+// p = 100 (1000 / 0.998 - 1000); shear rate D_xy = 0.5 de_xy... here de = (e, 0, 0, 0, 0, g)
+// with dt = 1e-3: dev D = (2e/3, -e/3, -e/3) / dt, s_xy = 2 mu g / dt.
+TEST(Constitution, CurrentNullViscousFluidWithWeaklyCompressibleEos) {
+  MaterialParams m{};
+  m.type = MAT_NULL;
+  m.rho0 = 1000.0;
+  m.bulk_modulus = 1.0e5;
+  m.viscosity = 0.5;
+  m.wave_speed = 10.0;
+  m.eos_type = EOS_WEAK;
+  m.eos[0] = 10.0;
+  ASSERT_EQ(mpm3d::material_derive(m), "");
+  Particle p;
+  const double e = -0.002, g = 1e-4, dt = 1e-3;
+  const double de[6] = {e, 0, 0, 0, 0, g};
+  mpm3d::stress_update(m, de, kZeroSpin, dt, 1000.0, 1.0, 0.998, p.state());
+  const double pres = 100.0 * (1000.0 / 0.998 - 1000.0);
+  const double two_mu = 2.0 * 0.5 / dt;
+  expect_stress(p.sig, two_mu * (2.0 * e / 3.0) - pres, two_mu * (-e / 3.0) - pres, two_mu * (-e / 3.0) - pres, 0.0,
+                0.0, two_mu * g, pres, 1e-12);
+  // Without viscosity: the pressure alone.
+  MaterialParams inviscid = m;
+  inviscid.viscosity = 0.0;
+  Particle q;
+  mpm3d::stress_update(inviscid, de, kZeroSpin, dt, 1000.0, 1.0, 0.998, q.state());
+  expect_stress(q.sig, -pres, -pres, -pres, 0.0, 0.0, 0.0, pres, 1e-12);
+}

@@ -296,16 +296,27 @@ TEST(DataIn, RepeatedOutrIsWrittenOnce) {
   EXPECT_NE(m.warnings[0].find("'outr pres' given again"), std::string::npos) << m.warnings[0];
 }
 
-// The current version's methods not implemented yet say so (not "unknown keyword").
-TEST(DataIn, CurrentVersionMethodsNotYetImplementedSaySo) {
-  for (const char* k : {"sgmp"}) {
+// sgmp: smoothed-gradient MPM through the cell centres, two fixed node layers; what it
+// does not combine with is refused naming both keywords (TLmp with sgmp: not built yet).
+TEST(DataIn, SmoothedGradientDeckAndItsRefusals) {
+  const mpm3d::Model sg = mpm3d::read_deck_text(deck("1 neoh 1100 17e6 0.3", "sgmp\n"), "s.mpm");
+  EXPECT_TRUE(sg.sg);
+  EXPECT_EQ(sg.shape(), 0);
+  EXPECT_EQ(sg.fix_layers(), 2);
+  struct Case {
+    const char* extra;
+    const char* word;
+  } cases[] = {{"sgmp\ngimp\n", "'sgmp' with 'gimp'"},
+               {"bimp\nsgmp\n", "'sgmp' with 'bimp'"},
+               {"TLmp\nsgmp\n", "'sgmp' with 'TLmp'"},
+               {"sgmp\nadgr 5\n", "'sgmp' with 'adgr'"}};
+  for (const auto& c : cases) {
     try {
-      mpm3d::read_deck_text(deck("1 neoh 1100 17e6 0.3", std::string(k) + "\n"), "n.mpm");
-      ADD_FAILURE() << k << " accepted";
+      mpm3d::read_deck_text(deck("1 neoh 1100 17e6 0.3", c.extra), "sr.mpm");
+      ADD_FAILURE() << "accepted: " << c.extra;
     } catch (const mpm3d::DeckError& e) {
-      const std::string w = e.what();
-      EXPECT_NE(w.find("not implemented yet"), std::string::npos) << w;
-      EXPECT_EQ(w.find("unknown keyword"), std::string::npos) << w;
+      EXPECT_NE(std::string(e.what()).find(c.word), std::string::npos) << e.what();
+      EXPECT_EQ(std::string(e.what()).find("unknown keyword"), std::string::npos) << e.what();
     }
   }
 }
@@ -328,4 +339,29 @@ TEST(DataIn, BsplineDeckSetsShapeAndTwoFixedLayers) {
   const mpm3d::Model lin = mpm3d::read_deck_text(deck("1 neoh 1100 17e6 0.3"), "l.mpm");
   EXPECT_EQ(lin.shape(), 0);
   EXPECT_EQ(lin.fix_layers(), 1);
+}
+
+// The current version's null is a viscous fluid: density, bulk modulus, viscosity (wave
+// speed sqrt(K / rho)); with the weakly compressible EOS (seos type 4, c0 only). A book
+// deck's null keeps its card (density, wave speed).
+TEST(DataIn, CurrentNullFluidAndWeaklyCompressibleEos) {
+  const mpm3d::Model cur = mpm3d::read_deck_text(deck("1 null 1000 2.25e9 0.001", "seos 1 4 1500\nsgmp\n"), "w.mpm");
+  const MaterialParams& w = cur.mats[0];
+  EXPECT_EQ(w.type, MAT_NULL);
+  EXPECT_EQ(w.bulk_modulus, 2.25e9);
+  EXPECT_EQ(w.viscosity, 0.001);
+  EXPECT_EQ(w.wave_speed, std::sqrt(2.25e9 / 1000.0));
+  EXPECT_EQ(w.eos_type, EOS_WEAK);
+  EXPECT_EQ(w.eos[0], 1500.0);
+  const mpm3d::Model book = mpm3d::read_deck_text(deck("1 null 1000 1500", "seos 1 3 1 1 4 1 0.3 0\n"), "b.mpm");
+  EXPECT_EQ(book.mats[0].wave_speed, 1500.0);
+  EXPECT_EQ(book.mats[0].viscosity, 0.0);
+  for (const char* bad : {"seos 1 4 0\nsgmp\n", "seos 1 4 -3\nsgmp\n"}) {
+    try {
+      mpm3d::read_deck_text(deck("1 null 1000 2.25e9 0.001", bad), "x.mpm");
+      ADD_FAILURE() << "accepted: " << bad;
+    } catch (const mpm3d::DeckError& e) {
+      EXPECT_NE(std::string(e.what()).find("c0 must be positive"), std::string::npos) << e.what();
+    }
+  }
 }

@@ -40,6 +40,13 @@ mpm3d_thread_test(current_free_soft_beam ${CMAKE_SOURCE_DIR}/../shared/decks/cur
 # B-spline MPM (bimp) with the current version's two fixed node layers.
 mpm3d_thread_test(cook_membrane_bimp ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/cook_membrane_bimp.mpm 400)
 mpm3d_thread_test(current_cook_bimp ${CMAKE_SOURCE_DIR}/../shared/decks/current/Cook_membrane_BSMPM5776p_Cookmo_Bimp.mpm 200)
+# Smoothed-gradient MPM (sgmp): MUSL and USF.
+mpm3d_thread_test(cook_membrane_sgmp ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/cook_membrane_sgmp.mpm 400)
+mpm3d_thread_test(sg_usf_blocks ${CMAKE_CURRENT_SOURCE_DIR}/decks/sg_usf_blocks.mpm 170)
+mpm3d_thread_test(current_cook_sg ${CMAKE_SOURCE_DIR}/../shared/decks/current/Cook_membrane_SG5776p_Cookmo_SG.mpm 200)
+mpm3d_thread_test(current_sgdeto1k ${CMAKE_SOURCE_DIR}/../shared/decks/current/SGDeto1k.mpm 300)
+mpm3d_thread_test(dam_break_coarse ${CMAKE_SOURCE_DIR}/inputs/fluids/dam_break_coarse.mpm 297)
+mpm3d_thread_test(current_dam_break ${CMAKE_SOURCE_DIR}/../shared/decks/current/DamBreak_SGMPM_Dam_SGR2.mpm 300)
 # The particles' storage order (tests/particle_order.sh): deck order keeps every bit too.
 mpm3d_thread_test(two_blocks_deck_order ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks.mpm 207 --particle-order deck)
 add_test(NAME particle_order

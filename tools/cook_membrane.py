@@ -9,7 +9,7 @@ a square lattice of spacing h/2 (two per cell and axis in the plane, one layer a
 clipped to the trapezoid, each with the trapezoid's area over the particle count as its
 volume, as in the public deck; the right column carries the load (half at its two ends).
 
-  cook_membrane.py deck METHOD H OUT.mpm   write one deck (METHOD mpm, gimp or bimp)
+  cook_membrane.py deck METHOD H OUT.mpm   write one deck (METHOD mpm, gimp, bimp or sgmp)
   cook_membrane.py study MPM3D OUTDIR      run every method at h = 4, 2, 1 and write the
                                            table of tip displacements (OUTDIR/cook.md)
 """
@@ -45,7 +45,10 @@ def write_deck(method, h, path):
     # The tip: the right column's top particle.
     tip = max(right, key=lambda k: pts[k][1]) + 1
     share = 1.0 / (len(right) - 1)
-    lo = -h if method != "mpm" else 0.0  # two fixed node layers with the 27-node stencils
+    lo = -h if method != "mpm" else 0.0  # two fixed node layers with 27-node stencils and sgmp
+    # One cell across the thickness for sgmp (the particles at its centre, as the public SG
+    # deck), two cells (the particles on the middle node layer) otherwise.
+    zlo, zhi = (-h / 2.0, h / 2.0) if method == "sgmp" else (-h, h)
     lines = [
         "mpm3d cook membrane, %s, h = %g (our deck, tools/cook_membrane.py)" % (method, h),
         "! Cook's membrane: neo-Hookean, nu 0.499, clamped at x = 0, vertical force 1 on the",
@@ -53,7 +56,7 @@ def write_deck(method, h, path):
         "nbco 1", "nbbo 1", "nbmp %d" % len(pts), "nmat 1", "",
         "spx %g %g" % (lo, WIDTH + 2 * h),
         "spy %g %g" % (-h, RIGHT_HI + 2 * h),
-        "spz %g %g" % (-h, h),
+        "spz %g %g" % (zlo, zhi),
         "dcell %g" % h,
         "fixed 1 0 0 0 2 2", "",
         "dtscale 0.9", "endtime 30", "outtime 10", "rpttime 0.5", "",
@@ -85,7 +88,7 @@ def tip_displacement(curve_file):
 def study(mpm3d, outdir):
     os.makedirs(outdir, exist_ok=True)
     rows = []
-    for method in ("mpm", "gimp", "bimp"):
+    for method in ("mpm", "gimp", "bimp", "sgmp"):
         for h in (4.0, 2.0, 1.0):
             name = "cook_%s_h%g" % (method, h)
             deck = os.path.join(outdir, name + ".mpm")

@@ -1,0 +1,264 @@
+// The current MPM3D-F90's smoothed-gradient MPM ('sgmp', against volumetric locking): the
+// particles exchange everything with an auxiliary grid whose nodes are the centres of the
+// background cells, and each cell centre exchanges with the eight corners of its cell
+// (docs/DECK_FORMAT.md "sgmp"):
+//   P2G    particle -> cell centre with the trilinear weights W of the auxiliary cell that
+//          holds the particle (the one around its nearest grid node): mass, momentum, body
+//          force, sigma V; cell centre -> node: m_i, p_i += m_c / 8, p_c / 8 (cells heavier
+//          than the mass cut-off), f_i += f_c / 8 - (sigma V)_c grad N_i(centre c);
+//   G2P    node -> cell centre: v_c, a_c = sum_corners v_i / 8, a_i / 8 (the cells on a held
+//          face take the velocity of the cell's inner face, edge or corner instead);
+//          particle v += dt sum W a_c, x += dt sum W v_c; MUSL remap: p_c = sum W m v,
+//          p_i += p_c / 8;
+//   stress L_c = sum_corners v_i (x) grad N_i(centre c), particle L = sum W L_c:
+// one-point quadrature per cell, so a cell has one volumetric strain rate.
+// Per axis the auxiliary cell of a particle spans the centres of cells a and a + 1 around
+// its nearest node a + 1, natural coordinate X in [-1, 1]; along an axis whose nearest node
+// is held by a fixed or symmetric face (two node layers), X is pushed to -1 or +1 (P2G,
+// forces, stress, remap), and G2P takes X from the particle's place in its own cell,
+// between the face's velocity and the cell centre's. Centres beyond the grid (a one-cell
+// axis, the outer half cells) pass their weight to the nearest centre. Both languages:
+// fortran_ref/stage_sg.f90, the same operations in the same order.
+#include <cstddef>
+
+#include "stage_common.hpp"
+#include "stage_sg.hpp"
+#include "update_step.hpp"
+
+namespace mpm3d {
+
+namespace {
+
+// Fields first..first+count-1 of every cell centre set to zero.
+void zero_aux(const StepContext* c, int first, int count) {
+  const int ncell = c->nc[0] * c->nc[1] * c->nc[2];
+#pragma omp parallel for schedule(static)
+  for (int cell = 0; cell < ncell; ++cell)
+    for (int f = first; f < first + count; ++f) aux_cell(c, cell)[f] = 0.0;
+}
+
+// f(cell, i, j, k) for the cells of the active patches (the ones the particles reach).
+template <class F>
+void for_active_cells(const StepContext* c, F&& f) {
+  const int P = c->patch_cells;
+  for_patches(c, [&](int q) {
+    if (!owned_nodes(c, q).active) return;
+    int q3[3], lo[3], hi[3];
+    patch_coords(c, q, q3);
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = q3[a] * P;
+      hi[a] = lo[a] + P < c->nc[a] ? lo[a] + P : c->nc[a];
+    }
+    for (int k = lo[2]; k < hi[2]; ++k)
+      for (int j = lo[1]; j < hi[1]; ++j)
+        for (int i = lo[0]; i < hi[0]; ++i) f(i + c->nc[0] * (j + c->nc[1] * k), i, j, k);
+  });
+}
+
+// Corner k = a + 2 b + 4 c of cell (i, j, k): its node index.
+inline int corner_node(const StepContext* c, int i, int j, int k, int corner) {
+  return (i + (corner & 1)) + c->nn[0] * ((j + ((corner >> 1) & 1)) + c->nn[1] * (k + ((corner >> 2) & 1)));
+}
+
+// The particles' scatter to the cell centres, serial in the canonical order (patches in
+// index order, each patch's list in order): mass and momentum, and/or body force and sigma V.
+void scatter_to_centres(StepContext* c, bool with_mass_mom, bool with_forces) {
+  if (with_mass_mom) zero_aux(c, AUX_M, 4);
+  if (with_forces) zero_aux(c, AUX_FB, 9);
+  const CellDecoder dec(c);
+  const bool with_body = c->has_body_force != 0;
+  for (int q = 0; q < c->npatch; ++q)
+    for (int idx = c->patch_start[q]; idx < c->patch_start[q + 1]; ++idx) {
+      const int p = c->patch_part[idx];
+      int node[8];
+      double w[8];
+      sg_weights(c, dec, p, false, node, w);
+      const double mp = c->mass[p];
+      const double* vp = c->v + 3 * p;
+      double vs[6] = {0, 0, 0, 0, 0, 0}, fb[3] = {0, 0, 0};
+      if (with_forces) {
+        const double volp = c->vol[p];
+        for (int s = 0; s < 6; ++s) vs[s] = c->sig[6 * p + s] * volp;
+        if (with_body) particle_body_force(c, p, fb);
+      }
+      for (int k = 0; k < 8; ++k) {
+        double* a = aux_cell(c, node[k]);
+        if (with_mass_mom) {
+          const double mn = mp * w[k];
+          a[AUX_M] += mn;
+          a[AUX_P + 0] += mn * vp[0];
+          a[AUX_P + 1] += mn * vp[1];
+          a[AUX_P + 2] += mn * vp[2];
+        }
+        if (with_forces) {
+          if (with_body)
+            for (int d = 0; d < 3; ++d) a[AUX_FB + d] += w[k] * fb[d];
+          for (int s = 0; s < 6; ++s) a[AUX_SV + s] += w[k] * vs[s];
+        }
+      }
+    }
+}
+
+// The cell centres' share of each node of the active patches, over the node's cells in
+// ascending cell order: mass and momentum (cells above the mass cut-off), forces, or the
+// remapped momentum.
+enum GatherWhat { GATHER_MASS_MOM = 1, GATHER_FORCES = 2, GATHER_REMAP = 4 };
+
+void gather_to_nodes(StepContext* c, int what) {
+  const double cutoff = c->mass_cutoff, gs = 0.25 * c->inv_h;
+  for_patches(c, [&](int q) {
+    const OwnedNodes o = owned_nodes(c, q);
+    if (!o.active) return;
+    for (int k = o.lo[2]; k < o.hi[2]; ++k)
+      for (int j = o.lo[1]; j < o.hi[1]; ++j)
+        for (int i = o.lo[0]; i < o.hi[0]; ++i) {
+          double m = 0.0, pm[3] = {0, 0, 0}, f[3] = {0, 0, 0};
+          for (int cz = k - 1; cz <= k; ++cz) {
+            if (cz < 0 || cz >= c->nc[2]) continue;
+            for (int cy = j - 1; cy <= j; ++cy) {
+              if (cy < 0 || cy >= c->nc[1]) continue;
+              for (int cx = i - 1; cx <= i; ++cx) {
+                if (cx < 0 || cx >= c->nc[0]) continue;
+                const double* a = aux_cell(c, cx + c->nc[0] * (cy + c->nc[1] * cz));
+                if ((what & GATHER_MASS_MOM) && a[AUX_M] > cutoff) {
+                  m += 0.125 * a[AUX_M];
+                  for (int d = 0; d < 3; ++d) pm[d] += 0.125 * a[AUX_P + d];
+                }
+                if (what & GATHER_REMAP)
+                  for (int d = 0; d < 3; ++d) pm[d] += 0.125 * a[AUX_RP + d];
+                if (what & GATHER_FORCES) {
+                  // grad N of this node at the cell's centre: +-1/(4h) per axis (+ for the
+                  // cell's upper corner).
+                  const double gx = cx == i - 1 ? gs : -gs, gy = cy == j - 1 ? gs : -gs, gz = cz == k - 1 ? gs : -gs;
+                  const double* sv = a + AUX_SV;
+                  const double fx = -((sv[0] * gx + sv[5] * gy) + sv[4] * gz);
+                  const double fy = -((sv[5] * gx + sv[1] * gy) + sv[3] * gz);
+                  const double fz = -((sv[4] * gx + sv[3] * gy) + sv[2] * gz);
+                  f[0] += 0.125 * a[AUX_FB + 0] + fx;
+                  f[1] += 0.125 * a[AUX_FB + 1] + fy;
+                  f[2] += 0.125 * a[AUX_FB + 2] + fz;
+                }
+              }
+            }
+          }
+          const int n = i + c->nn[0] * (j + c->nn[1] * k);
+          if (what & GATHER_MASS_MOM) c->gmass[n] = m;
+          if (what & (GATHER_MASS_MOM | GATHER_REMAP))
+            for (int d = 0; d < 3; ++d) c->gmom[3 * n + d] = pm[d];
+          if (what & GATHER_FORCES)
+            for (int d = 0; d < 3; ++d) c->gforce[3 * n + d] = f[d];
+        }
+  });
+}
+
+}  // namespace
+
+void sg_p2g(StepContext* c, bool with_mass_mom, bool with_forces) {
+  scatter_to_centres(c, with_mass_mom, with_forces);
+  gather_to_nodes(c, (with_mass_mom ? GATHER_MASS_MOM : 0) | (with_forces ? GATHER_FORCES : 0));
+}
+
+void sg_g2p(StepContext* c, bool remap) {
+  const double cutoff = c->mass_cutoff;
+  // Cell centres: the corners' velocities and accelerations, each 1/8 (a cell on a held
+  // face: the weights of the cell's point at natural coordinates cxx).
+  for_active_cells(c, [&](int cell, int i, int j, int k) {
+    const int ijk[3] = {i, j, k};
+    double cxx[3] = {0, 0, 0};
+    bool face = false;
+    for (int a = 0; a < 3; ++a) {
+      if (c->nc[a] == 1) continue;
+      if (ijk[a] == 0) cxx[a] = 1.0;
+      if (ijk[a] == c->nc[a] - 1) cxx[a] = -1.0;
+      face = face || (ijk[a] == 0 && c->fix[2 * a] != 0) || (ijk[a] == c->nc[a] - 1 && c->fix[2 * a + 1] != 0);
+    }
+    double v[3] = {0, 0, 0}, acc[3] = {0, 0, 0};
+    for (int corner = 0; corner < 8; ++corner) {
+      const int n = corner_node(c, i, j, k, corner);
+      const double m = c->gmass[n];
+      if (!(m > cutoff)) continue;
+      double w = 0.125;
+      if (face) {
+        w = 1.0;
+        for (int a = 0; a < 3; ++a) w = w * (0.5 * (1.0 + (((corner >> a) & 1) ? cxx[a] : -cxx[a])));
+      }
+      const double r = w / m;
+      for (int d = 0; d < 3; ++d) {
+        v[d] += c->gmom[3 * n + d] * r;
+        acc[d] += c->gforce[3 * n + d] * r;
+      }
+    }
+    double* a = aux_cell(c, cell);
+    for (int d = 0; d < 3; ++d) {
+      a[AUX_V + d] = v[d];
+      a[AUX_A + d] = acc[d];
+    }
+  });
+  // Particles: each its own update.
+  const CellDecoder dec(c);
+  const double dt = c->dt, dt_int = c->dt_int;
+#pragma omp parallel for schedule(static)
+  for (int p = 0; p < c->np; ++p) {
+    if (c->cell[p] < 0) continue;
+    int node[8];
+    double w[8];
+    sg_weights(c, dec, p, true, node, w);
+    double ax = 0.0, ay = 0.0, az = 0.0, ux = 0.0, uy = 0.0, uz = 0.0;
+    for (int k = 0; k < 8; ++k) {
+      const double* a = aux_cell(c, node[k]);
+      ax += w[k] * a[AUX_A + 0];
+      ay += w[k] * a[AUX_A + 1];
+      az += w[k] * a[AUX_A + 2];
+      ux += w[k] * a[AUX_V + 0];
+      uy += w[k] * a[AUX_V + 1];
+      uz += w[k] * a[AUX_V + 2];
+    }
+    double* vp = c->v + 3 * p;
+    double* xp = c->x + 3 * p;
+    vp[0] = vp[0] + ax * dt_int;
+    vp[1] = vp[1] + ay * dt_int;
+    vp[2] = vp[2] + az * dt_int;
+    xp[0] = xp[0] + ux * dt;
+    xp[1] = xp[1] + uy * dt;
+    xp[2] = xp[2] + uz * dt;
+  }
+  if (!remap) return;
+  // MUSL: the new particle momenta to the cell centres (serial, canonical order), then
+  // the nodes (no mass cut-off, as the current program).
+  zero_aux(c, AUX_RP, 3);
+  for (int q = 0; q < c->npatch; ++q)
+    for (int idx = c->patch_start[q]; idx < c->patch_start[q + 1]; ++idx) {
+      const int p = c->patch_part[idx];
+      int node[8];
+      double w[8];
+      sg_weights(c, dec, p, false, node, w);
+      const double mp = c->mass[p];
+      const double* vp = c->v + 3 * p;
+      for (int k = 0; k < 8; ++k) {
+        double* a = aux_cell(c, node[k]);
+        const double mn = mp * w[k];
+        a[AUX_RP + 0] += mn * vp[0];
+        a[AUX_RP + 1] += mn * vp[1];
+        a[AUX_RP + 2] += mn * vp[2];
+      }
+    }
+  gather_to_nodes(c, GATHER_REMAP);
+}
+
+void sg_cell_gradients(StepContext* c, const double* gvel) {
+  const double cutoff = c->mass_cutoff, gs = 0.25 * c->inv_h;
+  for_active_cells(c, [&](int cell, int i, int j, int k) {
+    double L[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    for (int corner = 0; corner < 8; ++corner) {
+      const int n = corner_node(c, i, j, k, corner);
+      if (!(c->gmass[n] > cutoff)) continue;
+      const double g[3] = {(corner & 1) ? gs : -gs, ((corner >> 1) & 1) ? gs : -gs, ((corner >> 2) & 1) ? gs : -gs};
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) L[3 * a + b] += gvel[3 * n + a] * g[b];
+    }
+    double* a = aux_cell(c, cell);
+    for (int r = 0; r < 9; ++r) a[AUX_L + r] = L[r];
+  });
+}
+
+}  // namespace mpm3d

@@ -1,0 +1,412 @@
+! stage_sg: the current MPM3D-F90's smoothed-gradient MPM (sgmp) as cxx/stage_sg.cpp, the
+! same operations in the same order: the particles exchange with the cell centres (trilinear
+! weights of the auxiliary cell around the nearest node), the cell centres with the corners
+! of their cells (1/8 each; one-point gradients at the centre for forces and strain rates).
+! The stages call it when c%sg /= 0. aux(AUX_FIELDS, ncell) holds the cells' fields, 1-based
+! field f + 1 for the C++ field f.
+module mpm3d_stage_sg
+  use, intrinsic :: iso_c_binding
+  use mpm3d_material, only: dp
+  use mpm3d_stage_common
+  implicit none
+  private
+
+  public :: sg_p2g, sg_g2p, sg_cell_gradients, sg_velocity_gradient
+
+  integer, parameter :: AUX_FIELDS = 32
+  ! Fields (0-based as in C++): mass, momentum, body force, sigma V (Voigt), G2P velocity and
+  ! acceleration, remapped momentum, velocity gradient.
+  integer, parameter :: AUX_M = 0, AUX_P = 1, AUX_FB = 4, AUX_SV = 7, AUX_V = 13, AUX_A = 16, &
+                        AUX_RP = 19, AUX_L = 22
+  integer, parameter :: GATHER_MASS_MOM = 1, GATHER_FORCES = 2, GATHER_REMAP = 4
+
+contains
+
+  ! The eight auxiliary nodes (0-based cell indices idx) and weights w of a particle in cell
+  ! cl at local coordinates lxp, corner k = a + 2 b + 4 c at k + 1; g2p: the G2P rule on
+  ! held axes (cxx sg_weights).
+  subroutine sg_weights(c, cl, lxp, g2p, idx, w)
+    type(step_context), intent(in) :: c
+    integer, intent(in) :: cl
+    real(dp), intent(in) :: lxp(3)
+    logical, intent(in) :: g2p
+    integer, intent(out) :: idx(8)
+    real(dp), intent(out) :: w(8)
+    integer :: ci(3), lo(3), hi(3), a, al, near, last, k, i, j, l
+    real(dp) :: w0(3), w1(3), s, x, xn, wa, wb, wc
+    logical :: held
+    ci(1) = mod(cl, c%nc(1))
+    ci(2) = mod(cl / c%nc(1), c%nc(2))
+    ci(3) = cl / (c%nc(1) * c%nc(2))
+    do a = 1, 3
+      s = lxp(a)
+      if (s < 0.5_dp) then
+        al = ci(a) - 1
+        x = 2.0_dp * s
+      else
+        al = ci(a)
+        x = 2.0_dp * (s - 1.0_dp)
+      end if
+      near = al + 1
+      held = (c%fix(2 * a - 1) /= 0 .and. near <= 1) .or. (c%fix(2 * a) /= 0 .and. near >= c%nn(a) - 2)
+      if (held) then
+        if (g2p) then
+          xn = 2.0_dp * s - 1.0_dp
+          if (xn < 0.0_dp) then
+            x = 1.0_dp + 2.0_dp * xn
+          else
+            x = 2.0_dp * xn - 1.0_dp
+          end if
+        else
+          if (x > 0.0_dp) then
+            x = 1.0_dp
+          else if (x < 0.0_dp) then
+            x = -1.0_dp
+          else
+            x = 0.0_dp
+          end if
+        end if
+      end if
+      w0(a) = 0.5_dp * (1.0_dp - x)
+      w1(a) = 0.5_dp * (1.0_dp + x)
+      last = c%nc(a) - 1
+      if (al < 0) then
+        lo(a) = 0
+      else if (al > last) then
+        lo(a) = last
+      else
+        lo(a) = al
+      end if
+      if (al + 1 > last) then
+        hi(a) = last
+      else
+        hi(a) = al + 1
+      end if
+    end do
+    do k = 0, 7
+      if (iand(k, 1) /= 0) then
+        i = hi(1)
+        wa = w1(1)
+      else
+        i = lo(1)
+        wa = w0(1)
+      end if
+      if (iand(ishft(k, -1), 1) /= 0) then
+        j = hi(2)
+        wb = w1(2)
+      else
+        j = lo(2)
+        wb = w0(2)
+      end if
+      if (iand(ishft(k, -2), 1) /= 0) then
+        l = hi(3)
+        wc = w1(3)
+      else
+        l = lo(3)
+        wc = w0(3)
+      end if
+      idx(k + 1) = i + c%nc(1) * (j + c%nc(2) * l)
+      w(k + 1) = (wa * wb) * wc
+    end do
+  end subroutine sg_weights
+
+  subroutine view_aux(c, aux)
+    type(step_context), intent(in) :: c
+    real(dp), pointer, intent(out) :: aux(:,:)
+    call c_f_pointer(c%aux, aux, [AUX_FIELDS, c%nc(1) * c%nc(2) * c%nc(3)])
+  end subroutine view_aux
+
+  ! P2G: particles -> cell centres (serial, patches in index order, each list in order),
+  ! then cell centres -> nodes.
+  subroutine sg_p2g(c, with_mass_mom, with_forces)
+    type(step_context), intent(inout) :: c
+    logical, intent(in) :: with_mass_mom, with_forces
+    real(dp), pointer :: aux(:,:), lx(:,:), v(:,:), sig(:,:), mass(:), vol(:)
+    integer(c_int), pointer :: pstart(:), ppart(:), cell(:)
+    real(dp) :: w(8), vs(6), fb(3), mp, volp, mn
+    integer :: idx8(8), q, idx, p, k, s, d, cl
+    logical :: with_body
+    call view_aux(c, aux)
+    if (with_mass_mom) aux(AUX_M + 1:AUX_M + 4, :) = 0.0_dp
+    if (with_forces) aux(AUX_FB + 1:AUX_FB + 9, :) = 0.0_dp
+    call c_f_pointer(c%patch_start, pstart, [c%npatch + 1])
+    call c_f_pointer(c%patch_part, ppart, [c%np])
+    call c_f_pointer(c%cell, cell, [c%np])
+    call c_f_pointer(c%lx, lx, [3, c%np])
+    call c_f_pointer(c%v, v, [3, c%np])
+    call c_f_pointer(c%sig, sig, [6, c%np])
+    call c_f_pointer(c%mass, mass, [c%np])
+    call c_f_pointer(c%vol, vol, [c%np])
+    with_body = c%has_body_force /= 0
+    do q = 0, c%npatch - 1
+      do idx = pstart(q + 1), pstart(q + 2) - 1
+        p = ppart(idx + 1) + 1
+        cl = cell(p)
+        call sg_weights(c, cl, lx(:, p), .false., idx8, w)
+        mp = mass(p)
+        vs = 0.0_dp
+        fb = 0.0_dp
+        if (with_forces) then
+          volp = vol(p)
+          do s = 1, 6
+            vs(s) = sig(s, p) * volp
+          end do
+          if (with_body) call particle_body_force(c, p, fb)
+        end if
+        do k = 1, 8
+          if (with_mass_mom) then
+            mn = mp * w(k)
+            aux(AUX_M + 1, idx8(k) + 1) = aux(AUX_M + 1, idx8(k) + 1) + mn
+            do d = 1, 3
+              aux(AUX_P + d, idx8(k) + 1) = aux(AUX_P + d, idx8(k) + 1) + (mn * v(d, p))
+            end do
+          end if
+          if (with_forces) then
+            if (with_body) then
+              do d = 1, 3
+                aux(AUX_FB + d, idx8(k) + 1) = aux(AUX_FB + d, idx8(k) + 1) + (w(k) * fb(d))
+              end do
+            end if
+            do s = 1, 6
+              aux(AUX_SV + s, idx8(k) + 1) = aux(AUX_SV + s, idx8(k) + 1) + (w(k) * vs(s))
+            end do
+          end if
+        end do
+      end do
+    end do
+    k = 0
+    if (with_mass_mom) k = k + GATHER_MASS_MOM
+    if (with_forces) k = k + GATHER_FORCES
+    call gather_to_nodes(c, aux, k)
+  end subroutine sg_p2g
+
+  ! Every node's share of the cell centres around it, the cells in ascending order.
+  subroutine gather_to_nodes(c, aux, what)
+    type(step_context), intent(inout) :: c
+    real(dp), intent(in) :: aux(:,:)
+    integer, intent(in) :: what
+    real(dp), pointer :: gmass(:), gmom(:,:), gforce(:,:)
+    real(dp) :: m, pm(3), f(3), gs, gx, gy, gz, fx, fy, fz
+    integer :: i, j, k, cx, cy, cz, cell, n, d
+    call c_f_pointer(c%gmass, gmass, [c%nnode])
+    call c_f_pointer(c%gmom, gmom, [3, c%nnode])
+    call c_f_pointer(c%gforce, gforce, [3, c%nnode])
+    gs = 0.25_dp * c%inv_h
+    do k = 0, c%nn(3) - 1
+      do j = 0, c%nn(2) - 1
+        do i = 0, c%nn(1) - 1
+          m = 0.0_dp
+          pm = 0.0_dp
+          f = 0.0_dp
+          do cz = k - 1, k
+            if (cz < 0 .or. cz >= c%nc(3)) cycle
+            do cy = j - 1, j
+              if (cy < 0 .or. cy >= c%nc(2)) cycle
+              do cx = i - 1, i
+                if (cx < 0 .or. cx >= c%nc(1)) cycle
+                cell = cx + c%nc(1) * (cy + c%nc(2) * cz) + 1
+                if (iand(what, GATHER_MASS_MOM) /= 0) then
+                  if (aux(AUX_M + 1, cell) > c%mass_cutoff) then
+                    m = m + (0.125_dp * aux(AUX_M + 1, cell))
+                    do d = 1, 3
+                      pm(d) = pm(d) + (0.125_dp * aux(AUX_P + d, cell))
+                    end do
+                  end if
+                end if
+                if (iand(what, GATHER_REMAP) /= 0) then
+                  do d = 1, 3
+                    pm(d) = pm(d) + (0.125_dp * aux(AUX_RP + d, cell))
+                  end do
+                end if
+                if (iand(what, GATHER_FORCES) /= 0) then
+                  gx = merge(gs, -gs, cx == i - 1)
+                  gy = merge(gs, -gs, cy == j - 1)
+                  gz = merge(gs, -gs, cz == k - 1)
+                  fx = -(((aux(AUX_SV + 1, cell) * gx) + (aux(AUX_SV + 6, cell) * gy)) + (aux(AUX_SV + 5, cell) * gz))
+                  fy = -(((aux(AUX_SV + 6, cell) * gx) + (aux(AUX_SV + 2, cell) * gy)) + (aux(AUX_SV + 4, cell) * gz))
+                  fz = -(((aux(AUX_SV + 5, cell) * gx) + (aux(AUX_SV + 4, cell) * gy)) + (aux(AUX_SV + 3, cell) * gz))
+                  f(1) = f(1) + ((0.125_dp * aux(AUX_FB + 1, cell)) + fx)
+                  f(2) = f(2) + ((0.125_dp * aux(AUX_FB + 2, cell)) + fy)
+                  f(3) = f(3) + ((0.125_dp * aux(AUX_FB + 3, cell)) + fz)
+                end if
+              end do
+            end do
+          end do
+          n = i + c%nn(1) * (j + c%nn(2) * k) + 1
+          if (iand(what, GATHER_MASS_MOM) /= 0) gmass(n) = m
+          if (iand(what, GATHER_MASS_MOM + GATHER_REMAP) /= 0) gmom(:, n) = pm
+          if (iand(what, GATHER_FORCES) /= 0) gforce(:, n) = f
+        end do
+      end do
+    end do
+  end subroutine gather_to_nodes
+
+  ! Node index (1-based) of corner k (0..7) of cell (i, j, l).
+  pure integer function corner_node(c, i, j, l, k)
+    type(step_context), intent(in) :: c
+    integer, intent(in) :: i, j, l, k
+    corner_node = (i + iand(k, 1)) + c%nn(1) * ((j + iand(ishft(k, -1), 1)) + c%nn(2) * (l + iand(ishft(k, -2), 1))) + 1
+  end function corner_node
+
+  ! G2P: cell-centre velocities and accelerations, the particles' update, and with remap the
+  ! new momenta through the cell centres to the nodes (the caller applies the BC).
+  subroutine sg_g2p(c, remap)
+    type(step_context), intent(inout) :: c
+    logical, intent(in) :: remap
+    real(dp), pointer :: aux(:,:), lx(:,:), v(:,:), x(:,:), mass(:), gmass(:), gmom(:,:), gforce(:,:)
+    integer(c_int), pointer :: pstart(:), ppart(:), cell(:)
+    real(dp) :: cxx(3), vel(3), acc(3), w8(8), wc, m, r, ax, ay, az, ux, uy, uz, mp, mn
+    integer :: ijk(3), i, j, l, cl, corner, n, a, d, p, k, q, idx, idx8(8)
+    logical :: face
+    call view_aux(c, aux)
+    call c_f_pointer(c%gmass, gmass, [c%nnode])
+    call c_f_pointer(c%gmom, gmom, [3, c%nnode])
+    call c_f_pointer(c%gforce, gforce, [3, c%nnode])
+    do l = 0, c%nc(3) - 1
+      do j = 0, c%nc(2) - 1
+        do i = 0, c%nc(1) - 1
+          ijk = [i, j, l]
+          cxx = 0.0_dp
+          face = .false.
+          do a = 1, 3
+            if (c%nc(a) == 1) cycle
+            if (ijk(a) == 0) cxx(a) = 1.0_dp
+            if (ijk(a) == c%nc(a) - 1) cxx(a) = -1.0_dp
+            face = face .or. (ijk(a) == 0 .and. c%fix(2 * a - 1) /= 0) .or. &
+                   (ijk(a) == c%nc(a) - 1 .and. c%fix(2 * a) /= 0)
+          end do
+          vel = 0.0_dp
+          acc = 0.0_dp
+          do corner = 0, 7
+            n = corner_node(c, i, j, l, corner)
+            m = gmass(n)
+            if (.not. (m > c%mass_cutoff)) cycle
+            wc = 0.125_dp
+            if (face) then
+              wc = 1.0_dp
+              do a = 1, 3
+                if (iand(ishft(corner, -(a - 1)), 1) /= 0) then
+                  wc = wc * (0.5_dp * (1.0_dp + cxx(a)))
+                else
+                  wc = wc * (0.5_dp * (1.0_dp + (-cxx(a))))
+                end if
+              end do
+            end if
+            r = wc / m
+            do d = 1, 3
+              vel(d) = vel(d) + (gmom(d, n) * r)
+              acc(d) = acc(d) + (gforce(d, n) * r)
+            end do
+          end do
+          cl = i + c%nc(1) * (j + c%nc(2) * l) + 1
+          aux(AUX_V + 1:AUX_V + 3, cl) = vel
+          aux(AUX_A + 1:AUX_A + 3, cl) = acc
+        end do
+      end do
+    end do
+    call c_f_pointer(c%cell, cell, [c%np])
+    call c_f_pointer(c%lx, lx, [3, c%np])
+    call c_f_pointer(c%v, v, [3, c%np])
+    call c_f_pointer(c%x, x, [3, c%np])
+    call c_f_pointer(c%mass, mass, [c%np])
+    do p = 1, c%np
+      if (cell(p) < 0) cycle
+      call sg_weights(c, cell(p), lx(:, p), .true., idx8, w8)
+      ax = 0.0_dp
+      ay = 0.0_dp
+      az = 0.0_dp
+      ux = 0.0_dp
+      uy = 0.0_dp
+      uz = 0.0_dp
+      do k = 1, 8
+        cl = idx8(k) + 1
+        ax = ax + (w8(k) * aux(AUX_A + 1, cl))
+        ay = ay + (w8(k) * aux(AUX_A + 2, cl))
+        az = az + (w8(k) * aux(AUX_A + 3, cl))
+        ux = ux + (w8(k) * aux(AUX_V + 1, cl))
+        uy = uy + (w8(k) * aux(AUX_V + 2, cl))
+        uz = uz + (w8(k) * aux(AUX_V + 3, cl))
+      end do
+      v(1, p) = v(1, p) + (ax * c%dt_int)
+      v(2, p) = v(2, p) + (ay * c%dt_int)
+      v(3, p) = v(3, p) + (az * c%dt_int)
+      x(1, p) = x(1, p) + (ux * c%dt)
+      x(2, p) = x(2, p) + (uy * c%dt)
+      x(3, p) = x(3, p) + (uz * c%dt)
+    end do
+    if (.not. remap) return
+    aux(AUX_RP + 1:AUX_RP + 3, :) = 0.0_dp
+    call c_f_pointer(c%patch_start, pstart, [c%npatch + 1])
+    call c_f_pointer(c%patch_part, ppart, [c%np])
+    do q = 0, c%npatch - 1
+      do idx = pstart(q + 1), pstart(q + 2) - 1
+        p = ppart(idx + 1) + 1
+        call sg_weights(c, cell(p), lx(:, p), .false., idx8, w8)
+        mp = mass(p)
+        do k = 1, 8
+          cl = idx8(k) + 1
+          mn = mp * w8(k)
+          do d = 1, 3
+            aux(AUX_RP + d, cl) = aux(AUX_RP + d, cl) + (mn * v(d, p))
+          end do
+        end do
+      end do
+    end do
+    call gather_to_nodes(c, aux, GATHER_REMAP)
+  end subroutine sg_g2p
+
+  ! Stress: each cell's velocity gradient from its corners above the mass cut-off, at its
+  ! centre (grad N = +-1/(4h) per axis).
+  subroutine sg_cell_gradients(c)
+    type(step_context), intent(inout) :: c
+    real(dp), pointer :: aux(:,:), gmass(:), gmom(:,:)
+    real(dp) :: lg(0:8), g(3), gs, m, va
+    integer :: i, j, l, corner, n, a, b
+    call view_aux(c, aux)
+    call c_f_pointer(c%gmass, gmass, [c%nnode])
+    call c_f_pointer(c%gmom, gmom, [3, c%nnode])
+    gs = 0.25_dp * c%inv_h
+    do l = 0, c%nc(3) - 1
+      do j = 0, c%nc(2) - 1
+        do i = 0, c%nc(1) - 1
+          lg = 0.0_dp
+          do corner = 0, 7
+            n = corner_node(c, i, j, l, corner)
+            m = gmass(n)
+            if (.not. (m > c%mass_cutoff)) cycle
+            do a = 1, 3
+              g(a) = merge(gs, -gs, iand(ishft(corner, -(a - 1)), 1) /= 0)
+            end do
+            do a = 0, 2
+              va = gmom(a + 1, n) / m
+              do b = 0, 2
+                lg(3 * a + b) = lg(3 * a + b) + (va * g(b + 1))
+              end do
+            end do
+          end do
+          aux(AUX_L + 1:AUX_L + 9, i + c%nc(1) * (j + c%nc(2) * l) + 1) = lg
+        end do
+      end do
+    end do
+  end subroutine sg_cell_gradients
+
+  ! The velocity gradient lg(3a+b) = dv_a/dx_b of a particle in cell cl at lxp.
+  subroutine sg_velocity_gradient(c, cl, lxp, lg)
+    type(step_context), intent(in) :: c
+    integer, intent(in) :: cl
+    real(dp), intent(in) :: lxp(3)
+    real(dp), intent(out) :: lg(0:8)
+    real(dp), pointer :: aux(:,:)
+    real(dp) :: w8(8)
+    integer :: idx8(8), k, r
+    call view_aux(c, aux)
+    call sg_weights(c, cl, lxp, .false., idx8, w8)
+    lg = 0.0_dp
+    do k = 1, 8
+      do r = 0, 8
+        lg(r) = lg(r) + (w8(k) * aux(AUX_L + 1 + r, idx8(k) + 1))
+      end do
+    end do
+  end subroutine sg_velocity_gradient
+
+end module mpm3d_stage_sg
