@@ -175,22 +175,36 @@ inline void shape_27(const double* wx, const double* wy, const double* wz, const
       }
 }
 
-// uGIMP shape functions of the 27 nodes of a particle's stencil (shape_27).
+// The values alone (G null): the same N, without the gradients' products.
+inline void shape_27_or_values(const double* wx, const double* wy, const double* wz, const double* gx,
+                               const double* gy, const double* gz, double* N, double* G) {
+  if (G) {
+    shape_27(wx, wy, wz, gx, gy, gz, N, G);
+    return;
+  }
+  for (int c = 0; c < 3; ++c)
+    for (int b = 0; b < 3; ++b)
+      for (int a = 0; a < 3; ++a) N[a + 3 * b + 9 * c] = (wx[a] * wy[b]) * wz[c];
+}
+
+// uGIMP shape functions of the 27 nodes of a particle's stencil (shape_27; G null: the
+// values only).
 inline void shape_gimp(const double* lx, const int* o, double l, double inv_h, double* N, double* G) {
   double wx[3], wy[3], wz[3], gx[3], gy[3], gz[3];
   gimp_1d(lx[0], o[0], l, inv_h, wx, gx);
   gimp_1d(lx[1], o[1], l, inv_h, wy, gy);
   gimp_1d(lx[2], o[2], l, inv_h, wz, gz);
-  shape_27(wx, wy, wz, gx, gy, gz, N, G);
+  shape_27_or_values(wx, wy, wz, gx, gy, gz, N, G);
 }
 
-// The current version's quadratic B-spline shape functions of the 27 nodes (shape_27).
+// The current version's quadratic B-spline shape functions of the 27 nodes (shape_27; G
+// null: the values only).
 inline void shape_bspline(const double* lx, const int* o, double inv_h, double* N, double* G) {
   double wx[3], wy[3], wz[3], gx[3], gy[3], gz[3];
   bspline_1d(lx[0], o[0], inv_h, wx, gx);
   bspline_1d(lx[1], o[1], inv_h, wy, gy);
   bspline_1d(lx[2], o[2], inv_h, wz, gz);
-  shape_27(wx, wy, wz, gx, gy, gz, N, G);
+  shape_27_or_values(wx, wy, wz, gx, gy, gz, N, G);
 }
 
 // Stencil offset of one axis: the three nodes nearest the particle (o = -1 in the lower

@@ -124,16 +124,17 @@ struct GimpStencil {
   double N[27], G[81];
 };
 
-inline void gimp_stencil(const StepContext* c, const CellDecoder& dec, int p, GimpStencil& s) {
+// gradients false: the weights alone (G left unset).
+inline void gimp_stencil(const StepContext* c, const CellDecoder& dec, int p, GimpStencil& s, bool gradients = true) {
   dec(c->cell[p], s.ci[0], s.ci[1], s.ci[2]);
   const double* lx = c->lx + 3 * p;
   if (c->shape == 2) {
     for (int a = 0; a < 3; ++a) s.o[a] = bspline_offset(s.ci[a]);
-    shape_bspline(lx, s.o, c->inv_h, s.N, s.G);
+    shape_bspline(lx, s.o, c->inv_h, s.N, gradients ? s.G : nullptr);
     return;
   }
   for (int a = 0; a < 3; ++a) s.o[a] = gimp_offset(lx[a], s.ci[a], c->nc[a]);
-  shape_gimp(lx, s.o, c->psize[p] * c->inv_h, c->inv_h, s.N, s.G);
+  shape_gimp(lx, s.o, c->psize[p] * c->inv_h, c->inv_h, s.N, gradients ? s.G : nullptr);
 }
 
 // Global node index of the stencil's first node (a = b = c = 0).

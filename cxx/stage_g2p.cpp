@@ -33,7 +33,7 @@ void g2p_gimp(StepContext* c, bool remap) {
     for (int idx = c->patch_start[q]; idx < c->patch_start[q + 1]; ++idx) {
       const int p = c->patch_part[idx];
       GimpStencil st;
-      gimp_stencil(c, dec, p, st);
+      gimp_stencil(c, dec, p, st, false);
       const int base = gimp_corner(c, st);
       g2p_particle<27>(c, p, st.N, [&](int k) { return base + stencil_offset(k, nn0, nn1); });
       if (remap) {

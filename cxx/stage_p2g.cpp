@@ -1,9 +1,11 @@
 // The p2g and forces stages: the scatter of mass, momentum and forces into the patch
 // buffers (trilinear in the lane kernels' patch loop, or 27-node GIMP), and the canonical
 // assembly of the buffers into the nodes, also used by the g2p remap and the contact.
+#include <algorithm>
 #include <cstddef>
 #include <cstring>
 #include <stdexcept>
+#include <vector>
 
 #include "stage_common.hpp"
 #include "transfer_lanes.hpp"
@@ -83,38 +85,62 @@ inline void patch_range(int n, int P, int H, int npd, int& lo, int& hi) {
   if (hi > npd - 1) hi = npd - 1;
 }
 
-// The assembly for buffers with a halo (GIMP): the owner patch of each node gathers it
-// from every non-empty patch whose buffer holds it, in ascending patch index.
+// The assembly for buffers with a halo (27-node stencils): the owner patch of each node
+// gathers it from every non-empty patch whose buffer holds it, in ascending patch index.
+// The owned block is summed one contributing patch at a time (the patch's whole overlap at
+// once, patches in ascending index), which gives every node the same additions in the same
+// order as a node-by-node gather, at a fraction of its index arithmetic.
 void assemble_wide(const StepContext* c, int first, int count, double* dst_mass, double* dst_mom,
                    double* dst_force) {
   const int P = c->patch_cells, H = c->patch_halo, Q = P + 1 + 2 * H;
   const size_t pn = size_t(Q) * size_t(Q) * size_t(Q);
-#pragma omp parallel for schedule(dynamic, 1)
-  for (int q = 0; q < c->npatch; ++q) {
-    const OwnedNodes o = owned_nodes(c, q);
-    if (!o.active) continue;
-    for (int k = o.lo[2]; k < o.hi[2]; ++k) {
-      int zlo, zhi;
-      patch_range(k, P, H, c->npd[2], zlo, zhi);
-      for (int j = o.lo[1]; j < o.hi[1]; ++j) {
-        int ylo, yhi;
-        patch_range(j, P, H, c->npd[1], ylo, yhi);
-        for (int i = o.lo[0]; i < o.hi[0]; ++i) {
-          int xlo, xhi;
-          patch_range(i, P, H, c->npd[0], xlo, xhi);
-          double sum[kNodeFields] = {0, 0, 0, 0, 0, 0, 0};
-          for (int qz = zlo; qz <= zhi; ++qz)
-            for (int qy = ylo; qy <= yhi; ++qy)
-              for (int qx = xlo; qx <= xhi; ++qx) {
-                const int slot = c->patch_slot[qx + c->npd[0] * (qy + c->npd[1] * qz)];
-                if (slot < 0) continue;
-                const int ln = (i - qx * P + H) + Q * ((j - qy * P + H) + Q * (k - qz * P + H));
-                const double* v = c->patch_buf + (size_t(slot) * pn + size_t(ln)) * kNodeFields + first;
-                for (int f = 0; f < count; ++f) sum[f] += v[f];
-              }
-          store_node_fields(first, count, sum, i + c->nn[0] * (j + c->nn[1] * k), dst_mass, dst_mom, dst_force);
-        }
+#pragma omp parallel
+  {
+    std::vector<double> acc;
+#pragma omp for schedule(dynamic, 1)
+    for (int q = 0; q < c->npatch; ++q) {
+      const OwnedNodes o = owned_nodes(c, q);
+      if (!o.active) continue;
+      const int ex = o.hi[0] - o.lo[0], ey = o.hi[1] - o.lo[1], ez = o.hi[2] - o.lo[2];
+      acc.assign(size_t(ex) * size_t(ey) * size_t(ez) * size_t(count), 0.0);
+      int rlo[3], rhi[3];
+      for (int a = 0; a < 3; ++a) {
+        int l0, h0, l1, h1;
+        patch_range(o.lo[a], P, H, c->npd[a], l0, h0);
+        patch_range(o.hi[a] - 1, P, H, c->npd[a], l1, h1);
+        rlo[a] = l0;
+        rhi[a] = h1;
       }
+      for (int rz = rlo[2]; rz <= rhi[2]; ++rz)
+        for (int ry = rlo[1]; ry <= rhi[1]; ++ry)
+          for (int rx = rlo[0]; rx <= rhi[0]; ++rx) {
+            const int slot = c->patch_slot[rx + c->npd[0] * (ry + c->npd[1] * rz)];
+            if (slot < 0) continue;
+            const int r3[3] = {rx, ry, rz};
+            int b0[3], b1[3];  // the overlap of the owned block and the buffer's nodes
+            for (int a = 0; a < 3; ++a) {
+              b0[a] = std::max(o.lo[a], r3[a] * P - H);
+              b1[a] = std::min(o.hi[a], r3[a] * P + P + H + 1);
+            }
+            const double* buf = c->patch_buf + size_t(slot) * pn * kNodeFields;
+            for (int k = b0[2]; k < b1[2]; ++k)
+              for (int j = b0[1]; j < b1[1]; ++j) {
+                const int ln0 = (b0[0] - rx * P + H) + Q * ((j - ry * P + H) + Q * (k - rz * P + H));
+                const size_t a0 = size_t((k - o.lo[2]) * ey + (j - o.lo[1])) * size_t(ex) + size_t(b0[0] - o.lo[0]);
+                for (int i = 0; i < b1[0] - b0[0]; ++i) {
+                  const double* v = buf + size_t(ln0 + i) * kNodeFields + first;
+                  double* t = acc.data() + (a0 + size_t(i)) * size_t(count);
+                  for (int f = 0; f < count; ++f) t[f] += v[f];
+                }
+              }
+          }
+      for (int k = o.lo[2]; k < o.hi[2]; ++k)
+        for (int j = o.lo[1]; j < o.hi[1]; ++j)
+          for (int i = o.lo[0]; i < o.hi[0]; ++i) {
+            const size_t a = size_t((k - o.lo[2]) * ey + (j - o.lo[1])) * size_t(ex) + size_t(i - o.lo[0]);
+            store_node_fields(first, count, acc.data() + a * size_t(count), i + c->nn[0] * (j + c->nn[1] * k),
+                              dst_mass, dst_mom, dst_force);
+          }
     }
   }
 }

@@ -36,6 +36,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 import hypervelocity as H  # noqa: E402
 import soft_beam as SB  # noqa: E402
+import cook_membrane as CM  # noqa: E402
 import verification as V  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -792,6 +793,8 @@ class Suite:
         L += H.section_lines()
         # The free soft beam (tools/soft_beam.py: docs/verification/soft_beam.csv)
         L += SB.section_lines()
+        # Cook's membrane (tools/cook_membrane.py: docs/verification/cook_membrane.csv)
+        L += CM.section_lines()
         # Taylor
         L += ["## Taylor bar", ""]
         if self.legacy:
@@ -1038,6 +1041,8 @@ def main():
     H.make_plot()
     s.log("free soft beam: tools/soft_beam.py")
     SB.run(s.build, s.threads)
+    s.log("Cook's membrane: tools/cook_membrane.py")
+    CM.run(s.build, s.threads)
     s.orders()
     load1 = loadavg()
     save_results(s, load0, load1, time.time() - s.t0)

@@ -29,22 +29,26 @@ NP = 20 * 120  # particles
 END_TIME = 1.5
 
 
-def deck(nu):
-    return f"""mpm3d *** free soft beam, nu {nu} (tools/soft_beam.py)
+def deck(nu, method="MPM"):
+    # sgmp keeps the one cell across z (the particles at its centre); bimp needs two cells
+    # per axis (the particles on the middle node layer's cells, z symmetric on both faces).
+    spz = "-0.1 0.1" if method == "bimp" else "0 0.1"
+    keyword = {"MPM": "", "sgmp": "sgmp\n", "bimp": "bimp\n"}[method]
+    return f"""mpm3d *** free soft beam, nu {nu}, {method} (tools/soft_beam.py)
 nbco 1
 nbbo 1
 nbmp {NP}
 nmat 1
 spx -1.5 2.1
 spy -0.1 6.2
-spz 0 0.1
+spz {spz}
 dcell 0.1
 dtscale 0.9
 endtime {END_TIME}
 outtime {END_TIME}
 rpttime 0.1
 musl on
-curv disx {NP}
+{keyword}curv disx {NP}
 fixed 0 0 0 0 2 2
 material
  1 neoh {RHO} {E} {nu}
@@ -96,19 +100,20 @@ def measured_period(work):
 def run(build, threads=2):
     mpm3d = os.path.join(os.path.abspath(build), "cxx", "mpm3d")
     rows = []
-    for nu in (0.3, 0.499):
+    for nu, method in ((0.3, "MPM"), (0.499, "MPM"), (0.3, "sgmp"), (0.499, "sgmp"), (0.3, "bimp"),
+                       (0.499, "bimp")):
         with tempfile.TemporaryDirectory() as work:
             path = os.path.join(work, "beam.mpm")
             with open(path, "w") as f:
-                f.write(deck(nu))
+                f.write(deck(nu, method))
             p = subprocess.run([mpm3d, "--threads", str(threads), "--quiet", "--out-dir", work, path],
                                capture_output=True, text=True)
             if p.returncode != 0:
-                sys.exit(f"soft_beam: mpm3d failed on nu {nu}: {p.stderr.strip()}")
+                sys.exit(f"soft_beam: mpm3d failed on nu {nu} {method}: {p.stderr.strip()}")
             t, n, amp = measured_period(work)
-        rows.append({"nu": nu, "method": "MPM", "period": t, "crossings": n, "amplitude_ratio": amp,
+        rows.append({"nu": nu, "method": method, "period": t, "crossings": n, "amplitude_ratio": amp,
                      "theory": theory_period(nu)})
-        print(f"soft_beam: nu {nu}: period {t:.4f} s ({n} crossings), amplitude last/first {amp:.3f}, "
+        print(f"soft_beam: nu {nu} {method}: period {t:.4f} s ({n} crossings), amplitude last/first {amp:.3f}, "
               f"Euler-Bernoulli {theory_period(nu):.4f} s")
     os.makedirs(os.path.dirname(CSV), exist_ok=True)
     with open(CSV, "w", newline="") as f:
@@ -128,7 +133,8 @@ def section_lines():
     when = datetime.datetime.utcfromtimestamp(os.path.getmtime(CSV)).strftime("%Y-%m-%d")
     L_ += ["The current MPM3D-F90's free soft beam (`tools/soft_beam.py`): a neo-Hookean beam 1 x 6 in "
            "plane strain, E 17 MPa, rho 1100, free at both ends, started with `vsin 1`; 2,400 particles "
-           "(spacing 0.05, cells 0.1), standard MPM (trilinear, MUSL), run to "
+           "(spacing 0.05, cells 0.1), MUSL: standard MPM (trilinear), the smoothed-gradient MPM (`sgmp`) and "
+           "the current version's B-splines (`bimp`, two cells across z), run to "
            f"{END_TIME} s (run {when}). Period from the tip's displacement relative to the centre of mass; theory: the "
            "first free-free mode of an Euler-Bernoulli beam with E / (1 - nu^2) (shear makes the real "
            "beam a few per cent softer).", "",
@@ -139,8 +145,9 @@ def section_lines():
         shown = f"{t:.4f}" if t == t else f"none ({r['crossings']} irregular crossings)"
         ratio = f"{t / th:.3f}" if t == t else "-"
         L_.append(f"| {r['nu']} | {r['method']} | {shown} | {th:.4f} | {ratio} | {amp:.2f} |")
-    r03 = next((r for r in rows if float(r["nu"]) == 0.3), None)
-    r05 = next((r for r in rows if float(r["nu"]) == 0.499), None)
+    r03 = next((r for r in rows if float(r["nu"]) == 0.3 and r["method"] == "MPM"), None)
+    r05 = next((r for r in rows if float(r["nu"]) == 0.499 and r["method"] == "MPM"), None)
+    fixes = [r for r in rows if float(r["nu"]) == 0.499 and r["method"] != "MPM"]
     if r03 and r05:
         q03 = float(r03["period"]) / float(r03["theory"])
         L_ += ["", f"At nu 0.3 the beam vibrates in its first mode with a period {q03:.3f} times the "
@@ -148,8 +155,19 @@ def section_lines():
                f"per cent, the coarse discretisation for the rest) and keeps its amplitude ({float(r03['amplitude_ratio']):.2f}). At nu 0.499 linear MPM locks: the "
                "constant-strain cells cannot bend without changing volume; the tip no longer swings regularly "
                f"(its zero crossings are irregular, its amplitude falls to {float(r05['amplitude_ratio']):.2f} of "
-               "the first swing) and high-frequency pressure ringing dominates. The current version's remedies (`sgmp`, `bimp`) are not implemented yet "
-               "(docs/DECK_FORMAT.md)."]
+               "the first swing) and high-frequency pressure ringing dominates."]
+        for r in fixes:
+            t, th = float(r["period"]), float(r["theory"])
+            if t == t:
+                L_ += [f"With `{r['method']}` at nu 0.499 the beam swings regularly again: period {t / th:.3f} "
+                       f"times Euler-Bernoulli, amplitude kept at {float(r['amplitude_ratio']):.2f}."]
+            else:
+                clean = int(END_TIME / th)
+                L_ += [f"With `{r['method']}` at nu 0.499 the beam keeps its swing (amplitude "
+                       f"{float(r['amplitude_ratio']):.2f} of the first, against {float(r05['amplitude_ratio']):.2f} "
+                       f"without) and the spurious zero crossings drop from {r05['crossings']} to {r['crossings']} "
+                       f"(a clean first mode gives {clean}), but the swing is not yet regular on this coarse beam "
+                       "(ten cells across): the locking is relieved, not removed, at this resolution."]
     return L_ + [""]
 
 
