@@ -28,8 +28,8 @@ def deck(title, nbmp, nmat, box, dcell, dtsc, endt, materials, parts, *, scheme=
              f"spx {box[0]!r} {box[1]!r}", f"spy {box[2]!r} {box[3]!r}", f"spz {box[4]!r} {box[5]!r}",
              f"dcell {dcell!r}", f"{scheme} on", f"dtscale {dtsc!r}", f"endtime {endt!r}",
              "fixed " + " ".join(str(f) for f in fix)]
-    if shape == "gimp":
-        lines.append("gimp")
+    if shape in ("gimp", "bimp", "sgmp"):
+        lines.append(shape)  # bimp and sgmp make it a deck of the current version
     lines += list(extra)
     lines.append("material")
     lines += [f" {i + 1} {m}" for i, m in enumerate(materials)]
@@ -494,10 +494,14 @@ def blocks_deck(E=200.0, nu=0.3, rho=1.0, n=8, v0=None, dtsc=0.5, steps_time=Non
     T = steps_time if steps_time else 4 * side / cl
     velo = []
     c = [math.cos(PI * (i + 0.5) / n) for i in range(n)]
+    # A deck of the current version (bimp, sgmp) numbers a block's particles x fastest, the
+    # book's z fastest.
+    current = shape in ("bimp", "sgmp")
     for i in range(n):
         for j in range(n):
             for k in range(n):
-                velo.append(f"node {(i * n + j) * n + k + 1} {v0 * c[i]!r} {v0 * c[j]!r} {v0 * c[k]!r}")
+                num = (k * n + j) * n + i + 1 if current else (i * n + j) * n + k + 1
+                velo.append(f"node {num} {v0 * c[i]!r} {v0 * c[j]!r} {v0 * c[k]!r}")
     box = (0.0, side + 2.0, 0.0, side + 2.0, 0.0, side + 2.0)
     return deck(title, n ** 3, 1, box, h, dtsc, T, [f"elas {rho!r} {E!r} {nu!r}"],
                 [f"part bloc 1 1 {rho!r} {dp!r} {o!r} {o!r} {o!r} {n} {n} {n}"],
