@@ -60,19 +60,29 @@ inline int corner_node(const StepContext* c, int i, int j, int k, int corner) {
   return (i + (corner & 1)) + c->nn[0] * ((j + ((corner >> 1) & 1)) + c->nn[1] * (k + ((corner >> 2) & 1)));
 }
 
-// The particles' scatter to the cell centres, serial in the canonical order (patches in
-// index order, each patch's list in order): mass and momentum, and/or body force and sigma V.
-void scatter_to_centres(StepContext* c, bool with_mass_mom, bool with_forces) {
-  if (with_mass_mom) zero_aux(c, AUX_M, 4);
-  if (with_forces) zero_aux(c, AUX_FB, 9);
+// f(p, node, w) for every particle with its auxiliary nodes and weights (the P2G rule), one
+// thread, in the canonical order of the scatters to the cell centres (patches in index
+// order, each patch's list in order): every centre's sum adds its particles in that order.
+template <class F>
+void for_particles_in_order(const StepContext* c, F&& f) {
   const CellDecoder dec(c);
-  const bool with_body = c->has_body_force != 0;
   for (int q = 0; q < c->npatch; ++q)
     for (int idx = c->patch_start[q]; idx < c->patch_start[q + 1]; ++idx) {
       const int p = c->patch_part[idx];
       int node[8];
       double w[8];
       sg_weights(c, dec, p, false, node, w);
+      f(p, node, w);
+    }
+}
+
+// The particles' scatter to the cell centres: mass and momentum, and/or body force and
+// sigma V.
+void scatter_to_centres(StepContext* c, bool with_mass_mom, bool with_forces) {
+  if (with_mass_mom) zero_aux(c, AUX_M, 4);
+  if (with_forces) zero_aux(c, AUX_FB, 9);
+  const bool with_body = c->has_body_force != 0;
+  for_particles_in_order(c, [&](int p, const int* node, const double* w) {
       const double mp = c->mass[p];
       const double* vp = c->v + 3 * p;
       double vs[6] = {0, 0, 0, 0, 0, 0}, fb[3] = {0, 0, 0};
@@ -96,7 +106,7 @@ void scatter_to_centres(StepContext* c, bool with_mass_mom, bool with_forces) {
           for (int s = 0; s < 6; ++s) a[AUX_SV + s] += w[k] * vs[s];
         }
       }
-    }
+  });
 }
 
 // The cell centres' share of each node of the active patches, over the node's cells in
@@ -223,15 +233,10 @@ void sg_g2p(StepContext* c, bool remap) {
     xp[2] = xp[2] + uz * dt;
   }
   if (!remap) return;
-  // MUSL: the new particle momenta to the cell centres (serial, canonical order), then
-  // the nodes (no mass cut-off, as the current program).
+  // MUSL: the new particle momenta to the cell centres, then the nodes (no mass cut-off,
+  // as the current program).
   zero_aux(c, AUX_RP, 3);
-  for (int q = 0; q < c->npatch; ++q)
-    for (int idx = c->patch_start[q]; idx < c->patch_start[q + 1]; ++idx) {
-      const int p = c->patch_part[idx];
-      int node[8];
-      double w[8];
-      sg_weights(c, dec, p, false, node, w);
+  for_particles_in_order(c, [&](int p, const int* node, const double* w) {
       const double mp = c->mass[p];
       const double* vp = c->v + 3 * p;
       for (int k = 0; k < 8; ++k) {
@@ -241,7 +246,7 @@ void sg_g2p(StepContext* c, bool remap) {
         a[AUX_RP + 1] += mn * vp[1];
         a[AUX_RP + 2] += mn * vp[2];
       }
-    }
+  });
   gather_to_nodes(c, GATHER_REMAP);
 }
 

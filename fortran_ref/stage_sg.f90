@@ -32,8 +32,8 @@ contains
     logical, intent(in) :: g2p
     integer, intent(out) :: idx(8)
     real(dp), intent(out) :: w(8)
-    integer :: ci(3), lo(3), hi(3), a, al, near, last, k, i, j, l
-    real(dp) :: w0(3), w1(3), s, x, xn, wa, wb, wc
+    integer :: ci(3), lo(3), hi(3), ijk(3), a, al, near, last, k
+    real(dp) :: w0(3), w1(3), wk(3), s, x, xn
     logical :: held
     ci(1) = mod(cl, c%nc(1))
     ci(2) = mod(cl / c%nc(1), c%nc(2))
@@ -84,29 +84,17 @@ contains
       end if
     end do
     do k = 0, 7
-      if (iand(k, 1) /= 0) then
-        i = hi(1)
-        wa = w1(1)
-      else
-        i = lo(1)
-        wa = w0(1)
-      end if
-      if (iand(ishft(k, -1), 1) /= 0) then
-        j = hi(2)
-        wb = w1(2)
-      else
-        j = lo(2)
-        wb = w0(2)
-      end if
-      if (iand(ishft(k, -2), 1) /= 0) then
-        l = hi(3)
-        wc = w1(3)
-      else
-        l = lo(3)
-        wc = w0(3)
-      end if
-      idx(k + 1) = i + c%nc(1) * (j + c%nc(2) * l)
-      w(k + 1) = (wa * wb) * wc
+      do a = 1, 3
+        if (iand(ishft(k, -(a - 1)), 1) /= 0) then
+          ijk(a) = hi(a)
+          wk(a) = w1(a)
+        else
+          ijk(a) = lo(a)
+          wk(a) = w0(a)
+        end if
+      end do
+      idx(k + 1) = ijk(1) + c%nc(1) * (ijk(2) + c%nc(2) * ijk(3))
+      w(k + 1) = (wk(1) * wk(2)) * wk(3)
     end do
   end subroutine sg_weights
 
