@@ -147,13 +147,28 @@ __attribute__((always_inline)) inline void p2g_particle(const StepContext* c, in
   }
 }
 
+// The end of every G2P: v_p += dt_int a, x_p += dt u with a and u the particle's
+// interpolated acceleration and grid velocity.
+__attribute__((always_inline)) inline void advance_particle(StepContext* c, int p, double ax, double ay, double az,
+                                                            double ux, double uy, double uz) {
+  const double dt = c->dt, dt_int = c->dt_int;
+  double* vp = c->v + 3 * p;
+  double* xp = c->x + 3 * p;
+  vp[0] = vp[0] + ax * dt_int;
+  vp[1] = vp[1] + ay * dt_int;
+  vp[2] = vp[2] + az * dt_int;
+  xp[0] = xp[0] + ux * dt;
+  xp[1] = xp[1] + uy * dt;
+  xp[2] = xp[2] + uz * dt;
+}
+
 // G2P of particle p over its kNodes nodes (grid node node(k) of stencil node k):
 // v_p += dt_int sum_k N_k f_k / m_k and x_p += dt sum_k N_k p_k / m_k over the nodes above
 // the mass cut-off. The GIMP stage; the trilinear stage runs
 // the same sums in lanes (g2p_values, transfer_lanes.hpp).
 template <int kNodes, class NodeOf>
 __attribute__((always_inline)) inline void g2p_particle(StepContext* c, int p, const double* N, NodeOf node) {
-  const double cutoff = c->mass_cutoff, dt = c->dt, dt_int = c->dt_int;
+  const double cutoff = c->mass_cutoff;
   double ax = 0.0, ay = 0.0, az = 0.0, ux = 0.0, uy = 0.0, uz = 0.0;
   for (int k = 0; k < kNodes; ++k) {
     const int n = node(k);
@@ -169,14 +184,7 @@ __attribute__((always_inline)) inline void g2p_particle(StepContext* c, int p, c
     uy += pm[1] * r;
     uz += pm[2] * r;
   }
-  double* vp = c->v + 3 * p;
-  double* xp = c->x + 3 * p;
-  vp[0] = vp[0] + ax * dt_int;
-  vp[1] = vp[1] + ay * dt_int;
-  vp[2] = vp[2] + az * dt_int;
-  xp[0] = xp[0] + ux * dt;
-  xp[1] = xp[1] + uy * dt;
-  xp[2] = xp[2] + uz * dt;
+  advance_particle(c, p, ax, ay, az, ux, uy, uz);
 }
 
 // MUSL remap of particle p: its momentum m_p N_k v_p added to fields 1-3 of node(k).

@@ -206,7 +206,6 @@ void sg_g2p(StepContext* c, bool remap) {
   });
   // Particles: each its own update.
   const CellDecoder dec(c);
-  const double dt = c->dt, dt_int = c->dt_int;
 #pragma omp parallel for schedule(static)
   for (int p = 0; p < c->np; ++p) {
     if (c->cell[p] < 0) continue;
@@ -223,14 +222,7 @@ void sg_g2p(StepContext* c, bool remap) {
       uy += w[k] * a[AUX_V + 1];
       uz += w[k] * a[AUX_V + 2];
     }
-    double* vp = c->v + 3 * p;
-    double* xp = c->x + 3 * p;
-    vp[0] = vp[0] + ax * dt_int;
-    vp[1] = vp[1] + ay * dt_int;
-    vp[2] = vp[2] + az * dt_int;
-    xp[0] = xp[0] + ux * dt;
-    xp[1] = xp[1] + uy * dt;
-    xp[2] = xp[2] + uz * dt;
+    advance_particle(c, p, ax, ay, az, ux, uy, uz);
   }
   if (!remap) return;
   // MUSL: the new particle momenta to the cell centres, then the nodes (no mass cut-off,

@@ -126,6 +126,53 @@ std::vector<double> gimp_coords(double l) {
 
 const double kHalfSizes[] = {0.25, 0.5, 0.1, 0.4, 0.3333};
 
+// The 27-node weights N and gradients G of a particle at local coordinates lx in the cell
+// with base node x0 (cell size h), stencil offsets o: N >= 0, sum N = 1, sum G = 0, and a
+// linear field given at the points x_k = x0 + h (o + off_k + shift) reproduced with its
+// gradient (shift 0: the nodes, GIMP; 1/2: the cell centres, the current version's B-splines).
+void expect_linear_reproduction(const double* N, const double* G, const int* o, const double* x0, const double* lx,
+                                double h, double shift) {
+  const double inv_h = 1.0 / h;
+  double sum = 0, gs[3] = {0, 0, 0}, xr[3] = {0, 0, 0}, J[3][3] = {};
+  for (int k = 0; k < 27; ++k) {
+    const int off[3] = {k % 3, (k / 3) % 3, k / 9};
+    EXPECT_GE(N[k], 0.0);
+    sum += N[k];
+    double xk[3];
+    for (int a = 0; a < 3; ++a) {
+      xk[a] = x0[a] + h * (double(o[a] + off[a]) + shift);
+      gs[a] += G[3 * k + a];
+      xr[a] += N[k] * xk[a];
+    }
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) J[a][b] += G[3 * k + b] * xk[a];
+  }
+  EXPECT_NEAR(sum, 1.0, 1e-15);
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_NEAR(gs[a], 0.0, 4e-15 * inv_h);
+    EXPECT_NEAR(xr[a], x0[a] + lx[a] * h, 4e-14) << "lx " << lx[a];
+    for (int b = 0; b < 3; ++b) EXPECT_NEAR(J[a][b], a == b ? 1.0 : 0.0, 1e-13);
+  }
+}
+
+// Central differences of the weights shape(lx, N, G) along each axis against G (cell size
+// h; inside one quadratic piece the difference is exact up to rounding).
+template <class Shape>
+void expect_gradients_are_derivatives(const double* lx, double h, Shape&& shape) {
+  double N[27], G[81];
+  shape(lx, N, G);
+  const double e = 1e-6;
+  for (int a = 0; a < 3; ++a) {
+    double lp[3] = {lx[0], lx[1], lx[2]}, lm[3] = {lx[0], lx[1], lx[2]};
+    lp[a] += e;
+    lm[a] -= e;
+    double Np[27], Nm[27], Gd[81];
+    shape(lp, Np, Gd);
+    shape(lm, Nm, Gd);
+    for (int k = 0; k < 27; ++k) EXPECT_NEAR((Np[k] - Nm[k]) / (2.0 * e * h), G[3 * k + a], 1e-8);
+  }
+}
+
 }  // namespace
 
 TEST(ShapeGimp, OneDimensionalWeightsByHand) {
@@ -196,26 +243,8 @@ TEST(ShapeGimp, PartitionOfUnityAndLinearReproduction) {
       for (int a = 0; a < 3; ++a) o[a] = mpm3d::gimp_offset(lx[a], 5, 10);
       double N[27], G[81];
       mpm3d::shape_gimp(lx, o, l, inv_h, N, G);
-      double sum = 0, gs[3] = {0, 0, 0}, xr[3] = {0, 0, 0}, J[3][3] = {};
-      for (int k = 0; k < 27; ++k) {
-        const int off[3] = {k % 3, (k / 3) % 3, k / 9};
-        EXPECT_GE(N[k], 0.0);
-        sum += N[k];
-        double xk[3];
-        for (int a = 0; a < 3; ++a) {
-          xk[a] = x0[a] + h * double(o[a] + off[a]);
-          gs[a] += G[3 * k + a];
-          xr[a] += N[k] * xk[a];
-        }
-        for (int a = 0; a < 3; ++a)
-          for (int b = 0; b < 3; ++b) J[a][b] += G[3 * k + b] * xk[a];
-      }
-      EXPECT_NEAR(sum, 1.0, 1e-15);
-      for (int a = 0; a < 3; ++a) {
-        EXPECT_NEAR(gs[a], 0.0, 4e-15 * inv_h);
-        EXPECT_NEAR(xr[a], x0[a] + lx[a] * h, 4e-14) << "l " << l << " lx " << lx[a];
-        for (int b = 0; b < 3; ++b) EXPECT_NEAR(J[a][b], a == b ? 1.0 : 0.0, 1e-13);
-      }
+      SCOPED_TRACE(l);
+      expect_linear_reproduction(N, G, o, x0, lx, h, 0.0);
     }
   }
 }
@@ -227,18 +256,9 @@ TEST(ShapeGimp, GradientsAreTheDerivativesOfTheWeights) {
   const double h = 2.0, l = 0.25;
   const double lx[3] = {0.1, 0.6, 0.85};
   const int o[3] = {-1, 0, 0};
-  double N[27], G[81];
-  mpm3d::shape_gimp(lx, o, l, 1.0 / h, N, G);
-  const double e = 1e-6;
-  for (int a = 0; a < 3; ++a) {
-    double lp[3] = {lx[0], lx[1], lx[2]}, lm[3] = {lx[0], lx[1], lx[2]};
-    lp[a] += e;
-    lm[a] -= e;
-    double Np[27], Nm[27], Gd[81];
-    mpm3d::shape_gimp(lp, o, l, 1.0 / h, Np, Gd);
-    mpm3d::shape_gimp(lm, o, l, 1.0 / h, Nm, Gd);
-    for (int k = 0; k < 27; ++k) EXPECT_NEAR((Np[k] - Nm[k]) / (2.0 * e * h), G[3 * k + a], 1e-8);
-  }
+  expect_gradients_are_derivatives(lx, h, [&](const double* x, double* N, double* G) {
+    mpm3d::shape_gimp(x, o, l, 1.0 / h, N, G);
+  });
 }
 
 // The current version's quadratic B-splines ('bimp'): on the nodes base-1, base, base+1 of
@@ -286,26 +306,7 @@ TEST(ShapeBspline, PartitionOfUnityAndLinearReproductionAboutTheCellCentres) {
     const int o[3] = {-1, -1, -1};
     double N[27], G[81];
     mpm3d::shape_bspline(lx.data(), o, inv_h, N, G);
-    double sum = 0, gs[3] = {0, 0, 0}, xr[3] = {0, 0, 0}, J[3][3] = {};
-    for (int k = 0; k < 27; ++k) {
-      const int off[3] = {k % 3, (k / 3) % 3, k / 9};
-      EXPECT_GE(N[k], 0.0);
-      sum += N[k];
-      double xk[3];
-      for (int a = 0; a < 3; ++a) {
-        xk[a] = x0[a] + h * (double(o[a] + off[a]) + 0.5);
-        gs[a] += G[3 * k + a];
-        xr[a] += N[k] * xk[a];
-      }
-      for (int a = 0; a < 3; ++a)
-        for (int b = 0; b < 3; ++b) J[a][b] += G[3 * k + b] * xk[a];
-    }
-    EXPECT_NEAR(sum, 1.0, 1e-15);
-    for (int a = 0; a < 3; ++a) {
-      EXPECT_NEAR(gs[a], 0.0, 4e-15 * inv_h);
-      EXPECT_NEAR(xr[a], x0[a] + lx[a] * h, 4e-14);
-      for (int b = 0; b < 3; ++b) EXPECT_NEAR(J[a][b], a == b ? 1.0 : 0.0, 1e-13);
-    }
+    expect_linear_reproduction(N, G, o, x0, lx.data(), h, 0.5);
   }
 }
 
@@ -313,16 +314,7 @@ TEST(ShapeBspline, GradientsAreTheDerivativesOfTheWeights) {
   const double h = 2.0;
   const double lx[3] = {0.1, 0.6, 0.85};
   const int o[3] = {-1, -1, 0};
-  double N[27], G[81];
-  mpm3d::shape_bspline(lx, o, 1.0 / h, N, G);
-  const double e = 1e-6;
-  for (int a = 0; a < 3; ++a) {
-    double lp[3] = {lx[0], lx[1], lx[2]}, lm[3] = {lx[0], lx[1], lx[2]};
-    lp[a] += e;
-    lm[a] -= e;
-    double Np[27], Nm[27], Gd[81];
-    mpm3d::shape_bspline(lp, o, 1.0 / h, Np, Gd);
-    mpm3d::shape_bspline(lm, o, 1.0 / h, Nm, Gd);
-    for (int k = 0; k < 27; ++k) EXPECT_NEAR((Np[k] - Nm[k]) / (2.0 * e * h), G[3 * k + a], 1e-8);
-  }
+  expect_gradients_are_derivatives(lx, h, [&](const double* x, double* N, double* G) {
+    mpm3d::shape_bspline(x, o, 1.0 / h, N, G);
+  });
 }
