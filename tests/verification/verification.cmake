@@ -30,6 +30,8 @@ if(MPM3D_PYTHON3)
   mpm3d_verification_test(mms_linear)
   # The same with GIMP, order above 1.5.
   mpm3d_verification_test(mms_gimp)
+  # B-splines and smoothed gradients on the free-face manufactured solution: order above 1.5.
+  mpm3d_verification_test(mms_smooth)
   # Elastic wave speed within 2 %, Hugoniot elastic limit and plastic wave speed.
   mpm3d_verification_test(wave)
   # The GIMP variants of the 1D decks (bar, waves, Sod; two cells thick): they run and
