@@ -21,6 +21,10 @@
 // fortran_ref/stage_sg.f90, the same operations in the same order.
 #include <cstddef>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include "stage_common.hpp"
 #include "stage_sg.hpp"
 #include "update_step.hpp"
@@ -60,19 +64,127 @@ inline int corner_node(const StepContext* c, int i, int j, int k, int corner) {
   return (i + (corner & 1)) + c->nn[0] * ((j + ((corner >> 1) & 1)) + c->nn[1] * (k + ((corner >> 2) & 1)));
 }
 
-// f(p, node, w) for every particle with its auxiliary nodes and weights (the P2G rule), one
-// thread, in the canonical order of the scatters to the cell centres (patches in index
-// order, each patch's list in order): every centre's sum adds its particles in that order.
+// The scatters to the cell centres, in parallel with the bits of one thread. The canonical
+// order of every centre's sum is that of one pass over the particles, patches in index
+// order, each patch's list in order, corners k = 0..7 (one thread: that pass). A particle
+// reaches only the centres of its own cell and its neighbours, so the centres of patch q
+// receive from the particles of q and of the patches next to it alone: with more threads,
+// each owns the centres of its patches and runs over those patches' particles in that
+// order, keeping the contributions that land on its own centres. The weights are computed
+// once per scatter, in parallel, beforehand (cache_weights): the neighbours' particles are
+// visited again (about half of them on the 4 x 4 patches of a one-layer deck), their
+// weights not rebuilt. That costs 1.2 times the single pass on one thread and pays from
+// two (docs/PERFORMANCE.md), hence the two paths.
+
+// The centres of patch q: [lo, hi) per axis.
+inline void patch_centres(const StepContext* c, int q, int q3[3], int lo[3], int hi[3]) {
+  const int P = c->patch_cells;
+  patch_coords(c, q, q3);
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = q3[a] * P;
+    hi[a] = lo[a] + P < c->nc[a] ? lo[a] + P : c->nc[a];
+  }
+}
+
+// Every patch-list entry's weights and corner ranges (the P2G rule) into c->sg_w, sg_range,
+// which neighbour patches it reaches into c->sg_reach, and per side of its patch the
+// entries that reach past it, in list order, into c->sg_side.
+void cache_weights(const StepContext* c) {
+  const CellDecoder dec(c);
+  for_patches(c, [&](int q) {
+    int q3[3], lo[3], hi[3];
+    patch_centres(c, q, q3, lo, hi);
+    const size_t np = size_t(c->np);
+    int* count = c->sg_side_count + 6 * size_t(q);
+    for (int b = 0; b < 6; ++b) count[b] = 0;
+    for (int e = c->patch_start[q]; e < c->patch_start[q + 1]; ++e) {
+      int* r = c->sg_range + 6 * size_t(e);
+      sg_corner_weights(c, dec, c->patch_part[e], false, r, r + 3, c->sg_w + 8 * size_t(e));
+      for (int k = 0; k < 8; ++k) c->sg_cell[8 * size_t(e) + k] = sg_corner_cell(c, r, r + 3, k);
+      unsigned reach = 0;
+      for (int a = 0; a < 3; ++a) reach |= (r[a] < lo[a] ? 1u : 0u) << (2 * a) | (r[3 + a] >= hi[a] ? 2u : 0u) << (2 * a);
+      c->sg_reach[e] = static_cast<unsigned char>(reach);
+      for (int b = 0; b < 6; ++b)
+        if (reach >> b & 1u) c->sg_side[b * np + size_t(c->patch_start[q] + count[b]++)] = e;
+    }
+  });
+}
+
+// f(p, cell[8], w[8], mask) for every particle that reaches the centres of a patch, mask
+// bit k set where its corner k is one of them: each centre's contributions in the
+// canonical order when f adds corners k = 0..7 (cache_weights first).
 template <class F>
-void for_particles_in_order(const StepContext* c, F&& f) {
+void for_contributions_in_order(const StepContext* c, F&& f) {
+  for_patches(c, [&](int q) {
+    int q3[3], lo[3], hi[3], rlo[3], rhi[3];
+    patch_centres(c, q, q3, lo, hi);
+    for (int a = 0; a < 3; ++a) {
+      rlo[a] = q3[a] > 0 ? q3[a] - 1 : 0;  // the patches next to q (and q)
+      rhi[a] = q3[a] + 1 < c->npd[a] ? q3[a] + 1 : c->npd[a] - 1;
+    }
+    for (int rz = rlo[2]; rz <= rhi[2]; ++rz)
+      for (int ry = rlo[1]; ry <= rhi[1]; ++ry)
+        for (int rx = rlo[0]; rx <= rhi[0]; ++rx) {
+          const int r = rx + c->npd[0] * (ry + c->npd[1] * rz);
+          // The sides of r that face q: a particle of r reaches q only through all of them;
+          // r's entries that reach past the first of them, in list order (all: r = q).
+          const int off[3] = {rx - q3[0], ry - q3[1], rz - q3[2]};
+          unsigned need = 0;
+          int side = -1;
+          for (int a = 2; a >= 0; --a)
+            if (off[a] != 0) {
+              side = 2 * a + (off[a] > 0 ? 0 : 1);
+              need |= 1u << side;
+            }
+          const int first = c->patch_start[r];
+          const int n = side < 0 ? c->patch_start[r + 1] - first : c->sg_side_count[6 * size_t(r) + side];
+          const int* list = side < 0 ? nullptr : c->sg_side + size_t(side) * size_t(c->np) + first;
+          for (int m = 0; m < n; ++m) {
+            const int e = list ? list[m] : first + m;
+            const unsigned reach = c->sg_reach[e];
+            if ((reach & need) != need) continue;
+            unsigned mask = 0xFFu;  // an entry of q that stays inside q: every corner
+            if (reach != 0) {
+              const int* cl = c->sg_range + 6 * size_t(e);  // corner cells: lo[3], hi[3]
+              bool in[2][3];
+              for (int a = 0; a < 3; ++a) {
+                in[0][a] = cl[a] >= lo[a] && cl[a] < hi[a];
+                in[1][a] = cl[3 + a] >= lo[a] && cl[3 + a] < hi[a];
+              }
+              mask = 0;
+              for (int k = 0; k < 8; ++k)
+                if (in[k & 1][0] && in[(k >> 1) & 1][1] && in[(k >> 2) & 1][2]) mask |= 1u << k;
+              if (mask == 0) continue;
+            }
+            double w[8];  // a local copy: the centres' sums cannot alias it
+            for (int k = 0; k < 8; ++k) w[k] = c->sg_w[8 * size_t(e) + k];
+            f(c->patch_part[e], c->sg_cell + 8 * size_t(e), w, mask);
+          }
+        }
+  });
+}
+
+// add(p, cell[8], w[8], mask) in the canonical order of every centre's sum: one pass on one
+// thread, the owners' passes on more.
+template <class F>
+void scatter_in_order(const StepContext* c, F&& add) {
+  int threads = 1;
+#ifdef _OPENMP
+  threads = omp_get_max_threads();
+#endif
+  if (threads > 1) {
+    cache_weights(c);
+    for_contributions_in_order(c, add);
+    return;
+  }
   const CellDecoder dec(c);
   for (int q = 0; q < c->npatch; ++q)
-    for (int idx = c->patch_start[q]; idx < c->patch_start[q + 1]; ++idx) {
-      const int p = c->patch_part[idx];
-      int node[8];
+    for (int e = c->patch_start[q]; e < c->patch_start[q + 1]; ++e) {
+      const int p = c->patch_part[e];
+      int cell[8];
       double w[8];
-      sg_weights(c, dec, p, false, node, w);
-      f(p, node, w);
+      sg_weights(c, dec, p, false, cell, w);
+      add(p, cell, w, 0xFFu);
     }
 }
 
@@ -82,30 +194,31 @@ void scatter_to_centres(StepContext* c, bool with_mass_mom, bool with_forces) {
   if (with_mass_mom) zero_aux(c, AUX_M, 4);
   if (with_forces) zero_aux(c, AUX_FB, 9);
   const bool with_body = c->has_body_force != 0;
-  for_particles_in_order(c, [&](int p, const int* node, const double* w) {
-      const double mp = c->mass[p];
-      const double* vp = c->v + 3 * p;
-      double vs[6] = {0, 0, 0, 0, 0, 0}, fb[3] = {0, 0, 0};
+  scatter_in_order(c, [&](int p, const int* cell, const double* w, unsigned mask) {
+    const double mp = c->mass[p];
+    const double* vp = c->v + 3 * p;
+    double vs[6] = {0, 0, 0, 0, 0, 0}, fb[3] = {0, 0, 0};
+    if (with_forces) {
+      const double volp = c->vol[p];
+      for (int s = 0; s < 6; ++s) vs[s] = c->sig[6 * p + s] * volp;
+      if (with_body) particle_body_force(c, p, fb);
+    }
+    for (int k = 0; k < 8; ++k) {
+      if (!(mask >> k & 1u)) continue;
+      double* a = aux_cell(c, cell[k]);
+      if (with_mass_mom) {
+        const double mn = mp * w[k];
+        a[AUX_M] += mn;
+        a[AUX_P + 0] += mn * vp[0];
+        a[AUX_P + 1] += mn * vp[1];
+        a[AUX_P + 2] += mn * vp[2];
+      }
       if (with_forces) {
-        const double volp = c->vol[p];
-        for (int s = 0; s < 6; ++s) vs[s] = c->sig[6 * p + s] * volp;
-        if (with_body) particle_body_force(c, p, fb);
+        if (with_body)
+          for (int d = 0; d < 3; ++d) a[AUX_FB + d] += w[k] * fb[d];
+        for (int s = 0; s < 6; ++s) a[AUX_SV + s] += w[k] * vs[s];
       }
-      for (int k = 0; k < 8; ++k) {
-        double* a = aux_cell(c, node[k]);
-        if (with_mass_mom) {
-          const double mn = mp * w[k];
-          a[AUX_M] += mn;
-          a[AUX_P + 0] += mn * vp[0];
-          a[AUX_P + 1] += mn * vp[1];
-          a[AUX_P + 2] += mn * vp[2];
-        }
-        if (with_forces) {
-          if (with_body)
-            for (int d = 0; d < 3; ++d) a[AUX_FB + d] += w[k] * fb[d];
-          for (int s = 0; s < 6; ++s) a[AUX_SV + s] += w[k] * vs[s];
-        }
-      }
+    }
   });
 }
 
@@ -228,16 +341,17 @@ void sg_g2p(StepContext* c, bool remap) {
   // MUSL: the new particle momenta to the cell centres, then the nodes (no mass cut-off,
   // as the current program).
   zero_aux(c, AUX_RP, 3);
-  for_particles_in_order(c, [&](int p, const int* node, const double* w) {
-      const double mp = c->mass[p];
-      const double* vp = c->v + 3 * p;
-      for (int k = 0; k < 8; ++k) {
-        double* a = aux_cell(c, node[k]);
-        const double mn = mp * w[k];
-        a[AUX_RP + 0] += mn * vp[0];
-        a[AUX_RP + 1] += mn * vp[1];
-        a[AUX_RP + 2] += mn * vp[2];
-      }
+  scatter_in_order(c, [&](int p, const int* cell, const double* w, unsigned mask) {
+    const double mp = c->mass[p];
+    const double* vp = c->v + 3 * p;
+    for (int k = 0; k < 8; ++k) {
+      if (!(mask >> k & 1u)) continue;
+      double* a = aux_cell(c, cell[k]);
+      const double mn = mp * w[k];
+      a[AUX_RP + 0] += mn * vp[0];
+      a[AUX_RP + 1] += mn * vp[1];
+      a[AUX_RP + 2] += mn * vp[2];
+    }
   });
   gather_to_nodes(c, GATHER_REMAP);
 }

@@ -22,13 +22,14 @@ enum : int {
   AUX_L = 22,   // stress: velocity gradient L[3a+b] = dv_a/dx_b (9)
 };
 
-// The eight auxiliary nodes (cell indices idx) and weights w of particle p, corner
-// k = a + 2 b + 4 c of its auxiliary cell; g2p: the G2P rule on held axes.
-inline void sg_weights(const StepContext* c, const CellDecoder& dec, int p, bool g2p, int idx[8], double w[8]) {
+// The weights w of particle p's eight auxiliary nodes, corner k = a + 2 b + 4 c of its
+// auxiliary cell, and the cells of its corners per axis (lower lo[a], upper hi[a]); g2p:
+// the G2P rule on held axes.
+__attribute__((always_inline)) inline void sg_corner_weights(const StepContext* c, const CellDecoder& dec, int p, bool g2p, int lo[3], int hi[3],
+                              double w[8]) {
   int ci[3];
   dec(c->cell[p], ci[0], ci[1], ci[2]);
   const double* lx = c->lx + 3 * p;
-  int lo[3], hi[3];
   double w0[3], w1[3];
   for (int a = 0; a < 3; ++a) {
     const double s = lx[a];
@@ -52,10 +53,21 @@ inline void sg_weights(const StepContext* c, const CellDecoder& dec, int p, bool
   }
   for (int k = 0; k < 8; ++k) {
     const int bx = k & 1, by = (k >> 1) & 1, bz = (k >> 2) & 1;
-    const int i = bx ? hi[0] : lo[0], j = by ? hi[1] : lo[1], l = bz ? hi[2] : lo[2];
-    idx[k] = i + c->nc[0] * (j + c->nc[1] * l);
     w[k] = ((bx ? w1[0] : w0[0]) * (by ? w1[1] : w0[1])) * (bz ? w1[2] : w0[2]);
   }
+}
+
+// Cell index of corner k of an auxiliary cell with corner cells lo, hi per axis.
+__attribute__((always_inline)) inline int sg_corner_cell(const StepContext* c, const int lo[3], const int hi[3], int k) {
+  const int i = (k & 1) ? hi[0] : lo[0], j = ((k >> 1) & 1) ? hi[1] : lo[1], l = ((k >> 2) & 1) ? hi[2] : lo[2];
+  return i + c->nc[0] * (j + c->nc[1] * l);
+}
+
+// The eight auxiliary nodes (cell indices idx) and weights w of particle p.
+__attribute__((always_inline)) inline void sg_weights(const StepContext* c, const CellDecoder& dec, int p, bool g2p, int idx[8], double w[8]) {
+  int lo[3], hi[3];
+  sg_corner_weights(c, dec, p, g2p, lo, hi, w);
+  for (int k = 0; k < 8; ++k) idx[k] = sg_corner_cell(c, lo, hi, k);
 }
 
 inline double* aux_cell(const StepContext* c, int cell) { return c->aux + size_t(cell) * kAuxFields; }

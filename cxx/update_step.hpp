@@ -81,6 +81,14 @@ struct StepContext {
   // Fields after this point are stage-internal scratch of the C++ kernels (a Fortran
   // mirror of the struct may stop before them).
   int *pscratch;       // (np) patch of each particle during binning
+  // sgmp: each patch-list entry's auxiliary weights (8), centres (8) and per-axis centre
+  // range (lo[3], hi[3]), written and read within one scatter (stage_sg.cpp); else null.
+  double *sg_w;
+  int *sg_cell;             // (np, 8) the centres of the entry's corners
+  int *sg_range;
+  unsigned char *sg_reach;  // bits 2a, 2a+1: the entry reaches the patch below, above on axis a
+  int *sg_side;             // (np, 6): per patch and reach bit b, its entries with bit b, from
+  int *sg_side_count;       // patch_start[q] on; (npatch, 6) their counts
 };
 
 typedef void (*StageFn)(StepContext*);
