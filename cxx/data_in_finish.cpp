@@ -148,7 +148,6 @@ void DeckReader::finish(int line) {
     // What the current version's sgmp does not combine with, or we have not built, is refused.
     if (m_.gimp) fail(std::max(gimp_line_, sgmp_line_), "'sgmp' with 'gimp': smoothed-gradient MPM takes the trilinear shape functions only");
     if (m_.bspline) fail(std::max(bimp_line_, sgmp_line_), "'sgmp' with 'bimp': smoothed-gradient MPM takes the trilinear shape functions only");
-    if (m_.tl) fail(std::max(m_.tl_line, sgmp_line_), "'sgmp' with 'TLmp': the smoothed-gradient total Lagrangian MPM is not implemented yet");
     if (m_.contact) fail(std::max(m_.contact_line, sgmp_line_), "'sgmp' with 'cont': smoothed-gradient MPM has one velocity field here");
     if (m_.regrid_every > 0) fail(sgmp_line_, "'sgmp' with 'adgr': the cell-centre grid of sgmp does not move");
   }

@@ -4,8 +4,9 @@
 // (docs/DECK_FORMAT.md "sgmp"):
 //   P2G    particle -> cell centre with the trilinear weights W of the auxiliary cell that
 //          holds the particle (the one around its nearest grid node): mass, momentum, body
-//          force, sigma V; cell centre -> node: m_i, p_i += m_c / 8, p_c / 8 (cells heavier
-//          than the mass cut-off), f_i += f_c / 8 - (sigma V)_c grad N_i(centre c);
+//          force, sigma V (TLmp: V0 P, with the weights of the reference positions); cell
+//          centre -> node: m_i, p_i += m_c / 8, p_c / 8 (cells heavier than the mass
+//          cut-off), f_i += f_c / 8 - (sigma V)_c grad N_i(centre c);
 //   G2P    node -> cell centre: v_c, a_c = sum_corners v_i / 8, a_i / 8 (the cells on a held
 //          face take the velocity of the cell's inner face, edge or corner instead);
 //          particle v += dt sum W a_c, x += dt sum W v_c; MUSL remap: p_c = sum W m v,
@@ -189,18 +190,24 @@ void scatter_in_order(const StepContext* c, F&& add) {
 }
 
 // The particles' scatter to the cell centres: mass and momentum, and/or body force and
-// sigma V.
+// sigma V (TLmp: V0 P, the 9 entries of the first Piola-Kirchhoff stress times the
+// reference volume: the smoothed-gradient total Lagrangian MPM).
 void scatter_to_centres(StepContext* c, bool with_mass_mom, bool with_forces) {
   if (with_mass_mom) zero_aux(c, AUX_M, 4);
-  if (with_forces) zero_aux(c, AUX_FB, 9);
+  if (with_forces) zero_aux(c, AUX_FB, 12);
   const bool with_body = c->has_body_force != 0;
+  const int ns = c->pk1 ? 9 : 6;
   scatter_in_order(c, [&](int p, const int* cell, const double* w, unsigned mask) {
     const double mp = c->mass[p];
     const double* vp = c->v + 3 * p;
-    double vs[6] = {0, 0, 0, 0, 0, 0}, fb[3] = {0, 0, 0};
+    double vs[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, fb[3] = {0, 0, 0};
     if (with_forces) {
-      const double volp = c->vol[p];
-      for (int s = 0; s < 6; ++s) vs[s] = c->sig[6 * p + s] * volp;
+      if (c->pk1) {
+        for (int s = 0; s < 9; ++s) vs[s] = c->pk1[9 * size_t(p) + size_t(s)];
+      } else {
+        const double volp = c->vol[p];
+        for (int s = 0; s < 6; ++s) vs[s] = c->sig[6 * p + s] * volp;
+      }
       if (with_body) particle_body_force(c, p, fb);
     }
     for (int k = 0; k < 8; ++k) {
@@ -216,7 +223,7 @@ void scatter_to_centres(StepContext* c, bool with_mass_mom, bool with_forces) {
       if (with_forces) {
         if (with_body)
           for (int d = 0; d < 3; ++d) a[AUX_FB + d] += w[k] * fb[d];
-        for (int s = 0; s < 6; ++s) a[AUX_SV + s] += w[k] * vs[s];
+        for (int s = 0; s < ns; ++s) a[AUX_S + s] += w[k] * vs[s];
       }
     }
   });
@@ -253,10 +260,17 @@ void gather_to_nodes(StepContext* c, int what) {
                   // grad N of this node at the cell's centre: +-1/(4h) per axis (+ for the
                   // cell's upper corner).
                   const double gx = cx == i - 1 ? gs : -gs, gy = cy == j - 1 ? gs : -gs, gz = cz == k - 1 ? gs : -gs;
-                  const double* sv = a + AUX_SV;
-                  const double fx = -((sv[0] * gx + sv[5] * gy) + sv[4] * gz);
-                  const double fy = -((sv[5] * gx + sv[1] * gy) + sv[3] * gz);
-                  const double fz = -((sv[4] * gx + sv[3] * gy) + sv[2] * gz);
+                  const double* sv = a + AUX_S;
+                  double fx, fy, fz;
+                  if (c->pk1) {  // V0 P: row a gives force component a
+                    fx = -((sv[0] * gx + sv[1] * gy) + sv[2] * gz);
+                    fy = -((sv[3] * gx + sv[4] * gy) + sv[5] * gz);
+                    fz = -((sv[6] * gx + sv[7] * gy) + sv[8] * gz);
+                  } else {
+                    fx = -((sv[0] * gx + sv[5] * gy) + sv[4] * gz);
+                    fy = -((sv[5] * gx + sv[1] * gy) + sv[3] * gz);
+                    fz = -((sv[4] * gx + sv[3] * gy) + sv[2] * gz);
+                  }
                   f[0] += 0.125 * a[AUX_FB + 0] + fx;
                   f[1] += 0.125 * a[AUX_FB + 1] + fy;
                   f[2] += 0.125 * a[AUX_FB + 2] + fz;

@@ -15,11 +15,11 @@ enum : int {
   AUX_M = 0,    // mass
   AUX_P = 1,    // momentum (3)
   AUX_FB = 4,   // body force (3)
-  AUX_SV = 7,   // sigma V, Voigt xx yy zz yz xz xy (6)
-  AUX_V = 13,   // G2P: velocity (3)
-  AUX_A = 16,   // G2P: acceleration (3)
-  AUX_RP = 19,  // MUSL remap: momentum (3)
-  AUX_L = 22,   // stress: velocity gradient L[3a+b] = dv_a/dx_b (9)
+  AUX_S = 7,    // sigma V, Voigt xx yy zz yz xz xy (6); TLmp: V0 P, row-major (9)
+  AUX_V = 16,   // G2P: velocity (3)
+  AUX_A = 19,   // G2P: acceleration (3)
+  AUX_RP = 22,  // MUSL remap: momentum (3)
+  AUX_L = 25,   // stress: velocity gradient L[3a+b] = dv_a/dx_b (9; TLmp: dv_a/dX_b)
 };
 
 // The weights w of particle p's eight auxiliary nodes, corner k = a + 2 b + 4 c of its

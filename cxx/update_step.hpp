@@ -121,7 +121,7 @@ void mpm3d_f_recontact(StepContext* c);
 namespace mpm3d {
 
 extern const char* const kStageNames[ST_COUNT];
-constexpr int kAuxFields = 32;  // doubles per cell in StepContext::aux (sgmp)
+constexpr int kAuxFields = 34;  // doubles per cell in StepContext::aux (sgmp)
 constexpr int kReduceFields = 5;
 
 // The stage table: which implementation each stage uses (cxx/stages.cpp).

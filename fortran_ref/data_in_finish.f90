@@ -158,8 +158,6 @@ contains
         "'sgmp' with 'gimp': smoothed-gradient MPM takes the trilinear shape functions only")
       if (m%bspline) call ts%fail(max(m%bimp_line, m%sgmp_line), &
         "'sgmp' with 'bimp': smoothed-gradient MPM takes the trilinear shape functions only")
-      if (m%tl) call ts%fail(max(m%tl_line, m%sgmp_line), &
-        "'sgmp' with 'TLmp': the smoothed-gradient total Lagrangian MPM is not implemented yet")
       if (m%contact) call ts%fail(max(m%contact_line, m%sgmp_line), &
         "'sgmp' with 'cont': smoothed-gradient MPM has one velocity field here")
       if (m%regrid_every > 0) call ts%fail(m%sgmp_line, "'sgmp' with 'adgr': the cell-centre grid of sgmp does not move")

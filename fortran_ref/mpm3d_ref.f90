@@ -376,7 +376,7 @@ contains
     ctx%aux = c_null_ptr
     ctx%sg = merge(1, 0, model%sg)
     if (model%sg) then
-      allocate(aux(32, grid%nc(1) * grid%nc(2) * grid%nc(3)))
+      allocate(aux(34, grid%nc(1) * grid%nc(2) * grid%nc(3)))
       aux = 0.0_dp
       ctx%aux = c_loc(aux)
     end if

@@ -13,11 +13,11 @@ module mpm3d_stage_sg
 
   public :: sg_p2g, sg_g2p, sg_cell_gradients, sg_velocity_gradient
 
-  integer, parameter :: AUX_FIELDS = 32
-  ! Fields (0-based as in C++): mass, momentum, body force, sigma V (Voigt), G2P velocity and
-  ! acceleration, remapped momentum, velocity gradient.
-  integer, parameter :: AUX_M = 0, AUX_P = 1, AUX_FB = 4, AUX_SV = 7, AUX_V = 13, AUX_A = 16, &
-                        AUX_RP = 19, AUX_L = 22
+  integer, parameter :: AUX_FIELDS = 34
+  ! Fields (0-based as in C++): mass, momentum, body force, sigma V (Voigt; TLmp: V0 P, 9
+  ! entries row by row), G2P velocity and acceleration, remapped momentum, velocity gradient.
+  integer, parameter :: AUX_M = 0, AUX_P = 1, AUX_FB = 4, AUX_S = 7, AUX_V = 16, AUX_A = 19, &
+                        AUX_RP = 22, AUX_L = 25
   integer, parameter :: GATHER_MASS_MOM = 1, GATHER_FORCES = 2, GATHER_REMAP = 4
 
 contains
@@ -109,14 +109,20 @@ contains
   subroutine sg_p2g(c, with_mass_mom, with_forces)
     type(step_context), intent(inout) :: c
     logical, intent(in) :: with_mass_mom, with_forces
-    real(dp), pointer :: aux(:,:), lx(:,:), v(:,:), sig(:,:), mass(:), vol(:)
+    real(dp), pointer :: aux(:,:), lx(:,:), v(:,:), sig(:,:), mass(:), vol(:), pk1(:,:)
     integer(c_int), pointer :: pstart(:), ppart(:), cell(:)
-    real(dp) :: w(8), vs(6), fb(3), mp, volp, mn
-    integer :: idx8(8), q, idx, p, k, s, d, cl
+    real(dp) :: w(8), vs(9), fb(3), mp, volp, mn
+    integer :: idx8(8), q, idx, p, k, s, d, cl, ns
     logical :: with_body
     call view_aux(c, aux)
     if (with_mass_mom) aux(AUX_M + 1:AUX_M + 4, :) = 0.0_dp
-    if (with_forces) aux(AUX_FB + 1:AUX_FB + 9, :) = 0.0_dp
+    if (with_forces) aux(AUX_FB + 1:AUX_FB + 12, :) = 0.0_dp
+    ! TLmp: V0 P (9 entries) in place of sigma V (6).
+    ns = 6
+    if (c%tl /= 0) then
+      call c_f_pointer(c%pk1, pk1, [9, c%np])
+      ns = 9
+    end if
     call c_f_pointer(c%patch_start, pstart, [c%npatch + 1])
     call c_f_pointer(c%patch_part, ppart, [c%np])
     call c_f_pointer(c%cell, cell, [c%np])
@@ -135,10 +141,14 @@ contains
         vs = 0.0_dp
         fb = 0.0_dp
         if (with_forces) then
-          volp = vol(p)
-          do s = 1, 6
-            vs(s) = sig(s, p) * volp
-          end do
+          if (c%tl /= 0) then
+            vs = pk1(:, p)
+          else
+            volp = vol(p)
+            do s = 1, 6
+              vs(s) = sig(s, p) * volp
+            end do
+          end if
           if (with_body) call particle_body_force(c, p, fb)
         end if
         do k = 1, 8
@@ -155,8 +165,8 @@ contains
                 aux(AUX_FB + d, idx8(k) + 1) = aux(AUX_FB + d, idx8(k) + 1) + (w(k) * fb(d))
               end do
             end if
-            do s = 1, 6
-              aux(AUX_SV + s, idx8(k) + 1) = aux(AUX_SV + s, idx8(k) + 1) + (w(k) * vs(s))
+            do s = 1, ns
+              aux(AUX_S + s, idx8(k) + 1) = aux(AUX_S + s, idx8(k) + 1) + (w(k) * vs(s))
             end do
           end if
         end do
@@ -210,9 +220,15 @@ contains
                   gx = merge(gs, -gs, cx == i - 1)
                   gy = merge(gs, -gs, cy == j - 1)
                   gz = merge(gs, -gs, cz == k - 1)
-                  fx = -(((aux(AUX_SV + 1, cell) * gx) + (aux(AUX_SV + 6, cell) * gy)) + (aux(AUX_SV + 5, cell) * gz))
-                  fy = -(((aux(AUX_SV + 6, cell) * gx) + (aux(AUX_SV + 2, cell) * gy)) + (aux(AUX_SV + 4, cell) * gz))
-                  fz = -(((aux(AUX_SV + 5, cell) * gx) + (aux(AUX_SV + 4, cell) * gy)) + (aux(AUX_SV + 3, cell) * gz))
+                  if (c%tl /= 0) then  ! V0 P: row a gives force component a
+                    fx = -(((aux(AUX_S + 1, cell) * gx) + (aux(AUX_S + 2, cell) * gy)) + (aux(AUX_S + 3, cell) * gz))
+                    fy = -(((aux(AUX_S + 4, cell) * gx) + (aux(AUX_S + 5, cell) * gy)) + (aux(AUX_S + 6, cell) * gz))
+                    fz = -(((aux(AUX_S + 7, cell) * gx) + (aux(AUX_S + 8, cell) * gy)) + (aux(AUX_S + 9, cell) * gz))
+                  else
+                    fx = -(((aux(AUX_S + 1, cell) * gx) + (aux(AUX_S + 6, cell) * gy)) + (aux(AUX_S + 5, cell) * gz))
+                    fy = -(((aux(AUX_S + 6, cell) * gx) + (aux(AUX_S + 2, cell) * gy)) + (aux(AUX_S + 4, cell) * gz))
+                    fz = -(((aux(AUX_S + 5, cell) * gx) + (aux(AUX_S + 4, cell) * gy)) + (aux(AUX_S + 3, cell) * gz))
+                  end if
                   f(1) = f(1) + ((0.125_dp * aux(AUX_FB + 1, cell)) + fx)
                   f(2) = f(2) + ((0.125_dp * aux(AUX_FB + 2, cell)) + fy)
                   f(3) = f(3) + ((0.125_dp * aux(AUX_FB + 3, cell)) + fz)

@@ -100,6 +100,8 @@ if(TARGET mpm3d AND TARGET mpm3d_ref)
   # public Cook membrane and the one-dimensional detonation.
   fref_deck(cook_membrane_sgmp ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/cook_membrane_sgmp.mpm)
   fref_deck(sg_usf_blocks ${CMAKE_SOURCE_DIR}/tests/decks/sg_usf_blocks.mpm)
+  # sgmp with TLmp: the smoothed-gradient total Lagrangian soft beam (V0 P to the centres).
+  fref_deck(soft_beam_sgtl ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/soft_beam_sgtl.mpm)
   fref_deck(current_cook_sg ${_fref_shared}/current/Cook_membrane_SG5776p_Cookmo_SG.mpm)
   fref_add(fref_current_sgdeto1k_mpm3d_ref ref ${_fref_shared}/current/SGDeto1k.mpm)
   # The current version's null water with its weakly compressible EOS, sgmp: the dam break.

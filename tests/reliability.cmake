@@ -22,6 +22,7 @@ mpm3d_restart_test(gimp_contact_usf ${CMAKE_SOURCE_DIR}/fortran_ref/testdecks/gi
 # recomputed every step, V0 P of TLmp, the quasi-static ramp and damping, drda.
 mpm3d_restart_test(free_soft_beam ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/free_soft_beam_coarse.mpm 120 50)
 mpm3d_restart_test(soft_beam_tl ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/soft_beam_tl.mpm 120 50)
+mpm3d_restart_test(soft_beam_sgtl ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/soft_beam_sgtl.mpm 120 50)
 mpm3d_restart_test(cantilever_quasi_static ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/cantilever_quasi_static.mpm 120 50)
 mpm3d_restart_test(plate_hole_drda ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/plate_hole_drda.mpm 120 50)
 mpm3d_restart_test(cook_membrane_bimp ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/cook_membrane_bimp.mpm 120 50)

@@ -296,19 +296,21 @@ TEST(DataIn, RepeatedOutrIsWrittenOnce) {
   EXPECT_NE(m.warnings[0].find("'outr pres' given again"), std::string::npos) << m.warnings[0];
 }
 
-// sgmp: smoothed-gradient MPM through the cell centres, two fixed node layers; what it
-// does not combine with is refused naming both keywords (TLmp with sgmp: not built yet).
+// sgmp: smoothed-gradient MPM through the cell centres, two fixed node layers, also total
+// Lagrangian (TLmp); what it does not combine with is refused naming both keywords.
 TEST(DataIn, SmoothedGradientDeckAndItsRefusals) {
   const mpm3d::Model sg = mpm3d::read_deck_text(deck("1 neoh 1100 17e6 0.3", "sgmp\n"), "s.mpm");
   EXPECT_TRUE(sg.sg);
   EXPECT_EQ(sg.shape(), 0);
   EXPECT_EQ(sg.fix_layers(), 2);
+  const mpm3d::Model sgtl = mpm3d::read_deck_text(deck("1 neoh 1100 17e6 0.3", "TLmp\nsgmp\n"), "st.mpm");
+  EXPECT_TRUE(sgtl.sg);
+  EXPECT_TRUE(sgtl.tl);
   struct Case {
     const char* extra;
     const char* word;
   } cases[] = {{"sgmp\ngimp\n", "'sgmp' with 'gimp'"},
                {"bimp\nsgmp\n", "'sgmp' with 'bimp'"},
-               {"TLmp\nsgmp\n", "'sgmp' with 'TLmp'"},
                {"sgmp\nadgr 5\n", "'sgmp' with 'adgr'"}};
   for (const auto& c : cases) {
     try {

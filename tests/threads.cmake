@@ -35,6 +35,7 @@ mpm3d_thread_test(neo_block_gimp ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/neo_blo
 mpm3d_thread_test(cantilever_quasi_static ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/cantilever_quasi_static.mpm 300)
 mpm3d_thread_test(plate_hole_drda ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/plate_hole_drda.mpm 300)
 mpm3d_thread_test(soft_beam_tl ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/soft_beam_tl.mpm 400)
+mpm3d_thread_test(soft_beam_sgtl ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/soft_beam_sgtl.mpm 400)
 mpm3d_thread_test(current_soft_beam_tl ${CMAKE_SOURCE_DIR}/../shared/decks/current/SoftBeam_SBTL_0p1mesh_SBTL.mpm 300)
 mpm3d_thread_test(current_free_soft_beam ${CMAKE_SOURCE_DIR}/../shared/decks/current/FreeSoftBeam_MPM_v0p3_FreeSB_MPM.mpm 300)
 # B-spline MPM (bimp) with the current version's two fixed node layers.
