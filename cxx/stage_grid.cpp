@@ -3,36 +3,67 @@
 #include <cmath>
 #include <cstddef>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include "stage_common.hpp"
 #include "update_step.hpp"
 
 namespace mpm3d {
 
+// Faces holding more nodes than this are cleared by a team, face by face (a one-cell-thick
+// deck's faces hold every node); smaller ones on the calling thread, where a team's fork
+// and join cost more than it saves (docs/PERFORMANCE.md).
+constexpr long kParallelBcNodes = 16384;
+
 void apply_bc(const StepContext* c, double* a) {
-  for (int face = 0; face < 6; ++face) {
-    const int kind = c->fix[face];
-    if (kind == 0) continue;
-    const int axis = face / 2;
+  const int layers = c->fix_layers > 1 ? c->fix_layers : 1;  // 0 (unset) means 1
+  // Node (ju, jw) of node layer `layer` of a face.
+  auto clear = [&](int face, int layer, int ju, int jw) {
+    const int kind = c->fix[face], axis = face / 2;
     const int u = (axis + 1) % 3, w = (axis + 2) % 3;
-    const int layers = c->fix_layers > 1 ? c->fix_layers : 1;  // 0 (unset) means 1
-    for (int layer = 0; layer < layers; ++layer) {
-      const int fixed_index = (face % 2 == 0) ? layer : c->nn[axis] - 1 - layer;
-      for (int jw = 0; jw < c->nn[w]; ++jw)
-        for (int ju = 0; ju < c->nn[u]; ++ju) {
-          int idx[3];
-          idx[axis] = fixed_index;
-          idx[u] = ju;
-          idx[w] = jw;
-          const int n = idx[0] + c->nn[0] * (idx[1] + c->nn[1] * idx[2]);
-          if (kind == 1) {
-            a[3 * n + 0] = 0.0;
-            a[3 * n + 1] = 0.0;
-            a[3 * n + 2] = 0.0;
-          } else {
-            a[3 * n + axis] = 0.0;
-          }
-        }
+    int idx[3];
+    idx[axis] = (face % 2 == 0) ? layer : c->nn[axis] - 1 - layer;
+    idx[u] = ju;
+    idx[w] = jw;
+    const int n = idx[0] + c->nn[0] * (idx[1] + c->nn[1] * idx[2]);
+    if (kind == 1) {
+      a[3 * n + 0] = 0.0;
+      a[3 * n + 1] = 0.0;
+      a[3 * n + 2] = 0.0;
+    } else {
+      a[3 * n + axis] = 0.0;
     }
+  };
+  auto face_nodes = [&](int face) { return long(c->nn[(face / 2 + 1) % 3]) * c->nn[(face / 2 + 2) % 3]; };
+  long held = 0;
+  for (int face = 0; face < 6; ++face)
+    if (c->fix[face] != 0) held += layers * face_nodes(face);
+  int threads = 1;
+#ifdef _OPENMP
+  threads = omp_get_max_threads();
+#endif
+  if (threads > 1 && held > kParallelBcNodes) {
+#pragma omp parallel
+    for (int face = 0; face < 6; ++face) {
+      if (c->fix[face] == 0) continue;
+      const int nu = c->nn[(face / 2 + 1) % 3], nw = c->nn[(face / 2 + 2) % 3];
+      // One face at a time (the barrier closing the loop): faces share their edges' nodes.
+      for (int layer = 0; layer < layers; ++layer) {
+#pragma omp for collapse(2) schedule(static)
+        for (int jw = 0; jw < nw; ++jw)
+          for (int ju = 0; ju < nu; ++ju) clear(face, layer, ju, jw);
+      }
+    }
+    return;
+  }
+  for (int face = 0; face < 6; ++face) {
+    if (c->fix[face] == 0) continue;
+    const int nu = c->nn[(face / 2 + 1) % 3], nw = c->nn[(face / 2 + 2) % 3];
+    for (int layer = 0; layer < layers; ++layer)
+      for (int jw = 0; jw < nw; ++jw)
+        for (int ju = 0; ju < nu; ++ju) clear(face, layer, ju, jw);
   }
 }
 

@@ -36,6 +36,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 import hypervelocity as H  # noqa: E402
 import soft_beam as SB  # noqa: E402
+import soft_cantilever as SC  # noqa: E402
 import cook_membrane as CM  # noqa: E402
 import dam_break as DB  # noqa: E402
 import verification as V  # noqa: E402
@@ -930,6 +931,8 @@ class Suite:
         L += H.section_lines()
         # The free soft beam (tools/soft_beam.py: docs/verification/soft_beam.csv)
         L += SB.section_lines()
+        # The soft cantilever, TLmp with and without sgmp (tools/soft_cantilever.py)
+        L += SC.section_lines()
         # Cook's membrane (tools/cook_membrane.py: docs/verification/cook_membrane.csv)
         L += CM.section_lines()
         # The dam break against Martin & Moyce (tools/dam_break.py: docs/verification/dam_break.csv)
@@ -1185,6 +1188,8 @@ def main():
     H.make_plot()
     s.log("free soft beam: tools/soft_beam.py")
     SB.run(s.build, s.threads)
+    s.log("soft cantilever: tools/soft_cantilever.py")
+    SC.run(s.build, s.threads)
     s.log("Cook's membrane: tools/cook_membrane.py")
     CM.run(s.build, s.threads)
     s.log("dam break: tools/dam_break.py")
