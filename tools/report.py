@@ -205,28 +205,35 @@ class Suite:
         fig.savefig(os.path.join(self.vdir, "vibrating_bar.png"), dpi=90)
         plt.close(fig)
 
+    def mms_runs(self, rows, case, label, shapes, ns, A, K=1, free=False, prefix="mms"):
+        """The manufactured solution with amplitude A and profile sin(2 pi X)^K (free: free
+        faces on a wider grid) for each shape and resolution: its rows, and the convergence
+        rows of `case`."""
+        for shape in shapes:
+            for n in ns:
+                r = self.run(V.mms_deck(n, shape=shape, free=free), f"{prefix}_{shape}_{n}", V.mms_args(A, K))
+                if r.skipped:
+                    self.skip(label, shape, r)
+                    break
+                if r.status != "ok":
+                    rows.append(dict(A=A, shape=shape, n=n, status=r.status, message=r.message))
+                    continue
+                a = V.mms_analyse(r, A, K)
+                rows.append(self.add_conv(case, shape, n, 1.0 / n, r, a["error"],
+                                          "RMS over particles of |u - u_exact| / A at t = 1.5",
+                                          dict(error_max=a["error_max"], A=A, max_disp_cells=A * n,
+                                               check_step=r.info.get("energy_check_first_step", -1))))
+
+    MMS_FIELDS = ["A", "shape", "n", "particles", "steps", "wall_seconds", "error", "error_max", "max_disp_cells",
+                  "check_step", "status"]
+
     def mms(self):
         self.mms_rows = []
         for A, ns in ((0.001, (8, 16) if self.quick else (8, 16, 24, 32)),
                       (0.01, (8, 16) if self.quick else (8, 16, 24, 32, 48))):
-            for shape in (METHODS if A == 0.001 else SHAPES):
-                for n in ns:
-                    r = self.run(V.mms_deck(n, shape=shape), f"mms_{A:g}_{shape}_{n}", V.mms_args(A))
-                    if r.skipped:
-                        self.skip("manufactured solution", shape, r)
-                        break
-                    if r.status != "ok":
-                        self.mms_rows.append(dict(A=A, shape=shape, n=n, status=r.status, message=r.message))
-                        continue
-                    a = V.mms_analyse(r, A)
-                    row = self.add_conv(f"manufactured solution (3D, A = {A:g})", shape, n, 1.0 / n, r,
-                                        a["error"], "RMS over particles of |u - u_exact| / A at t = 1.5",
-                                        dict(error_max=a["error_max"], A=A, max_disp_cells=A * n,
-                                             check_step=r.info.get("energy_check_first_step", -1)))
-                    self.mms_rows.append(row)
-        write_csv(os.path.join(self.vdir, "mms.csv"), self.mms_rows,
-                  ["A", "shape", "n", "particles", "steps", "wall_seconds", "error", "error_max", "max_disp_cells",
-                   "check_step", "status"])
+            self.mms_runs(self.mms_rows, f"manufactured solution (3D, A = {A:g})", "manufactured solution",
+                          METHODS if A == 0.001 else SHAPES, ns, A, prefix=f"mms_{A:g}")
+        write_csv(os.path.join(self.vdir, "mms.csv"), self.mms_rows, self.MMS_FIELDS)
 
     def mms_smooth(self):
         """u_a = A sin(2 pi X_a)^3 sin(C pi t), nu = 0, traction-free faces on a grid two cells
@@ -234,25 +241,9 @@ class Suite:
         method shows (the roller cube above holds node layers that the 27-node stencils place
         inside the body)."""
         self.mms_smooth_rows = []
-        A = 0.001
-        for shape in METHODS:
-            for n in ((8, 16) if self.quick else (8, 16, 24, 32)):
-                r = self.run(V.mms_deck(n, shape=shape, free=True), f"mms3_{shape}_{n}", V.mms_args(A, 3))
-                if r.skipped:
-                    self.skip("smooth manufactured solution", shape, r)
-                    break
-                if r.status != "ok":
-                    self.mms_smooth_rows.append(dict(A=A, shape=shape, n=n, status=r.status, message=r.message))
-                    continue
-                a = V.mms_analyse(r, A, 3)
-                row = self.add_conv(SMOOTH_MMS, shape, n, 1.0 / n, r, a["error"],
-                                    "RMS over particles of |u - u_exact| / A at t = 1.5",
-                                    dict(error_max=a["error_max"], A=A, max_disp_cells=A * n,
-                                         check_step=r.info.get("energy_check_first_step", -1)))
-                self.mms_smooth_rows.append(row)
-        write_csv(os.path.join(self.vdir, "mms_smooth.csv"), self.mms_smooth_rows,
-                  ["A", "shape", "n", "particles", "steps", "wall_seconds", "error", "error_max", "max_disp_cells",
-                   "check_step", "status"])
+        self.mms_runs(self.mms_smooth_rows, SMOOTH_MMS, "smooth manufactured solution", METHODS,
+                      (8, 16) if self.quick else (8, 16, 24, 32), 0.001, K=3, free=True, prefix="mms3")
+        write_csv(os.path.join(self.vdir, "mms_smooth.csv"), self.mms_smooth_rows, self.MMS_FIELDS)
 
     def waves(self):
         self.wave_rows = []
