@@ -13,10 +13,11 @@ volume, as in the public deck; the right column carries the load (half at its tw
   cook_membrane.py study MPM3D OUTDIR      run every method at h = 4, 2, 1 and write the
                                            table of tip displacements (OUTDIR/cook.md)
 """
-import math
 import os
 import subprocess
 import sys
+
+from study_csv import read_dicts
 
 WIDTH, LEFT_H, RIGHT_LO, RIGHT_HI = 48.0, 44.0, 44.0, 60.0
 AREA = WIDTH * ((LEFT_H + (RIGHT_HI - RIGHT_LO)) / 2.0)  # 1440
@@ -150,14 +151,10 @@ def tip_of(rows, method):
 
 def section_lines():
     """The report's section (docs/VERIFICATION.md) from docs/verification/cook_membrane.csv."""
-    import csv
-    import datetime
     L = ["## Cook's membrane: the locking remedies under refinement", ""]
-    if not os.path.exists(CSV):
+    rows, when = read_dicts(CSV)
+    if rows is None:
         return L + ["Not run (`python3 tools/cook_membrane.py study build/cxx/mpm3d DIR`).", ""]
-    with open(CSV) as f:
-        rows = list(csv.DictReader(f))
-    when = datetime.datetime.utcfromtimestamp(os.path.getmtime(CSV)).strftime("%Y-%m-%d")
     L += ["`tools/cook_membrane.py` (run %s, 2 threads): the trapezoid (0,0) (48,44) (48,60) (0,44), "
           "clamped at x = 0, a vertical force of 1 on its right edge ramped over t = 15 (`QuLo`), damped "
           "(`Damp 0.3`), neo-Hookean with E 70, nu 0.499, rho 1, one particle layer in plane strain, two "

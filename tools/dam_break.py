@@ -21,6 +21,8 @@ import os
 import subprocess
 import sys
 
+from study_csv import read_dicts
+
 A, G = 1.0, 9.81
 CELLS = (0.25, 0.125, 0.0625)
 END = 0.68
@@ -146,13 +148,10 @@ def plot(runs):
 
 def section_lines():
     """The report's section (docs/VERIFICATION.md) from docs/verification/dam_break.csv."""
-    import datetime
     L = ["## Dam break: the surge front against Martin & Moyce", ""]
-    if not os.path.exists(CSV):
+    rows, when = read_dicts(CSV)
+    if rows is None:
         return L + ["Not run (`make report`).", ""]
-    with open(CSV) as f:
-        rows = list(csv.DictReader(f))
-    when = datetime.datetime.utcfromtimestamp(os.path.getmtime(CSV)).strftime("%Y-%m-%d")
     cells = sorted({float(r["dcell"]) for r in rows}, reverse=True)
     ok = [r for r in rows if r["T"]]
     info = {float(r["dcell"]): r for r in ok}

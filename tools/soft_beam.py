@@ -15,12 +15,13 @@ the real beam somewhat softer than that (Timoshenko: a few per cent longer perio
 Writes docs/verification/soft_beam.csv; section_lines() turns it into the report's section.
 """
 import argparse
-import csv
 import math
 import os
 import subprocess
 import sys
 import tempfile
+
+from study_csv import read_dicts, write_dicts
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CSV = os.path.join(ROOT, "docs", "verification", "soft_beam.csv")
@@ -130,22 +131,15 @@ def run(build, threads=2):
                      "theory": theory_period(nu)})
         print(f"soft_beam: nu {nu} {method}: period {t:.4f} s ({n} crossings), amplitude last/first {amp:.3f}, "
               f"Euler-Bernoulli {theory_period(nu):.4f} s")
-    os.makedirs(os.path.dirname(CSV), exist_ok=True)
-    with open(CSV, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
-        w.writeheader()
-        w.writerows(rows)
+    write_dicts(CSV, rows)
     return rows
 
 
 def section_lines():
     L_ = ["## Free soft beam: vibration period and volumetric locking", ""]
-    if not os.path.exists(CSV):
+    rows, when = read_dicts(CSV)
+    if rows is None:
         return L_ + ["Not run (`python3 tools/soft_beam.py build`).", ""]
-    with open(CSV) as f:
-        rows = list(csv.DictReader(f))
-    import datetime
-    when = datetime.datetime.utcfromtimestamp(os.path.getmtime(CSV)).strftime("%Y-%m-%d")
     L_ += ["The current MPM3D-F90's free soft beam (`tools/soft_beam.py`): a neo-Hookean beam 1 x 6 in "
            "plane strain, E 17 MPa, rho 1100, free at both ends, started with `vsin 1`; 2,400 particles "
            "(spacing 0.05, cells 0.1), MUSL: standard MPM (trilinear), the smoothed-gradient MPM (`sgmp`) and "

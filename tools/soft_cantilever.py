@@ -12,11 +12,12 @@ usage: tools/soft_cantilever.py BUILD_DIR [--threads N]   (make report calls run
 section_lines(); writes docs/verification/soft_cantilever.csv)
 """
 import argparse
-import csv
 import os
 import subprocess
 import sys
 import tempfile
+
+from study_csv import read_dicts, write_dicts
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CSV = os.path.join(ROOT, "docs", "verification", "soft_cantilever.csv")
@@ -86,22 +87,15 @@ def run(build, threads=2):
                         "t_peak": t_peak, "t_back": t_back})
             print(f"soft_cantilever: nu {nu} {out[-1]['method']}: tip {lo:.3f} .. {hi:.3f}, peak at {t_peak:.3f} s, "
                   f"back through zero at {t_back:.3f} s")
-    os.makedirs(os.path.dirname(CSV), exist_ok=True)
-    with open(CSV, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(out[0].keys()))
-        w.writeheader()
-        w.writerows(out)
+    write_dicts(CSV, out)
     return out
 
 
 def section_lines():
     L = ["## Soft cantilever: total Lagrangian MPM with and without the smoothed gradient", ""]
-    if not os.path.exists(CSV):
+    rows, when = read_dicts(CSV)
+    if rows is None:
         return L + ["Not run (`python3 tools/soft_cantilever.py build`).", ""]
-    with open(CSV) as f:
-        rows = list(csv.DictReader(f))
-    import datetime
-    when = datetime.datetime.utcfromtimestamp(os.path.getmtime(CSV)).strftime("%Y-%m-%d")
     L += ["`tools/soft_cantilever.py` (run %s, 2 threads): the current MPM3D-F90's soft beam (after Kadapa "
           "2019): a neo-Hookean beam 1 x 6 in plane strain, E 17 MPa, rho 1100, clamped at y = 0 and started "
           "with v_x = 10 m/s everywhere; 2,400 particles (spacing 0.05, cells 0.1), MUSL, `smoo`, `UVFp`, "
