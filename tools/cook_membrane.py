@@ -17,7 +17,7 @@ import os
 import subprocess
 import sys
 
-from study_csv import read_dicts
+from study import read_dicts
 
 WIDTH, LEFT_H, RIGHT_LO, RIGHT_HI = 48.0, 44.0, 44.0, 60.0
 AREA = WIDTH * ((LEFT_H + (RIGHT_HI - RIGHT_LO)) / 2.0)  # 1440

@@ -21,7 +21,7 @@ import os
 import subprocess
 import sys
 
-from study_csv import read_dicts
+from study import read_dicts
 
 A, G = 1.0, 9.81
 CELLS = (0.25, 0.125, 0.0625)

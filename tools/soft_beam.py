@@ -17,11 +17,9 @@ Writes docs/verification/soft_beam.csv; section_lines() turns it into the report
 import argparse
 import math
 import os
-import subprocess
 import sys
-import tempfile
 
-from study_csv import read_dicts, write_dicts
+from study import deck_run, read_dicts, write_dicts
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CSV = os.path.join(ROOT, "docs", "verification", "soft_beam.csv")
@@ -118,14 +116,7 @@ def run(build, threads=2):
     rows = []
     for nu, method in ((0.3, "MPM"), (0.499, "MPM"), (0.3, "sgmp"), (0.499, "sgmp"), (0.3, "bimp"),
                        (0.499, "bimp")):
-        with tempfile.TemporaryDirectory() as work:
-            path = os.path.join(work, "beam.mpm")
-            with open(path, "w") as f:
-                f.write(deck(nu, method))
-            p = subprocess.run([mpm3d, "--threads", str(threads), "--quiet", "--out-dir", work, path],
-                               capture_output=True, text=True)
-            if p.returncode != 0:
-                sys.exit(f"soft_beam: mpm3d failed on nu {nu} {method}: {p.stderr.strip()}")
+        with deck_run(mpm3d, deck(nu, method), threads, f"soft_beam: nu {nu} {method}") as work:
             t, n, amp = measured_period(work)
         rows.append({"nu": nu, "method": method, "period": t, "crossings": n, "amplitude_ratio": amp,
                      "theory": theory_period(nu)})

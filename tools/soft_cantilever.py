@@ -13,11 +13,8 @@ section_lines(); writes docs/verification/soft_cantilever.csv)
 """
 import argparse
 import os
-import subprocess
-import sys
-import tempfile
 
-from study_csv import read_dicts, write_dicts
+from study import deck_run, read_dicts, write_dicts
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CSV = os.path.join(ROOT, "docs", "verification", "soft_cantilever.csv")
@@ -74,14 +71,7 @@ def run(build, threads=2):
     out = []
     for nu in (0.3, 0.499):
         for sg in (False, True):
-            with tempfile.TemporaryDirectory() as work:
-                path = os.path.join(work, "beam.mpm")
-                with open(path, "w") as f:
-                    f.write(deck(nu, sg))
-                p = subprocess.run([mpm3d, "--threads", str(threads), "--quiet", "--out-dir", work, path],
-                                   capture_output=True, text=True)
-                if p.returncode != 0:
-                    sys.exit(f"soft_cantilever: mpm3d failed on nu {nu} sg {sg}: {p.stderr.strip()}")
+            with deck_run(mpm3d, deck(nu, sg), threads, f"soft_cantilever: nu {nu} sg {sg}") as work:
                 hi, lo, t_peak, t_back = measures(os.path.join(work, "beam_curv.dat"))
             out.append({"nu": nu, "method": "TLmp + sgmp" if sg else "TLmp", "tip_max": hi, "tip_min": lo,
                         "t_peak": t_peak, "t_back": t_back})
