@@ -216,8 +216,26 @@ std::string json_number(double v) {
   return b;
 }
 
-int run_main(int argc, char** argv) {
+// What several ranks cannot run yet (cxx/ranks_mpi.cpp): the first such feature, or "".
+std::string not_distributed(const Options& opt, const Model& m) {
+  if (!opt.kernel.empty() || !opt.kernels.empty()) return "--kernel/--kernels (the Fortran stages)";
+  if (!opt.no_output || opt.hdf5 || m.hdf5) return "the animation, curve and log files (give --no-output)";
+  if (!opt.checkpoint.empty() || opt.checkpoint_every > 0 || !opt.restart.empty()) return "checkpoints and restarts";
+  if (opt.particle_order == "deck") return "--particle-order deck";
+  if (m.regrid_every > 0) return "the adaptive grid (adgr, --regrid-every)";
+  if (m.contact) return "contact (cont)";
+  if (m.sg) return "sgmp";
+  if (m.shape() != 0) return m.gimp ? "GIMP" : "B-spline shape functions (bimp)";
+  if (m.tl) return "TLmp";
+  return "";
+}
+
+int run_main(int argc, char** argv, Ranks* ranks) {
   Options opt;
+  // Errors every rank meets alike (usage, deck, refusals) are printed by the root only.
+  const bool root = !ranks || ranks->root();
+  static std::ostream silent(nullptr);
+  std::ostream& err = root ? std::cerr : silent;
   try {
     bool exit_now;
     opt = parse_args(argc, argv, exit_now);
@@ -226,12 +244,13 @@ int run_main(int argc, char** argv) {
     if (!opt.kernel.empty()) select_stages(probe, opt.kernel, false);
     if (!opt.kernels.empty()) select_stages(probe, opt.kernels, true);
   } catch (const UsageError& e) {
-    std::cerr << "mpm3d: " << e.what() << " (see --help)\n";
+    err << "mpm3d: " << e.what() << " (see --help)\n";
     return 2;
   } catch (const std::exception& e) {  // bad --kernel/--kernels
-    std::cerr << "mpm3d: " << e.what() << "\n";
+    err << "mpm3d: " << e.what() << "\n";
     return 2;
   }
+  bool stepping = false;  // from the first step on, an error may be one rank's alone
   try {
     Model model = read_deck(opt.deck);
     if (opt.regrid_every >= 0) model.regrid_every = int(opt.regrid_every);
@@ -240,6 +259,11 @@ int run_main(int argc, char** argv) {
       throw std::runtime_error(opt.deck + ": --regrid-every with 'sgmp': the cell-centre grid of sgmp does not move");
     if (model.tl && model.regrid_every > 0)
       throw std::runtime_error(opt.deck + ": --regrid-every with 'TLmp': the reference grid of TLmp cannot move");
+    if (ranks) {
+      const std::string no = not_distributed(opt, model);
+      if (!no.empty())
+        throw std::runtime_error(opt.deck + ": " + no + " cannot run on several MPI ranks yet (run on one rank, with --threads)");
+    }
     {  // --out-dir: created (with its parents) when missing
       std::error_code ec;
       std::filesystem::create_directories(opt.out_dir, ec);
@@ -269,6 +293,8 @@ int run_main(int argc, char** argv) {
     Simulation sim(std::move(model), patch_cells,
                    opt.particle_order == "deck" ? ParticleOrder::deck : ParticleOrder::blocks);
     sim.strict_energy = opt.strict_energy;
+    if (ranks) sim.distribute(*ranks);
+    if (!root) opt.quiet = true;  // the root reports for every rank
     {
       StageTable t = cxx_stages();
       if (!opt.kernel.empty()) select_stages(t, opt.kernel, false);
@@ -285,7 +311,7 @@ int run_main(int argc, char** argv) {
     if (!opt.no_output || series) out.open(m, opt.out_dir, !opt.no_output, series, restarted ? &resume : nullptr);
     install_signal_handlers();
     std::ostringstream head;
-    head << "MPM3D-CXX: " << m.title << "\n  deck " << opt.deck << ", " << m.particles.np << " particles, "
+    head << "MPM3D-CXX: " << m.title << "\n  deck " << opt.deck << ", " << sim.global_np() << " particles, "
          << m.bodies.size() << " bodies, " << m.nmat << " materials\n  grid " << sim.grid.deck_nc[0] << " x "
          << sim.grid.deck_nc[1] << " x " << sim.grid.deck_nc[2] << " cells of " << m.dcell << ", patches of "
          << sim.grid.patch_cells << "^3 cells";
@@ -293,6 +319,7 @@ int run_main(int argc, char** argv) {
     head << "\n  scheme "
          << (m.scheme == SCHEME_MUSL ? "MUSL" : m.scheme == SCHEME_USL ? "USL" : "USF") << ", dt " << m.dt
          << ", end time " << end_time << ", threads " << threads;
+    if (ranks) head << " on each of " << ranks->size() << " MPI ranks";
     if (restarted) head << "\n  restarted from " << opt.restart << " at step " << sim.steps << ", t " << sim.time;
     if (opt.patch_given && restarted && opt.patch_cells != patch_cells)
       head << "\n  warning: --patch-cells ignored: a restart keeps the checkpoint's " << patch_cells;
@@ -334,6 +361,7 @@ int run_main(int argc, char** argv) {
     int interrupted = 0;
     // QuLo without --end-time: on past the end time until the load has settled.
     const bool settle = m.load_ramp_time > 0.0 && opt.end_time <= 0.0;
+    stepping = true;
     while ((settle ? !sim.quasi_static_done() : sim.time < end_time - eps) &&
            (opt.max_steps < 0 || sim.steps < opt.max_steps)) {
       const auto t0 = std::chrono::steady_clock::now();
@@ -370,8 +398,9 @@ int run_main(int argc, char** argv) {
         if (!opt.quiet) std::cout << line << std::endl;
       }
       if (opt.checkpoint_every > 0 && sim.steps % opt.checkpoint_every == 0) save_checkpoint(ckpt_path);
-      if (g_signal) {
-        interrupted = int(g_signal);
+      const int sig = ranks ? -ranks->min(-int(g_signal)) : int(g_signal);  // every rank stops at one step
+      if (sig) {
+        interrupted = sig;
         break;
       }
     }
@@ -384,6 +413,12 @@ int run_main(int argc, char** argv) {
     } else if (!ckpt_path.empty() && last_ckpt != sim.steps) {
       save_checkpoint(ckpt_path);
     }
+    if (ranks && (!opt.state.empty() || !opt.summary.empty())) {
+      // The whole particle set on the root, for the state file and the summary.
+      Particles all;
+      ranks->gather(m.particles, all);
+      if (root) std::swap(sim.model.particles, all);
+    }
     const Particles& P = m.particles;
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (int p = 0; p < P.np; ++p) {
@@ -394,7 +429,7 @@ int run_main(int argc, char** argv) {
       }
     }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
-    const double ns = steps_run > 0 ? step_seconds * 1e9 / (double(P.np) * double(steps_run)) : 0.0;
+    const double ns = steps_run > 0 ? step_seconds * 1e9 / (double(sim.global_np()) * double(steps_run)) : 0.0;
     std::vector<std::string> warnings = m.warnings;
     if (sim.outside > 0)
       warnings.push_back(std::to_string(sim.outside) + " particles left the grid and were frozen");
@@ -409,12 +444,17 @@ int run_main(int argc, char** argv) {
       warnings.push_back(stop_note);
     }
     // The state file holds the final state: not written when a signal stopped the run.
-    if (!opt.state.empty() && !interrupted) write_state_h5(opt.state, m, sim.time, sim.steps, m.dt);
-    if (!opt.summary.empty()) {
+    if (!opt.state.empty() && !interrupted && root) write_state_h5(opt.state, m, sim.time, sim.steps, m.dt);
+    // The most any rank sent per step (a collective: before the root alone writes).
+    const double rank_bytes = ranks ? ranks->max(ranks->bytes_sent() / double(std::max(steps_run, 1L))) : 0.0;
+    if (!opt.summary.empty() && root) {
       std::ostringstream js;
       js << "{\n  \"deck\": \"" << json_escape(opt.deck) << "\",\n  \"title\": \"" << json_escape(m.title)
          << "\",\n  \"particles\": " << P.np << ",\n  \"steps\": " << sim.steps << ",\n  \"time\": " << json_number(sim.time)
          << ",\n  \"dt_min\": " << json_number(dt_min) << ",\n  \"dt_max\": " << json_number(dt_max) << ",\n  \"threads\": " << threads
+         << ",\n  \"ranks\": " << (ranks ? ranks->size() : 1)
+         << ",\n  \"rank_imbalance\": " << json_number(ranks ? ranks->imbalance() : 1.0)
+         << ",\n  \"rank_bytes_sent_per_step\": " << json_number(rank_bytes)
          << ",\n  \"wall_seconds\": " << json_number(wall) << ",\n  \"ns_per_particle_step\": " << json_number(ns)
          << ",\n  \"kinetic_energy\": " << json_number(sim.kinetic) << ",\n  \"internal_energy\": " << json_number(sim.internal)
          << ",\n  \"initial_total_energy\": " << json_number(sim.initial_total_energy) << ",\n  \"momentum\": ["
@@ -459,19 +499,23 @@ int run_main(int argc, char** argv) {
     if (!stop_note.empty() || !failure.empty()) out.log(stop_note.empty() ? failure : stop_note);
     out.close();
     if (!failure.empty()) {
-      std::cerr << "mpm3d: " << failure << "\n";
+      err << "mpm3d: " << failure << "\n";
       return 3;
     }
     if (interrupted) {
-      std::cerr << "mpm3d: " << stop_note << "\n";
+      err << "mpm3d: " << stop_note << "\n";
       return 128 + interrupted;
     }
     return 0;
   } catch (const DeckError& e) {
-    std::cerr << "mpm3d: " << e.what() << "\n";
+    err << "mpm3d: " << e.what() << "\n";
     return 1;
   } catch (const std::exception& e) {
-    std::cerr << "mpm3d: " << opt.deck << ": " << e.what() << "\n";
+    if (ranks && stepping) {  // this rank's alone: the others would wait for it
+      std::cerr << "mpm3d: rank " << ranks->rank() << ": " << opt.deck << ": " << e.what() << std::endl;
+      ranks->abort(1);
+    }
+    err << "mpm3d: " << opt.deck << ": " << e.what() << "\n";
     return 1;
   }
 }

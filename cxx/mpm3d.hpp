@@ -5,8 +5,12 @@
 
 namespace mpm3d {
 
-// Command-line driver (used by main): returns the process exit code.
-int run_main(int argc, char** argv);
+// Command-line driver (used by main): returns the process exit code. ranks: the other
+// processes of a distributed run (cxx/ranks.hpp), or null.
+int run_main(int argc, char** argv, Ranks* ranks = nullptr);
+// The program's entry with MPI (cxx/ranks_mpi.cpp, built with MPM3D_MPI): run_main on every
+// rank when started by mpirun, else run_main alone (MPI never initialised).
+int run_main_mpi(int argc, char** argv);
 
 // JSON text of the summary files: a string's content (quotes and backslashes escaped,
 // control characters as spaces) and a number (shortest round-trip form, null when not

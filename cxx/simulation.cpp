@@ -260,6 +260,20 @@ void Simulation::set_grid(const double origin[3], double h, const int deck_nc[3]
   bind();
 }
 
+void Simulation::distribute(Ranks& r) {
+  ranks = &r;
+  r.distribute(*this);
+}
+
+void Simulation::particles_changed() {
+  const size_t np = size_t(model.particles.np);
+  lx_.assign(3 * np, 0.0);
+  cell_.assign(np, -1);
+  grid.patch_part.assign(np, 0);
+  if (model.contact) grid2.patch_part.assign(np, 0);
+  bind();
+}
+
 void Simulation::ensure_patch_buffers() {
   ensure_patch_buffer(ctx, grid);
   if (model.contact) ensure_patch_buffer(ctx2, grid2);
@@ -295,6 +309,7 @@ void Simulation::step() {
     }
   }
   outside = c->noutside + (contact ? ctx2.noutside : 0);
+  if (ranks) outside = int(ranks->sum(outside));
   kinetic = c->result[0];
   internal = c->result[1];
   for (int a = 0; a < 3; ++a) momentum[a] = c->result[2 + a];
@@ -309,12 +324,13 @@ void Simulation::step() {
   health_check();
 }
 
-double Simulation::velocity_time_step() const {
+double Simulation::velocity_time_step() {
   const double* v = model.particles.v.data();
   const long n = 3L * model.particles.np;
   double vmax = 0.0;  // a max: the same bits for any thread count
 #pragma omp parallel for reduction(max : vmax)
   for (long i = 0; i < n; ++i) vmax = std::max(vmax, std::fabs(v[i]));
+  if (ranks) vmax = ranks->max(vmax);
   double dt = std::numeric_limits<double>::infinity();
   for (const MaterialParams& mp : model.mats) dt = std::min(dt, model.dcell / (mp.wave_speed + vmax));
   return dt * model.dtscale;
@@ -341,6 +357,7 @@ void Simulation::bin_stage() {
     regrid(0);
     stage_seconds[ST_BIN] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
+  if (ranks) ranks->migrate(*this);
   run_stage(ST_BIN);
   int escaped = 0;
   if (c->noutside > 0 && !grid.window_is_box()) {
@@ -354,6 +371,7 @@ void Simulation::bin_stage() {
   }
   stats = patch_stats(grid, c->patch_start);
   if (scheduled || escaped > 0) note_regrid(escaped);
+  if (ranks) ranks->add_ghost_slots(*this);  // also the patch statistics of every rank's particles
   ensure_patch_buffers();
 }
 
@@ -382,33 +400,53 @@ void Simulation::measure() {
   for (int a = 0; a < 3; ++a) momentum[a] = ctx.result[2 + a];
 }
 
+template <class F>
+std::string Simulation::about_particle(int deck, F&& format) const {
+  const Particles& P = model.particles;
+  int p = -1;
+  if (P.id.empty()) p = deck < P.np ? deck : -1;
+  else
+    for (int i = 0; i < P.np && p < 0; ++i)
+      if (P.id[size_t(i)] == deck) p = i;
+  std::string text = p >= 0 ? format(p) : std::string();
+  if (!ranks) return text;
+  const int from = ranks->min(p >= 0 ? ranks->rank() : std::numeric_limits<int>::max());
+  return ranks->broadcast(text, from);
+}
+
 // After every step: non-finite values (when an energy sum is not finite), then one pass
 // over the particles for a non-positive volume or a density outside
 // [kDensityRatioMin, kDensityRatioMax] rho0 (parallel, the lowest such deck number is
 // reported, whatever the thread count), then runaway energy. The pass reads two doubles and
-// one int per particle: about 1% of a step.
+// one int per particle: about 1% of a step. On several ranks every decision is a min or a
+// max over the ranks, so that all of them stop at the same step with the same message.
 void Simulation::health_check() {
   const Particles& P = model.particles;
+  constexpr int kNone = std::numeric_limits<int>::max();
+  auto lowest = [&](int deck) { return ranks ? ranks->min(deck) : deck; };
   if (!(std::isfinite(kinetic) && std::isfinite(internal))) {
-    const std::vector<int> at = stored_index(P);
-    for (int i = 0; i < P.np; ++i) {
-      const int p = at[size_t(i)];
-      const char* what = nullptr;
-      for (int a = 0; a < 3 && !what; ++a) {
-        if (!std::isfinite(P.x[3 * size_t(p) + a])) what = "position";
-        else if (!std::isfinite(P.v[3 * size_t(p) + a])) what = "velocity";
+    auto non_finite = [&](int p) -> const char* {
+      for (int a = 0; a < 3; ++a) {
+        if (!std::isfinite(P.x[3 * size_t(p) + a])) return "position";
+        if (!std::isfinite(P.v[3 * size_t(p) + a])) return "velocity";
       }
-      for (int s = 0; s < 6 && !what; ++s)
-        if (!std::isfinite(P.sig[6 * size_t(p) + s])) what = "stress";
-      if (!what && !std::isfinite(P.ie[p])) what = "internal energy";
-      if (!what && !std::isfinite(P.vol[p])) what = "volume";
-      if (what) {
+      for (int s = 0; s < 6; ++s)
+        if (!std::isfinite(P.sig[6 * size_t(p) + s])) return "stress";
+      if (!std::isfinite(P.ie[p])) return "internal energy";
+      if (!std::isfinite(P.vol[p])) return "volume";
+      return nullptr;
+    };
+    int first = kNone;
+    for (int p = 0; p < P.np; ++p)
+      if (non_finite(p)) first = std::min(first, P.deck_number(p));
+    first = lowest(first);
+    if (first != kNone)
+      throw HealthError(about_particle(first, [&](int p) {
         std::ostringstream os;
-        os << "numerical breakdown at step " << steps << " (t = " << time << "): particle " << i + 1 << " (body "
-           << P.body[p] + 1 << ") has a non-finite " << what;
-        throw HealthError(os.str());
-      }
-    }
+        os << "numerical breakdown at step " << steps << " (t = " << time << "): particle " << first + 1 << " (body "
+           << P.body[p] + 1 << ") has a non-finite " << non_finite(p);
+        return os.str();
+      }));
   }
   double ie_min = 0.0;  // the lowest particle internal energy, if negative (a min is exact)
   {
@@ -418,7 +456,7 @@ void Simulation::health_check() {
     const MaterialParams* mats = model.mats.data();
     const int np = P.np;
     const double* ie = P.ie.data();
-    int bad = np;  // the lowest deck number of a particle out of bounds
+    int bad = kNone;  // the lowest deck number of a particle out of bounds
 #pragma omp parallel for schedule(static) reduction(min : bad, ie_min)
     for (int p = 0; p < np; ++p) {
       const double r0v = mats[mat[p]].rho0 * vol[p];
@@ -426,19 +464,22 @@ void Simulation::health_check() {
       if (!ok && P.deck_number(p) < bad) bad = P.deck_number(p);
       if (ie[p] < ie_min) ie_min = ie[p];
     }
-    if (bad < np) {
-      const int p = stored_index(P)[size_t(bad)];
-      std::ostringstream os;
-      os << "numerical breakdown at step " << steps << " (t = " << time << "): particle " << bad + 1 << " (body "
-         << P.body[p] + 1 << ") has ";
-      const double rho0 = mats[mat[p]].rho0;
-      if (!(vol[p] > 0.0))
-        os << "a non-positive volume " << vol[p] << " (crushed: reduce dtscale, or the impact speed is too high for the grid)";
-      else
-        os << "density " << mass[p] / vol[p] << " = " << (mass[p] / vol[p]) / rho0 << " rho0 (rho0 = " << rho0
-           << "), outside the bounds [" << kDensityRatioMin << ", " << kDensityRatioMax << "] rho0";
-      throw HealthError(os.str());
-    }
+    bad = lowest(bad);
+    if (ranks) ie_min = ranks->min(ie_min);
+    if (bad != kNone)
+      throw HealthError(about_particle(bad, [&](int p) {
+        std::ostringstream os;
+        os << "numerical breakdown at step " << steps << " (t = " << time << "): particle " << bad + 1 << " (body "
+           << P.body[p] + 1 << ") has ";
+        const double rho0 = mats[mat[p]].rho0;
+        if (!(vol[p] > 0.0))
+          os << "a non-positive volume " << vol[p]
+             << " (crushed: reduce dtscale, or the impact speed is too high for the grid)";
+        else
+          os << "density " << mass[p] / vol[p] << " = " << (mass[p] / vol[p]) / rho0 << " rho0 (rho0 = " << rho0
+             << "), outside the bounds [" << kDensityRatioMin << ", " << kDensityRatioMax << "] rho0";
+        return os.str();
+      }));
   }
   if (std::isfinite(kinetic) && std::isfinite(internal)) {
     // Runaway energy: the total may not exceed twice the initial energy plus the bound of
@@ -449,22 +490,30 @@ void Simulation::health_check() {
       energy_check(ie_min);
       return;
     }
-    int worst = 0;
+    // The fastest particle, ties to the lowest deck number.
     double vmax = -1.0;
+    int worst = kNone;
     for (int p = 0; p < P.np; ++p) {
       const double* v = &P.v[3 * size_t(p)];
       const double s = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-      if (s > vmax || (s == vmax && P.deck_number(p) < P.deck_number(worst))) {
+      if (s > vmax || (s == vmax && P.deck_number(p) < worst)) {
         vmax = s;
-        worst = p;
+        worst = P.deck_number(p);
       }
     }
-    std::ostringstream os;
-    os << "numerical instability at step " << steps << " (t = " << time << "): total energy " << total
-       << " exceeds twice the initial energy " << initial_total_energy << " plus the external work "
-       << external_work << "; fastest particle " << P.deck_number(worst) + 1 << " (body " << P.body[worst] + 1 << ") at speed "
-       << std::sqrt(vmax) << " (reduce dtscale, or use MUSL)";
-    throw HealthError(os.str());
+    if (ranks) {
+      const double all = ranks->max(vmax);
+      worst = ranks->min(vmax == all ? worst : kNone);
+      vmax = all;
+    }
+    throw HealthError(about_particle(worst, [&](int p) {
+      std::ostringstream os;
+      os << "numerical instability at step " << steps << " (t = " << time << "): total energy " << total
+         << " exceeds twice the initial energy " << initial_total_energy << " plus the external work "
+         << external_work << "; fastest particle " << worst + 1 << " (body " << P.body[p] + 1 << ") at speed "
+         << std::sqrt(vmax) << " (reduce dtscale, or use MUSL)";
+      return os.str();
+    }));
   }
   throw HealthError("numerical breakdown at step " + std::to_string(steps) + ": non-finite energy");
 }
@@ -480,9 +529,16 @@ void Simulation::energy_check(double ie_min) {
   const double bound = kEnergyWarnFraction * (std::fabs(initial_total_energy) + std::fabs(external_work));
   const Particles& P = model.particles;
   std::vector<std::string> found;
-  if (ie_min < 0.0 && double(P.np) * ie_min < -bound) {
+  if (ie_min < 0.0 && double(global_np()) * ie_min < -bound) {
     std::vector<double> body_ie(model.bodies.size(), 0.0);
-    for (int p = 0; p < P.np; ++p) body_ie[size_t(P.body[p])] += P.ie[p];
+    if (ranks) {  // the same serial sums in storage order, on the root
+      Particles all;
+      ranks->gather(P, all);
+      for (int p = 0; p < all.np; ++p) body_ie[size_t(all.body[p])] += all.ie[p];
+      ranks->broadcast(body_ie);
+    } else {
+      for (int p = 0; p < P.np; ++p) body_ie[size_t(P.body[p])] += P.ie[p];
+    }
     body_ie_warned_.resize(body_ie.size(), 0);
     for (size_t b = 0; b < body_ie.size(); ++b) {
       if (body_ie_warned_[b] || !(body_ie[b] < -bound)) continue;

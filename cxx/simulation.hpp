@@ -8,6 +8,7 @@
 
 #include "data_in.hpp"
 #include "grid.hpp"
+#include "ranks.hpp"
 #include "update_step.hpp"
 
 namespace mpm3d {
@@ -77,6 +78,15 @@ class Simulation {
   // Energies and momentum of the current state (the energy stage on its own).
   void measure();
 
+  // A distributed run (cxx/ranks.hpp): the other ranks, or null (one process). distribute
+  // keeps this rank's share of the particles; from then on the model holds those only.
+  Ranks* ranks = nullptr;
+  void distribute(Ranks& r);
+  // The particle set changed size or order (a distributed run's migration): the per-particle
+  // scratch arrays follow and the contexts point at the new arrays.
+  void particles_changed();
+  int global_np() const { return ranks ? ranks->global_np() : model.particles.np; }
+
  private:
   StageTable stages_;
   std::vector<double> lx_, partials_;
@@ -101,11 +111,15 @@ class Simulation {
   void ensure_patch_buffers();
   void health_check();
   void energy_check(double ie_min);
+  // The health check's report on deck particle `deck` (0-based; the lowest of its kind on
+  // every rank), written by format(p) on the rank that stores it as p.
+  template <class F>
+  std::string about_particle(int deck, F&& format) const;
   std::vector<char> body_ie_warned_;
   bool kinetic_warned_ = false;
   double dt_work_of_body_forces() const;
   // The current version's dt from the particle velocities (Model::dt_per_step).
-  double velocity_time_step() const;
+  double velocity_time_step();
 };
 
 }  // namespace mpm3d

@@ -185,6 +185,7 @@ void scatter_p2g(StepContext* c, bool with_mass_mom, bool with_forces) {
 
 void assemble(const StepContext* c, int first, int count, double* dst_mass, double* dst_mom,
               double* dst_force) {
+  if (c->exchange) c->exchange(c, EXCHANGE_BUFFERS, first, count);  // ghost patches' buffers
   if (c->patch_halo > 0)
     assemble_wide(c, first, count, dst_mass, dst_mom, dst_force);
   else if (first == 0 && count == 7)

@@ -89,6 +89,12 @@ struct StepContext {
   unsigned char *sg_reach;  // bits 2a, 2a+1: the entry reaches the patch below, above on axis a
   int *sg_side;             // (np, 6): per patch and reach bit b, its entries with bit b, from
   int *sg_side_count;       // patch_start[q] on; (npatch, 6) their counts
+  // Distributed runs (cxx/ranks.hpp; null with one rank): called between a scatter into the
+  // patch buffers and their assembly (kind EXCHANGE_BUFFERS, fields first .. first+count-1),
+  // so that the ghost patches' buffers hold their owners' sums, and by the energy stage
+  // between its per-patch partials and their fold (EXCHANGE_PARTIALS).
+  void (*exchange)(const struct StepContext* c, int kind, int first, int count);
+  void *exchange_data;
 };
 
 typedef void (*StageFn)(StepContext*);
@@ -123,6 +129,8 @@ namespace mpm3d {
 extern const char* const kStageNames[ST_COUNT];
 constexpr int kAuxFields = 34;  // doubles per cell in StepContext::aux (sgmp)
 constexpr int kReduceFields = 5;
+// StepContext::exchange's kind: what the stage is about to assemble or fold.
+enum ExchangeKind { EXCHANGE_BUFFERS = 0, EXCHANGE_PARTIALS = 1 };
 
 // The stage table: which implementation each stage uses (cxx/stages.cpp).
 struct StageTable {

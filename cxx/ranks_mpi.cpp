@@ -1,0 +1,493 @@
+// The ranks of a distributed run over MPI (cxx/ranks.hpp), and the program's MPI entry
+// run_main_mpi. Linked into the mpm3d program only when CMake finds MPI (MPM3D_MPI).
+//
+// Ownership: rank r owns the patches [first_[r], first_[r+1]) (runs of consecutive patch
+// indices with equal shares of the particles, the rule OpenMP threads use inside a rank),
+// the particles inside them, and those outside the grid if it is the last rank. Every
+// rank keeps the whole grid window's node arrays; it assembles the nodes its particles read
+// from its own patch buffers and copies of its neighbours' (ghost patches).
+#include <mpi.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <iostream>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "mpm3d.hpp"
+#include "patch_index.hpp"
+#include "ranks.hpp"
+#include "simulation.hpp"
+
+namespace mpm3d {
+namespace {
+
+void check(int rc, const char* what) {
+  if (rc != MPI_SUCCESS) throw std::runtime_error(std::string("MPI: ") + what + " failed");
+}
+
+class MpiRanks final : public Ranks {
+ public:
+  explicit MpiRanks(MPI_Comm comm) : comm_(comm) {
+    MPI_Comm_rank(comm_, &rank_);
+    MPI_Comm_size(comm_, &size_);
+  }
+  int rank() const override { return rank_; }
+  int size() const override { return size_; }
+  int global_np() const override { return np_global_; }
+  double imbalance() const override { return imbalance_; }
+  double bytes_sent() const override { return bytes_sent_; }
+
+  void distribute(Simulation& sim) override;
+  void migrate(Simulation& sim) override;
+  void add_ghost_slots(Simulation& sim) override;
+
+  long sum(long v) override {
+    long r = 0;
+    check(MPI_Allreduce(&v, &r, 1, MPI_LONG, MPI_SUM, comm_), "sum");
+    return r;
+  }
+  int min(int v) override {
+    int r = 0;
+    check(MPI_Allreduce(&v, &r, 1, MPI_INT, MPI_MIN, comm_), "min");
+    return r;
+  }
+  double min(double v) override {
+    double r = 0;
+    check(MPI_Allreduce(&v, &r, 1, MPI_DOUBLE, MPI_MIN, comm_), "min");
+    return r;
+  }
+  double max(double v) override {
+    double r = 0;
+    check(MPI_Allreduce(&v, &r, 1, MPI_DOUBLE, MPI_MAX, comm_), "max");
+    return r;
+  }
+  std::string broadcast(const std::string& s, int from) override {
+    int n = int(s.size());
+    check(MPI_Bcast(&n, 1, MPI_INT, from, comm_), "broadcast");
+    std::string r = s;
+    r.resize(size_t(n));
+    if (n > 0) check(MPI_Bcast(&r[0], n, MPI_CHAR, from, comm_), "broadcast");
+    return r;
+  }
+  void broadcast(std::vector<double>& values) override {
+    long n = long(values.size());
+    check(MPI_Bcast(&n, 1, MPI_LONG, 0, comm_), "broadcast");
+    values.resize(size_t(n));
+    if (n > 0) check(MPI_Bcast(values.data(), int(n), MPI_DOUBLE, 0, comm_), "broadcast");
+  }
+  void gather(const Particles& local, Particles& all) override;
+  [[noreturn]] void abort(int code) override {
+    MPI_Abort(comm_, code);
+    std::exit(code);
+  }
+
+  // StepContext::exchange.
+  static void exchange(const StepContext* c, int kind, int first, int count) {
+    auto* self = static_cast<MpiRanks*>(c->exchange_data);
+    if (kind == EXCHANGE_BUFFERS) self->exchange_buffers(c, first, count);
+    else self->exchange_partials(c);
+  }
+
+ private:
+  MPI_Comm comm_;
+  int rank_ = 0, size_ = 1;
+  int np_global_ = 0;
+  double imbalance_ = 1.0;
+  double bytes_sent_ = 0.0;  // to other ranks, collectives counted as one copy to each
+  std::vector<int> gidx_;    // storage index of each local particle on one rank, ascending
+  std::vector<int> first_;   // (size + 1) first patch of each rank
+  std::vector<int> owner_;   // (npatch) rank of each patch
+  std::vector<int> counts_;  // (npatch + 1) particles of each patch on all ranks, then the
+                             // particles that change rank in this step
+  std::vector<int> dest_;    // rank of each local particle (migrate's scratch)
+  // Per neighbouring rank: this rank's patches next to one of its patches (what it is
+  // sent) and its patches next to one of this rank's (what comes back), ascending.
+  struct Neighbour {
+    int rank;
+    std::vector<int> send, recv;
+    std::vector<double> out, in;  // the packed buffers of the non-empty ones
+  };
+  std::vector<Neighbour> neighbours_;
+  std::vector<int> fields_;  // indices in particle_fields() of the arrays this run has
+
+  int patch_of(const StepContext& c, int p) const;
+  void partition(const Simulation& sim);
+  size_t row_bytes(Particles& P) const;
+  void pack_row(Particles& P, int p, int gidx, char* out) const;
+  void exchange_buffers(const StepContext* c, int first, int count);
+  void exchange_partials(const StepContext* c);
+};
+
+// The patch of particle p, or -1 outside the grid window: the bin stage's arithmetic
+// (transfer_lanes.hpp, bin_range), so both always agree.
+int MpiRanks::patch_of(const StepContext& c, int p) const {
+  int idx[3];
+  for (int a = 0; a < 3; ++a) {
+    const double t = (c.xbin[3 * size_t(p) + a] - c.origin[a]) / c.h;
+    const double f = std::floor(t);
+    const double f0 = double(c.cell_off[a]);
+    if (!(f >= f0 && f < f0 + double(c.nc[a]))) return -1;
+    idx[a] = int(f) - c.cell_off[a];
+  }
+  const int P = c.patch_cells;
+  return idx[0] / P + c.npd[0] * (idx[1] / P + c.npd[1] * (idx[2] / P));
+}
+
+// The ranks' patch runs from counts_ (thread_patches' rule over ranks: rank u starts at
+// the first patch whose prefix count reaches u/size of the particles), then the patches
+// each neighbouring rank needs.
+void MpiRanks::partition(const Simulation& sim) {
+  const StepContext& c = sim.ctx;
+  const int npatch = c.npatch;
+  std::vector<long> prefix(size_t(npatch) + 1, 0);
+  for (int q = 0; q < npatch; ++q) prefix[size_t(q) + 1] = prefix[size_t(q)] + counts_[size_t(q)];
+  const long total = prefix[size_t(npatch)];
+  first_.assign(size_t(size_) + 1, npatch);
+  for (int u = 0; u < size_; ++u) {
+    const long target = total * u / size_;
+    first_[size_t(u)] = int(std::lower_bound(prefix.begin(), prefix.end() - 1, target) - prefix.begin());
+  }
+  first_[0] = 0;
+  owner_.assign(size_t(npatch), 0);
+  for (int u = 0; u < size_; ++u)
+    for (int q = first_[size_t(u)]; q < first_[size_t(u) + 1]; ++q) owner_[size_t(q)] = u;
+  std::vector<std::vector<int>> send(static_cast<size_t>(size_)), recv(static_cast<size_t>(size_));
+  const int n0 = c.npd[0], n1 = c.npd[1], n2 = c.npd[2];
+  for (int q = first_[size_t(rank_)]; q < first_[size_t(rank_) + 1]; ++q) {
+    const int qx = q % n0, qy = (q / n0) % n1, qz = q / (n0 * n1);
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int x = qx + dx, y = qy + dy, z = qz + dz;
+          if (x < 0 || y < 0 || z < 0 || x >= n0 || y >= n1 || z >= n2) continue;
+          const int o = x + n0 * (y + n1 * z), s = owner_[size_t(o)];
+          if (s == rank_) continue;
+          send[size_t(s)].push_back(q);
+          recv[size_t(s)].push_back(o);
+        }
+  }
+  neighbours_.clear();
+  for (int s = 0; s < size_; ++s) {
+    if (send[size_t(s)].empty()) continue;
+    Neighbour n;
+    n.rank = s;
+    for (auto* v : {&send[size_t(s)], &recv[size_t(s)]}) {
+      std::sort(v->begin(), v->end());
+      v->erase(std::unique(v->begin(), v->end()), v->end());
+    }
+    n.send = std::move(send[size_t(s)]);
+    n.recv = std::move(recv[size_t(s)]);
+    neighbours_.push_back(std::move(n));
+  }
+}
+
+size_t MpiRanks::row_bytes(Particles& P) const {
+  const std::vector<ParticleField> f = particle_fields(P);
+  size_t b = sizeof(int);
+  for (int k : fields_) b += size_t(f[size_t(k)].ncomp) * (f[size_t(k)].d ? sizeof(double) : sizeof(int32_t));
+  return b;
+}
+
+void MpiRanks::pack_row(Particles& P, int p, int gidx, char* out) const {
+  const std::vector<ParticleField> f = particle_fields(P);
+  std::memcpy(out, &gidx, sizeof(int));
+  out += sizeof(int);
+  for (int k : fields_) {
+    const ParticleField& fk = f[size_t(k)];
+    const size_t n = size_t(fk.ncomp);
+    if (fk.d) {
+      std::memcpy(out, fk.d->data() + n * size_t(p), n * sizeof(double));
+      out += n * sizeof(double);
+    } else {
+      std::memcpy(out, fk.i->data() + n * size_t(p), n * sizeof(int32_t));
+      out += n * sizeof(int32_t);
+    }
+  }
+}
+
+void MpiRanks::distribute(Simulation& sim) {
+  Particles& P = sim.model.particles;
+  np_global_ = P.np;
+  if (P.id.empty()) throw std::runtime_error("several ranks need the particles in blocks order");
+  {
+    const std::vector<ParticleField> f = particle_fields(P);
+    fields_.clear();
+    for (size_t k = 0; k < f.size(); ++k)
+      if (f[k].d ? !f[k].d->empty() : !f[k].i->empty()) fields_.push_back(int(k));
+  }
+  // Every rank holds every particle here: the counts need no communication.
+  const StepContext& c = sim.ctx;
+  counts_.assign(size_t(c.npatch) + 1, 0);
+  std::vector<int> patch(size_t(P.np));
+  for (int p = 0; p < P.np; ++p) {
+    patch[size_t(p)] = patch_of(c, p);
+    if (patch[size_t(p)] >= 0) ++counts_[size_t(patch[size_t(p)])];
+  }
+  partition(sim);
+  std::vector<int> keep;
+  for (int p = 0; p < P.np; ++p) {
+    const int q = patch[size_t(p)];
+    if ((q >= 0 ? owner_[size_t(q)] : size_ - 1) == rank_) keep.push_back(p);
+  }
+  for (const ParticleField& f : particle_fields(P)) {
+    const int n = f.ncomp;
+    if (f.d && !f.d->empty()) {
+      std::vector<double> v(size_t(n) * keep.size());
+      gather_rows(f.d->data(), n, int(keep.size()), [&](int i) { return keep[size_t(i)]; }, v.data());
+      *f.d = std::move(v);
+    } else if (f.i && !f.i->empty()) {
+      std::vector<int32_t> v(size_t(n) * keep.size());
+      gather_rows(f.i->data(), n, int(keep.size()), [&](int i) { return keep[size_t(i)]; }, v.data());
+      *f.i = std::move(v);
+    }
+  }
+  P.np = int(keep.size());
+  gidx_ = std::move(keep);
+  sim.particles_changed();
+  sim.ctx.exchange = &MpiRanks::exchange;
+  sim.ctx.exchange_data = this;
+}
+
+void MpiRanks::migrate(Simulation& sim) {
+  Particles& P = sim.model.particles;
+  const StepContext& c = sim.ctx;
+  const int npatch = c.npatch;
+  if (int(owner_.size()) != npatch) throw std::logic_error("ranks: the grid changed after the partition");
+  std::vector<int> local(size_t(npatch) + 1, 0);
+  dest_.resize(size_t(P.np));
+  for (int p = 0; p < P.np; ++p) {
+    const int q = patch_of(c, p);
+    if (q >= 0) ++local[size_t(q)];
+    const int d = q >= 0 ? owner_[size_t(q)] : size_ - 1;
+    dest_[size_t(p)] = d;
+    if (d != rank_) ++local[size_t(npatch)];
+  }
+  counts_.resize(size_t(npatch) + 1);
+  check(MPI_Allreduce(local.data(), counts_.data(), npatch + 1, MPI_INT, MPI_SUM, comm_), "counts");
+  bytes_sent_ += double(npatch + 1) * sizeof(int) * (size_ - 1);
+  {
+    long most = 0, all = 0;
+    for (int u = 0; u < size_; ++u) {
+      long n = 0;
+      for (int q = first_[size_t(u)]; q < first_[size_t(u) + 1]; ++q) n += counts_[size_t(q)];
+      most = std::max(most, n);
+      all += n;
+    }
+    imbalance_ = all > 0 ? double(most) * size_ / double(all) : 1.0;
+  }
+  if (counts_[size_t(npatch)] == 0) return;  // nobody moves
+  // Rows to each rank, then the rows from each rank.
+  std::vector<int> nsend(static_cast<size_t>(size_), 0), nrecv(static_cast<size_t>(size_), 0);
+  for (int p = 0; p < P.np; ++p)
+    if (dest_[size_t(p)] != rank_) ++nsend[size_t(dest_[size_t(p)])];
+  check(MPI_Alltoall(nsend.data(), 1, MPI_INT, nrecv.data(), 1, MPI_INT, comm_), "counts of moving particles");
+  const size_t rb = row_bytes(P);
+  std::vector<int> sbytes(static_cast<size_t>(size_)), rbytes(static_cast<size_t>(size_)), sdisp(size_t(size_) + 1, 0), rdisp(size_t(size_) + 1, 0);
+  for (int u = 0; u < size_; ++u) {
+    sbytes[size_t(u)] = int(size_t(nsend[size_t(u)]) * rb);
+    rbytes[size_t(u)] = int(size_t(nrecv[size_t(u)]) * rb);
+    sdisp[size_t(u) + 1] = sdisp[size_t(u)] + sbytes[size_t(u)];
+    rdisp[size_t(u) + 1] = rdisp[size_t(u)] + rbytes[size_t(u)];
+  }
+  std::vector<char> out(size_t(sdisp[size_t(size_)])), in(size_t(rdisp[size_t(size_)]));
+  {
+    std::vector<int> at(sdisp.begin(), sdisp.end() - 1);
+    for (int p = 0; p < P.np; ++p) {
+      const int d = dest_[size_t(p)];
+      if (d == rank_) continue;
+      pack_row(P, p, gidx_[size_t(p)], out.data() + at[size_t(d)]);
+      at[size_t(d)] += int(rb);
+    }
+  }
+  bytes_sent_ += double(out.size()) + double(size_ - 1) * sizeof(int);
+  check(MPI_Alltoallv(out.data(), sbytes.data(), sdisp.data(), MPI_BYTE, in.data(), rbytes.data(), rdisp.data(),
+                      MPI_BYTE, comm_),
+        "moving particles");
+  // The staying and arriving rows merged by storage index: from >= 0 a staying particle,
+  // from < 0 arriving row -1 - from.
+  const int nin = int(in.size() / rb);
+  std::vector<std::pair<int, int>> order;
+  order.reserve(size_t(P.np + nin));
+  for (int p = 0; p < P.np; ++p)
+    if (dest_[size_t(p)] == rank_) order.emplace_back(gidx_[size_t(p)], p);
+  for (int j = 0; j < nin; ++j) {
+    int g;
+    std::memcpy(&g, in.data() + size_t(j) * rb, sizeof(int));
+    order.emplace_back(g, -1 - j);
+  }
+  std::sort(order.begin(), order.end());
+  const int n = int(order.size());
+  size_t offset = sizeof(int);  // of the field in an arriving row
+  const std::vector<ParticleField> f = particle_fields(P);
+  for (int k : fields_) {
+    const ParticleField& fk = f[size_t(k)];
+    const size_t nc = size_t(fk.ncomp), w = fk.d ? sizeof(double) : sizeof(int32_t);
+    auto merge = [&](auto& vec) {
+      using V = typename std::decay_t<decltype(vec)>::value_type;
+      std::vector<V> merged(nc * size_t(n));
+      for (int i = 0; i < n; ++i) {
+        const int from = order[size_t(i)].second;
+        V* dst = merged.data() + nc * size_t(i);
+        if (from >= 0) std::memcpy(dst, vec.data() + nc * size_t(from), nc * sizeof(V));
+        else std::memcpy(dst, in.data() + size_t(-1 - from) * rb + offset, nc * sizeof(V));
+      }
+      vec = std::move(merged);
+    };
+    if (fk.d) merge(*fk.d);
+    else merge(*fk.i);
+    offset += nc * w;
+  }
+  gidx_.resize(size_t(n));
+  for (int i = 0; i < n; ++i) gidx_[size_t(i)] = order[size_t(i)].first;
+  P.np = n;
+  sim.particles_changed();
+}
+
+void MpiRanks::add_ghost_slots(Simulation& sim) {
+  StepContext& c = sim.ctx;
+  const int lo = first_[size_t(rank_)], hi = first_[size_t(rank_) + 1];
+  // This rank's particles must be exactly those binned into its patches.
+  long mine = 0;
+  for (int q = lo; q < hi; ++q) mine += counts_[size_t(q)];
+  if (c.patch_start[c.npatch] != mine || c.patch_start[lo] != 0 || c.patch_start[hi] != mine)
+    throw std::logic_error("ranks: a particle is binned into another rank's patch");
+  for (const Neighbour& n : neighbours_)
+    for (int q : n.recv)
+      if (counts_[size_t(q)] > 0) c.patch_slot[q] = c.nslot++;
+  // The patch statistics of the whole run.
+  std::vector<int> start(size_t(c.npatch) + 1, 0);
+  for (int q = 0; q < c.npatch; ++q) start[size_t(q) + 1] = start[size_t(q)] + counts_[size_t(q)];
+  sim.stats = patch_stats(sim.grid, start.data());
+}
+
+void MpiRanks::exchange_buffers(const StepContext* c, int first, int count) {
+  const size_t pn = size_t(patch_nodes(c));
+  auto nonempty = [&](const std::vector<int>& qs) {
+    size_t n = 0;
+    for (int q : qs) n += counts_[size_t(q)] > 0;
+    return n;
+  };
+  std::vector<MPI_Request> req;
+  req.reserve(2 * neighbours_.size());
+  for (Neighbour& n : neighbours_) {
+    n.in.resize(nonempty(n.recv) * pn * size_t(count));
+    if (!n.in.empty()) {
+      req.emplace_back();
+      check(MPI_Irecv(n.in.data(), int(n.in.size()), MPI_DOUBLE, n.rank, 1, comm_, &req.back()), "receive");
+    }
+  }
+  for (Neighbour& n : neighbours_) {
+    n.out.resize(nonempty(n.send) * pn * size_t(count));
+    double* o = n.out.data();
+    for (int q : n.send) {
+      if (counts_[size_t(q)] == 0) continue;
+      const double* b = c->patch_buf + size_t(c->patch_slot[q]) * pn * kNodeFields;
+      for (size_t i = 0; i < pn; ++i)
+        for (int f = 0; f < count; ++f) *o++ = b[i * kNodeFields + size_t(first + f)];
+    }
+    bytes_sent_ += double(n.out.size()) * sizeof(double);
+    if (!n.out.empty()) {
+      req.emplace_back();
+      check(MPI_Isend(n.out.data(), int(n.out.size()), MPI_DOUBLE, n.rank, 1, comm_, &req.back()), "send");
+    }
+  }
+  check(MPI_Waitall(int(req.size()), req.data(), MPI_STATUSES_IGNORE), "buffer exchange");
+  for (Neighbour& n : neighbours_) {
+    const double* in = n.in.data();
+    for (int q : n.recv) {
+      if (counts_[size_t(q)] == 0) continue;
+      double* b = c->patch_buf + size_t(c->patch_slot[q]) * pn * kNodeFields;
+      for (size_t i = 0; i < pn; ++i)
+        for (int f = 0; f < count; ++f) b[i * kNodeFields + size_t(first + f)] = *in++;
+    }
+  }
+}
+
+// Every rank's columns of the energy stage's partials (its patches; the last rank also the
+// column of the particles outside the grid) on every rank.
+void MpiRanks::exchange_partials(const StepContext* c) {
+  std::vector<int> cnt(static_cast<size_t>(size_)), disp(static_cast<size_t>(size_));
+  for (int u = 0; u < size_; ++u) {
+    const int cols = first_[size_t(u) + 1] - first_[size_t(u)] + (u == size_ - 1 ? 1 : 0);
+    cnt[size_t(u)] = kReduceFields * cols;
+    disp[size_t(u)] = kReduceFields * first_[size_t(u)];
+  }
+  bytes_sent_ += double(cnt[size_t(rank_)]) * sizeof(double) * (size_ - 1);
+  check(MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, c->partials, cnt.data(), disp.data(), MPI_DOUBLE, comm_),
+        "energy partials");
+}
+
+void MpiRanks::gather(const Particles& local_const, Particles& all) {
+  Particles& local = const_cast<Particles&>(local_const);  // particle_fields takes a mutable set
+  const size_t rb = row_bytes(local);
+  std::vector<char> out(size_t(local.np) * rb);
+  for (int p = 0; p < local.np; ++p) pack_row(local, p, gidx_[size_t(p)], out.data() + size_t(p) * rb);
+  std::vector<int> bytes(static_cast<size_t>(size_)), disp(size_t(size_) + 1, 0);
+  const int mine = int(out.size());
+  check(MPI_Gather(&mine, 1, MPI_INT, bytes.data(), 1, MPI_INT, 0, comm_), "gather");
+  for (int u = 0; u < size_; ++u) disp[size_t(u) + 1] = disp[size_t(u)] + bytes[size_t(u)];
+  std::vector<char> in(root() ? size_t(disp[size_t(size_)]) : 0);
+  check(MPI_Gatherv(out.data(), mine, MPI_BYTE, in.data(), bytes.data(), disp.data(), MPI_BYTE, 0, comm_), "gather");
+  all = Particles();
+  if (!root()) return;
+  const int n = np_global_;
+  if (int(in.size() / rb) != n) throw std::logic_error("ranks: particles lost");
+  all.np = n;
+  std::vector<ParticleField> fa = particle_fields(all);
+  size_t offset = sizeof(int);
+  for (int k : fields_) {
+    ParticleField& fk = fa[size_t(k)];
+    const size_t nc = size_t(fk.ncomp);
+    auto place = [&](auto& vec) {
+      using V = typename std::decay_t<decltype(vec)>::value_type;
+      vec.assign(nc * size_t(n), V());
+      for (int j = 0; j < n; ++j) {
+        int g;
+        std::memcpy(&g, in.data() + size_t(j) * rb, sizeof(int));
+        std::memcpy(vec.data() + nc * size_t(g), in.data() + size_t(j) * rb + offset, nc * sizeof(V));
+      }
+      offset += nc * sizeof(V);
+    };
+    if (fk.d) place(*fk.d);
+    else place(*fk.i);
+  }
+}
+
+// Launched by mpirun (Open MPI's or another's environment): the caller starts MPI only then,
+// so that a plain `mpm3d deck` never initialises it.
+bool launched_by_mpirun() {
+  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK"})
+    if (std::getenv(v)) return true;
+  return false;
+}
+
+}  // namespace
+
+int run_main_mpi(int argc, char** argv) {
+  if (!launched_by_mpirun()) return run_main(argc, argv, nullptr);
+  int provided = 0;
+  // The stages call MPI between their parallel regions, from the master thread only.
+  if (MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided) != MPI_SUCCESS) {
+    std::cerr << "mpm3d: MPI_Init_thread failed\n";
+    return 1;
+  }
+  int rc = 0;
+  {
+    MpiRanks ranks(MPI_COMM_WORLD);
+    rc = run_main(argc, argv, ranks.size() > 1 ? &ranks : nullptr);
+    // Every rank returns the same status (deck errors, refusals and health errors are
+    // reached by all of them); the root's is the run's.
+    check(MPI_Bcast(&rc, 1, MPI_INT, 0, MPI_COMM_WORLD), "status");
+  }
+  MPI_Finalize();
+  return rc;
+}
+
+}  // namespace mpm3d

@@ -1,0 +1,22 @@
+# MPI ranks x OpenMP threads (issue 17): identical bits for any ranks x threads, equal to one
+# process and to mpm3d_ref (tests/rank_determinism.sh). Only when mpm3d is built with MPI.
+if(MPM3D_MPI AND MPI_CXX_FOUND AND MPIEXEC_EXECUTABLE)
+  # mpm3d_rank_test(NAME DECK STEPS [CONFIGS...])
+  function(mpm3d_rank_test name deck steps)
+    add_test(NAME ranks.${name}
+             COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/rank_determinism.sh $<TARGET_FILE:mpm3d> ${MPIEXEC_EXECUTABLE}
+                     ${deck} ${steps} ${CMAKE_CURRENT_BINARY_DIR}/ranks_${name} "${_mpm3d_ref_exe}" ${ARGN})
+    # Several ranks (and their threads) on the machine's cores: run alone.
+    set_tests_properties(ranks.${name} PROPERTIES SKIP_RETURN_CODE 77 RUN_SERIAL TRUE)
+  endfunction()
+  # USL, trilinear, gravity: a block and a sphere dropped on a plate; particles cross ranks.
+  mpm3d_rank_test(usl_blocks ${CMAKE_SOURCE_DIR}/fortran_ref/testdecks/usl_blocks.mpm 200)
+  # MUSL, two blocks meeting: particles cross the ranks' boundary both ways.
+  mpm3d_rank_test(two_blocks ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks.mpm 207)
+  # The Taylor bar (MUSL, Johnson-Cook), coarse model and the book's deck.
+  mpm3d_rank_test(taylor_coarse ${CMAKE_SOURCE_DIR}/inputs/taylor/taylor_coarse.mpm 60)
+  mpm3d_rank_test(legacy_taylor ${CMAKE_SOURCE_DIR}/../shared/decks/Taylor.mpm 60)
+  # USF with Johnson-Cook; explosive (programmed burn, JWL).
+  mpm3d_rank_test(usf_john ${CMAKE_SOURCE_DIR}/fortran_ref/testdecks/usf_john.mpm 100)
+  mpm3d_rank_test(slab_small ${CMAKE_SOURCE_DIR}/inputs/explosives/slab_small.mpm 200)
+endif()
