@@ -74,12 +74,18 @@ class Simulation {
   std::string regrid_note;  // the log line of a regrid in the set-up or the last step; the
                             // driver prints and clears it
 
-  // Energies and momentum of the current state (the energy stage on its own).
+  // Energies and momentum of the current state (the energy stage on its own), summed over
+  // the patch lists of the last binning (the constructor's, a step's or bin_particles').
   void measure();
+  // Bins the particles as they are now (both contact components, no regrid) into the patch
+  // lists, then the patch statistics and buffers: after the particle arrays were replaced
+  // wholesale (a restart), before a measure().
+  void bin_particles();
 
  private:
   StageTable stages_;
-  std::vector<double> lx_, partials_;
+  std::vector<double> lx_;
+  std::vector<double> partials_;  // the energy stage's columns (kReduceFields, npatch + 1)
   std::vector<int> cell_, pscratch_;
   std::vector<double> aux_;  // sgmp: the cell centres' fields (kAuxFields per cell)
   std::vector<double> sg_w_;  // sgmp: the scatters' weights per patch-list entry (8 each)
@@ -103,6 +109,7 @@ class Simulation {
   void energy_check(double ie_min);
   std::vector<char> body_ie_warned_;
   bool kinetic_warned_ = false;
+  bool lists_binned_ = false;  // the patch lists come from a bin of the current grid
   double dt_work_of_body_forces() const;
   // The current version's dt from the particle velocities (Model::dt_per_step).
   double velocity_time_step() const;

@@ -27,7 +27,8 @@ struct StepContext {
   // Patches: start (npatch+1), particle list (np), slot (npatch), buffers.
   int *patch_start, *patch_part, *patch_slot;
   double *patch_buf;
-  double *partials;  // (kReduceFields, nblock) scratch of the energy stage
+  double *partials;  // (kReduceFields, npatch + 1) scratch of the energy stage: one column per
+                     // patch, the last for the particles outside the grid
   double result[8];  // energy stage: kinetic, internal, momentum (3); contact stage: force (3)
   double origin[3];  // lower corner of the deck's box (the lattice origin)
   double h, inv_h, dt, dt_int, mass_cutoff;
@@ -38,7 +39,6 @@ struct StepContext {
   int scheme;
   int has_body_force;  // gravity or loads present: forces carry N * (m g + f_ext)
   int noutside;        // bin stage: particles outside the grid
-  int reduce_block;    // particles per block of the deterministic reductions
   // Explosives and bulk viscosity (stress stage only).
   double *tlight;      // (np) lighting time of each particle, or null: only with hiex
   double *qv;          // (np) bulk viscosity pressure of each particle, or null: only with bulk
@@ -122,6 +122,7 @@ namespace mpm3d {
 
 extern const char* const kStageNames[ST_COUNT];
 constexpr int kAuxFields = 34;  // doubles per cell in StepContext::aux (sgmp)
+// Fields of the energy stage's columns: kinetic, internal energy, momentum (3).
 constexpr int kReduceFields = 5;
 
 // The stage table: which implementation each stage uses (cxx/stages.cpp).

@@ -21,7 +21,6 @@ program mpm3d_ref
   use mpm3d_data_out
   implicit none
 
-  integer, parameter :: REDUCE_BLOCK = 4096
   integer(c_int) :: step_order(MPM3D_MAX_STEP_STAGES)   ! the deck's scheme's row of the step table
   integer :: nstage                            ! stages in step_order
   type(model_t), target :: model
@@ -159,13 +158,13 @@ program mpm3d_ref
   do b = 1, model%nbodies
     gravity(:, b) = model%bodies(b)%gravity
   end do
-  allocate(partials(REDUCE_FIELDS, np / REDUCE_BLOCK + 1))
-  partials = 0.0_dp
   call bind_context()
   nstage = mpm3d_step_order(int(model%scheme, c_int), step_order)
   if (nstage < 0) call fatal(deck // ': unknown update scheme')
 
-  ! Energies of the initial state (as the C++ Simulation constructor).
+  ! Energies of the initial state, over the patch lists of its binning (as the C++
+  ! Simulation constructor; every step bins again).
+  call run_each(ST_BIN)
   call mpm3d_f_energy(ctx)
   initial_total = ctx%result(1) + ctx%result(2)
   if (.not. quiet) then
@@ -349,8 +348,6 @@ contains
     ctx%mats = c_loc(model%mats)
     ctx%patch_part = c_loc(grid%patch_part)
     ctx%patch_buf = c_null_ptr
-    ctx%reduce_block = REDUCE_BLOCK
-    ctx%partials = c_loc(partials)
     ctx%h = grid%h
     ctx%inv_h = 1.0_dp / grid%h
     ctx%dt = model%dt
@@ -434,6 +431,15 @@ contains
     end do
     ctx%nnode = grid_nnode(grid)
     ctx%npatch = grid%npatch
+    ! The energy stage's columns: one per patch and one for the particles outside the grid.
+    if (allocated(partials)) then
+      if (size(partials, 2) /= grid%npatch + 1) deallocate(partials)
+    end if
+    if (.not. allocated(partials)) then
+      allocate(partials(REDUCE_FIELDS, grid%npatch + 1))
+      partials = 0.0_dp
+    end if
+    ctx%partials = c_loc(partials)
   end subroutine bind_grid
 
   ! The node arrays and patch tables of grid g in context c.
