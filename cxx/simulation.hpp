@@ -56,7 +56,9 @@ class Simulation {
   double time = 0.0;
   double kinetic = 0.0, internal = 0.0, momentum[3] = {0, 0, 0};
   double initial_total_energy = 0.0;
-  double external_work = 0.0;  // bound of the work of gravity and loads so far: sum |f.v| dt (health check)
+  // Bound of the work of gravity and loads so far (health check): the energy stage's
+  // sum |f.v| (result[8]) times dt, added after each step.
+  double external_work = 0.0;
   int outside = 0;  // particles outside the grid after the last step
   // Energy warnings of the health check (health_check), each raised once per run (per
   // body for the internal energy); the driver prints and clears new_energy_warnings. With
@@ -110,7 +112,6 @@ class Simulation {
   std::vector<char> body_ie_warned_;
   bool kinetic_warned_ = false;
   bool lists_binned_ = false;  // the patch lists come from a bin of the current grid
-  double dt_work_of_body_forces() const;
   // The current version's dt from the particle velocities (Model::dt_per_step).
   double velocity_time_step() const;
 };

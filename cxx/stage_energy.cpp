@@ -1,6 +1,7 @@
-// The energy stage: kinetic and internal energy and momentum of all particles, as one column
-// of partial sums per patch (and one for the particles outside the grid), folded in column
-// order.
+// The energy stage: kinetic and internal energy, momentum and the rate of the external work
+// bound of all particles, as one column of partial sums per patch (and one for the particles
+// outside the grid), folded in column order.
+#include <cmath>
 #include <cstddef>
 
 #ifdef _OPENMP
@@ -14,7 +15,11 @@ using namespace mpm3d;
 
 namespace {
 
-// Adds particle p to one column's sums: m |v|^2 / 2, e, m v (3).
+// Adds particle p to one column's sums: m |v|^2 / 2, e, m v (3) and, with body forces
+// (kWork), |f . v| with f = m g + f_ext (neither ramped nor damped): the rate of the health
+// check's bound of the external work (Simulation::external_work), per particle in absolute
+// value so that forces changing sign (vibrations, manufactured solutions) do not cancel out.
+template <bool kWork>
 inline void add_particle(const StepContext* c, int p, double part[kReduceFields]) {
   const double m = c->mass[p];
   const double* vp = c->v + 3 * size_t(p);
@@ -23,11 +28,21 @@ inline void add_particle(const StepContext* c, int p, double part[kReduceFields]
   part[2] += m * vp[0];
   part[3] += m * vp[1];
   part[4] += m * vp[2];
+  if (kWork) {
+    const double* g = c->gravity + 3 * size_t(c->body[p]);
+    double pw = 0.0;
+    for (int a = 0; a < 3; ++a) {
+      const double f = m * g[a] + (c->fext ? c->fext[3 * size_t(p) + a] : 0.0);
+      pw += f * vp[a];
+    }
+    part[5] += std::fabs(pw);
+  }
 }
 
 // Adds the particles of patch q's list in s (c's or, with contact, component 2's).
+template <bool kWork>
 inline void add_list(const StepContext* c, const StepContext* s, int q, double part[kReduceFields]) {
-  for (int i = s->patch_start[q]; i < s->patch_start[q + 1]; ++i) add_particle(c, s->patch_part[i], part);
+  for (int i = s->patch_start[q]; i < s->patch_start[q + 1]; ++i) add_particle<kWork>(c, s->patch_part[i], part);
 }
 
 // Every column of c->partials: column q < npatch sums patch q's list, then (contact)
@@ -35,6 +50,7 @@ inline void add_list(const StepContext* c, const StepContext* s, int q, double p
 // ascending index (one pass over the cells, only when there are any). Each column is one
 // serial sum, whichever thread computes it; each thread takes its run of patches
 // (thread_patches: the particles it updated in the stress stage).
+template <bool kWork>
 void compute_columns(StepContext* c) {
   const int npatch = c->npatch;
   const StepContext* c2 = c->other;
@@ -49,16 +65,16 @@ void compute_columns(StepContext* c) {
     int lo, hi;
     thread_patches(c, t, T, lo, hi);
     for (int q = lo; q < hi; ++q) {
-      double part[kReduceFields] = {0, 0, 0, 0, 0};
-      add_list(c, c, q, part);
-      if (c2) add_list(c, c2, q, part);
+      double part[kReduceFields] = {0, 0, 0, 0, 0, 0};
+      add_list<kWork>(c, c, q, part);
+      if (c2) add_list<kWork>(c, c2, q, part);
       for (int f = 0; f < kReduceFields; ++f) c->partials[size_t(kReduceFields) * q + f] = part[f];
     }
     if (t == T - 1) {
-      double part[kReduceFields] = {0, 0, 0, 0, 0};
+      double part[kReduceFields] = {0, 0, 0, 0, 0, 0};
       if (any_outside)  // the cell array is shared by both contact components
         for (int p = 0; p < c->np; ++p)
-          if (c->cell[p] < 0) add_particle(c, p, part);
+          if (c->cell[p] < 0) add_particle<kWork>(c, p, part);
       for (int f = 0; f < kReduceFields; ++f) c->partials[size_t(kReduceFields) * npatch + f] = part[f];
     }
   }
@@ -66,15 +82,19 @@ void compute_columns(StepContext* c) {
 
 }  // namespace
 
-// result[0..4] = sum_p (m_p |v_p|^2 / 2, e_p, m_p v_p). All npatch + 1 columns are computed
-// first and then folded, every column, empty or not, in column order:
-// ((0.0 + col 0) + col 1) + ... + col npatch. The columns depend on the patch lists only, so
-// the sums are the same for any thread count and (folding gathered columns) for any split of
-// the patches among ranks.
+// result[0..4] = sum_p (m_p |v_p|^2 / 2, e_p, m_p v_p), result[8] = sum_p |f_p . v_p| (0
+// without body forces). All npatch + 1 columns are computed first and then folded, every
+// column, empty or not, in column order: ((0.0 + col 0) + col 1) + ... + col npatch. The
+// columns depend on the patch lists only, so the sums are the same for any thread count and
+// (folding gathered columns) for any split of the patches among ranks.
 extern "C" void mpm3d_cxx_energy(StepContext* c) {
-  compute_columns(c);
-  double sum[kReduceFields] = {0, 0, 0, 0, 0};
+  if (c->has_body_force)
+    compute_columns<true>(c);
+  else
+    compute_columns<false>(c);
+  double sum[kReduceFields] = {0, 0, 0, 0, 0, 0};
   for (int q = 0; q <= c->npatch; ++q)
     for (int f = 0; f < kReduceFields; ++f) sum[f] += c->partials[size_t(kReduceFields) * q + f];
-  for (int f = 0; f < kReduceFields; ++f) c->result[f] = sum[f];
+  for (int f = 0; f < 5; ++f) c->result[f] = sum[f];
+  c->result[8] = sum[5];
 }

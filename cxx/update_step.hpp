@@ -29,7 +29,8 @@ struct StepContext {
   double *patch_buf;
   double *partials;  // (kReduceFields, npatch + 1) scratch of the energy stage: one column per
                      // patch, the last for the particles outside the grid
-  double result[8];  // energy stage: kinetic, internal, momentum (3); contact stage: force (3)
+  double result[9];  // energy stage: kinetic, internal, momentum (3) in 0..4 and sum |f.v| (the
+                     // external work rate of gravity and loads) in 8; contact stage: force (3) in 5..7
   double origin[3];  // lower corner of the deck's box (the lattice origin)
   double h, inv_h, dt, dt_int, mass_cutoff;
   int np, nbody, nmat, nnode;
@@ -100,7 +101,7 @@ void mpm3d_cxx_forces(StepContext* c);     // stage_p2g: USF: internal and body 
 void mpm3d_cxx_integrate(StepContext* c);  // stage_grid: p += f dt_int; boundary conditions
 void mpm3d_cxx_g2p(StepContext* c);        // stage_g2p: v, x from the grid; MUSL: momentum remap and BC
 void mpm3d_cxx_stress(StepContext* c);     // stage_stress: strain and spin increments, volume, stress
-void mpm3d_cxx_energy(StepContext* c);     // stage_energy: kinetic, internal energy, momentum
+void mpm3d_cxx_energy(StepContext* c);     // stage_energy: kinetic, internal energy, momentum, sum |f.v|
 void mpm3d_cxx_contact(StepContext* c);    // stage_grid: multi-velocity contact (c->other: comp. 2)
 void mpm3d_cxx_recontact(StepContext* c);  // stage_grid: contact again at the marked nodes (MUSL remap, USF P2G)
 
@@ -122,8 +123,8 @@ namespace mpm3d {
 
 extern const char* const kStageNames[ST_COUNT];
 constexpr int kAuxFields = 34;  // doubles per cell in StepContext::aux (sgmp)
-// Fields of the energy stage's columns: kinetic, internal energy, momentum (3).
-constexpr int kReduceFields = 5;
+// Fields of the energy stage's columns: kinetic, internal energy, momentum (3), sum |f.v|.
+constexpr int kReduceFields = 6;
 
 // The stage table: which implementation each stage uses (cxx/stages.cpp).
 struct StageTable {

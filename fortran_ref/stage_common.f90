@@ -14,8 +14,8 @@ module mpm3d_stage_common
   private
 
   integer, parameter, public :: SCHEME_MUSL = 0, SCHEME_USL = 1, SCHEME_USF = 2
-  ! Fields of the energy stage's columns: kinetic, internal energy, momentum (3).
-  integer, parameter, public :: REDUCE_FIELDS = 5
+  ! Fields of the energy stage's columns: kinetic, internal energy, momentum (3), sum |f.v|.
+  integer, parameter, public :: REDUCE_FIELDS = 6
 
   type, bind(C), public :: step_context
     ! Particles (np): x, v (3,np); sig (6,np); scalars (np).
@@ -34,7 +34,8 @@ module mpm3d_stage_common
     type(c_ptr) :: patch_start = c_null_ptr, patch_part = c_null_ptr, patch_slot = c_null_ptr
     type(c_ptr) :: patch_buf = c_null_ptr
     type(c_ptr) :: partials = c_null_ptr  ! (REDUCE_FIELDS, npatch + 1) columns of the energy stage
-    real(c_double) :: result(8) = 0.0_dp  ! energy stage: kinetic, internal, momentum (3)
+    ! Energy stage: kinetic, internal, momentum (3) in 1..5, sum |f.v| in 9; contact: force in 6..8.
+    real(c_double) :: result(9) = 0.0_dp
     real(c_double) :: origin(3) = 0.0_dp
     real(c_double) :: h = 0.0_dp, inv_h = 0.0_dp, dt = 0.0_dp, dt_int = 0.0_dp, mass_cutoff = 0.0_dp
     integer(c_int) :: np = 0, nbody = 0, nmat = 0, nnode = 0
