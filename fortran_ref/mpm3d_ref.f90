@@ -7,8 +7,9 @@
 !                  [--energies F.txt] [--patch-cells N] [--regrid-every N] [--particle-order blocks|deck] [--quiet] DECK.mpm
 ! --regrid-every N: the adaptive background grid (as mpm3d; default: the deck's adgr, else
 ! off); each regrid prints 'regrid step K window i0 i1 j0 j1 k0 k1' as mpm3d does.
-! --energies writes the kinetic, internal and initial total energy and the momentum of the
-! last step with 17 significant digits (exact doubles), to compare with mpm3d --summary.
+! --energies writes the kinetic, internal and initial total energy, the bound of the external
+! work and the momentum of the last step with 17 significant digits (exact doubles), to
+! compare with mpm3d --summary.
 program mpm3d_ref
   use, intrinsic :: iso_c_binding
   use, intrinsic :: iso_fortran_env, only: int64, error_unit, output_unit
@@ -276,6 +277,7 @@ contains
     write (u, '(a,es25.16e3)') 'kinetic_energy ', kinetic
     write (u, '(a,es25.16e3)') 'internal_energy ', internal
     write (u, '(a,es25.16e3)') 'initial_total_energy ', initial_total
+    write (u, '(a,es25.16e3)') 'external_work ', external_work
     write (u, '(a,3es25.16e3)') 'momentum ', momentum
     close (u)
   end subroutine write_energies
