@@ -324,6 +324,9 @@ void read_checkpoint(const std::string& path, Simulation& sim, OutputSchedule& o
       if (!b.empty()) std::copy(b.begin(), b.end(), fd.i->begin());
     }
   }
+  // The patch lists of the restored particles: the energy stage sums over them (a measure()
+  // before the next step, as mpm3d_set_array does, needs them).
+  sim.bin_particles();
   m.dt = dt;
   sim.steps = steps;
   sim.time = time;

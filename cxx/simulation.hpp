@@ -57,7 +57,9 @@ class Simulation {
   double time = 0.0;
   double kinetic = 0.0, internal = 0.0, momentum[3] = {0, 0, 0};
   double initial_total_energy = 0.0;
-  double external_work = 0.0;  // bound of the work of gravity and loads so far: sum |f.v| dt (health check)
+  // Bound of the work of gravity and loads so far (health check): the energy stage's
+  // sum |f.v| (result[8]) times dt, added after each step.
+  double external_work = 0.0;
   int outside = 0;  // particles outside the grid after the last step
   // Energy warnings of the health check (health_check), each raised once per run (per
   // body for the internal energy); the driver prints and clears new_energy_warnings. With
@@ -75,8 +77,13 @@ class Simulation {
   std::string regrid_note;  // the log line of a regrid in the set-up or the last step; the
                             // driver prints and clears it
 
-  // Energies and momentum of the current state (the energy stage on its own).
+  // Energies and momentum of the current state (the energy stage on its own), summed over
+  // the patch lists of the last binning (the constructor's, a step's or bin_particles').
   void measure();
+  // Bins the particles as they are now (both contact components, no regrid) into the patch
+  // lists, then the patch statistics and buffers: after the particle arrays were replaced
+  // wholesale (a restart), before a measure().
+  void bin_particles();
 
   // A distributed run (cxx/ranks.hpp): the other ranks, or null (one process). distribute
   // keeps this rank's share of the particles; from then on the model holds those only.
@@ -89,7 +96,8 @@ class Simulation {
 
  private:
   StageTable stages_;
-  std::vector<double> lx_, partials_;
+  std::vector<double> lx_;
+  std::vector<double> partials_;  // the energy stage's columns (kReduceFields, npatch + 1)
   std::vector<int> cell_, pscratch_;
   std::vector<double> aux_;  // sgmp: the cell centres' fields (kAuxFields per cell)
   std::vector<double> sg_w_;  // sgmp: the scatters' weights per patch-list entry (8 each)
@@ -117,7 +125,7 @@ class Simulation {
   std::string about_particle(int deck, F&& format) const;
   std::vector<char> body_ie_warned_;
   bool kinetic_warned_ = false;
-  double dt_work_of_body_forces() const;
+  bool lists_binned_ = false;  // the patch lists come from a bin of the current grid
   // The current version's dt from the particle velocities (Model::dt_per_step).
   double velocity_time_step();
 };

@@ -27,8 +27,10 @@ struct StepContext {
   // Patches: start (npatch+1), particle list (np), slot (npatch), buffers.
   int *patch_start, *patch_part, *patch_slot;
   double *patch_buf;
-  double *partials;  // (kReduceFields, nblock) scratch of the energy stage
-  double result[8];  // energy stage: kinetic, internal, momentum (3); contact stage: force (3)
+  double *partials;  // (kReduceFields, npatch + 1) scratch of the energy stage: one column per
+                     // patch, the last for the particles outside the grid
+  double result[9];  // energy stage: kinetic, internal, momentum (3) in 0..4 and sum |f.v| (the
+                     // external work rate of gravity and loads) in 8; contact stage: force (3) in 5..7
   double origin[3];  // lower corner of the deck's box (the lattice origin)
   double h, inv_h, dt, dt_int, mass_cutoff;
   int np, nbody, nmat, nnode;
@@ -38,7 +40,6 @@ struct StepContext {
   int scheme;
   int has_body_force;  // gravity or loads present: forces carry N * (m g + f_ext)
   int noutside;        // bin stage: particles outside the grid
-  int reduce_block;    // particles per block of the deterministic reductions
   // Explosives and bulk viscosity (stress stage only).
   double *tlight;      // (np) lighting time of each particle, or null: only with hiex
   double *qv;          // (np) bulk viscosity pressure of each particle, or null: only with bulk
@@ -106,7 +107,7 @@ void mpm3d_cxx_forces(StepContext* c);     // stage_p2g: USF: internal and body 
 void mpm3d_cxx_integrate(StepContext* c);  // stage_grid: p += f dt_int; boundary conditions
 void mpm3d_cxx_g2p(StepContext* c);        // stage_g2p: v, x from the grid; MUSL: momentum remap and BC
 void mpm3d_cxx_stress(StepContext* c);     // stage_stress: strain and spin increments, volume, stress
-void mpm3d_cxx_energy(StepContext* c);     // stage_energy: kinetic, internal energy, momentum
+void mpm3d_cxx_energy(StepContext* c);     // stage_energy: kinetic, internal energy, momentum, sum |f.v|
 void mpm3d_cxx_contact(StepContext* c);    // stage_grid: multi-velocity contact (c->other: comp. 2)
 void mpm3d_cxx_recontact(StepContext* c);  // stage_grid: contact again at the marked nodes (MUSL remap, USF P2G)
 
@@ -128,7 +129,8 @@ namespace mpm3d {
 
 extern const char* const kStageNames[ST_COUNT];
 constexpr int kAuxFields = 34;  // doubles per cell in StepContext::aux (sgmp)
-constexpr int kReduceFields = 5;
+// Fields of the energy stage's columns: kinetic, internal energy, momentum (3), sum |f.v|.
+constexpr int kReduceFields = 6;
 // StepContext::exchange's kind: what the stage is about to assemble or fold.
 enum ExchangeKind { EXCHANGE_BUFFERS = 0, EXCHANGE_PARTIALS = 1 };
 

@@ -7,6 +7,8 @@
 #include "update_step.hpp"
 
 // The Fortran mirror stops after sg: later fields are C++-internal scratch.
+// noutside is the last int before the pointer tlight: the padding before tlight would hide
+// one int missing from the ints there, so its own offset is checked.
 
 extern "C" void mpm3d_f_context_layout(size_t out[20]);
 extern "C" void mpm3d_f_step_constants(int out[14]);
@@ -18,7 +20,7 @@ int main() {
                        offsetof(StepContext, result),
                        offsetof(StepContext, np),
                        offsetof(StepContext, fix),
-                       offsetof(StepContext, reduce_block),
+                       offsetof(StepContext, noutside),
                        sizeof(MaterialParams),
                        offsetof(MaterialParams, eos_e0),
                        offsetof(MaterialParams, eos_type),
@@ -35,7 +37,7 @@ int main() {
                        offsetof(StepContext, aux),
                        offsetof(StepContext, sg)};
   const char* what[20] = {"sizeof(StepContext)", "offsetof(result)", "offsetof(np)", "offsetof(fix)",
-                         "offsetof(reduce_block)", "sizeof(MaterialParams)", "offsetof(eos_e0)",
+                         "offsetof(noutside)", "sizeof(MaterialParams)", "offsetof(eos_e0)",
                          "offsetof(eos_type)", "offsetof(bulk_q2)", "offsetof(dp_tension)", "offsetof(cell_off)",
                          "offsetof(psize)", "offsetof(ncontact)",
                          "offsetof(defgrad)", "offsetof(uvf)", "offsetof(damping)", "offsetof(tl)",

@@ -7,8 +7,9 @@
 !                  [--energies F.txt] [--patch-cells N] [--regrid-every N] [--particle-order blocks|deck] [--quiet] DECK.mpm
 ! --regrid-every N: the adaptive background grid (as mpm3d; default: the deck's adgr, else
 ! off); each regrid prints 'regrid step K window i0 i1 j0 j1 k0 k1' as mpm3d does.
-! --energies writes the kinetic, internal and initial total energy and the momentum of the
-! last step with 17 significant digits (exact doubles), to compare with mpm3d --summary.
+! --energies writes the kinetic, internal and initial total energy, the bound of the external
+! work and the momentum of the last step with 17 significant digits (exact doubles), to
+! compare with mpm3d --summary.
 program mpm3d_ref
   use, intrinsic :: iso_c_binding
   use, intrinsic :: iso_fortran_env, only: int64, error_unit, output_unit
@@ -21,7 +22,6 @@ program mpm3d_ref
   use mpm3d_data_out
   implicit none
 
-  integer, parameter :: REDUCE_BLOCK = 4096
   integer(c_int) :: step_order(MPM3D_MAX_STEP_STAGES)   ! the deck's scheme's row of the step table
   integer :: nstage                            ! stages in step_order
   type(model_t), target :: model
@@ -159,13 +159,13 @@ program mpm3d_ref
   do b = 1, model%nbodies
     gravity(:, b) = model%bodies(b)%gravity
   end do
-  allocate(partials(REDUCE_FIELDS, np / REDUCE_BLOCK + 1))
-  partials = 0.0_dp
   call bind_context()
   nstage = mpm3d_step_order(int(model%scheme, c_int), step_order)
   if (nstage < 0) call fatal(deck // ': unknown update scheme')
 
-  ! Energies of the initial state (as the C++ Simulation constructor).
+  ! Energies of the initial state, over the patch lists of its binning (as the C++
+  ! Simulation constructor; every step bins again).
+  call run_each(ST_BIN)
   call mpm3d_f_energy(ctx)
   initial_total = ctx%result(1) + ctx%result(2)
   if (.not. quiet) then
@@ -199,7 +199,8 @@ program mpm3d_ref
     kinetic = ctx%result(1)
     internal = ctx%result(2)
     momentum = ctx%result(3:5)
-    if (ctx%has_body_force /= 0) external_work = external_work + dt_work_of_body_forces()
+    ! The energy stage's sum of |f . v| (0 without body forces) times this step's dt.
+    external_work = external_work + ctx%result(9) * model%dt
     if (model%dt_per_step) model%dt = velocity_time_step()
     ! drda: every particle stops after a step in which the kinetic energy did not grow.
     if (model%dynamic_relaxation .and. kinetic - kinetic_before <= 0.0_dp) then
@@ -223,31 +224,6 @@ program mpm3d_ref
   if (rc /= 0) stop 3, quiet=.true.
 
 contains
-
-  ! Work of gravity and loads over one step with the end-of-step velocities
-  ! (Simulation::dt_work_of_body_forces).
-  real(dp) function dt_work_of_body_forces() result(wdt)
-    real(dp) :: w, f, fe, pw
-    integer :: p, a
-    ! A bound of the energy the external forces can have put in: |f . v| per particle.
-    w = 0.0_dp
-    associate (pp => model%particles)
-      do p = 1, np
-        pw = 0.0_dp
-        do a = 1, 3
-          if (allocated(pp%fext)) then
-            fe = pp%fext(a, p)
-          else
-            fe = 0.0_dp
-          end if
-          f = (pp%mass(p) * gravity(a, pp%body(p) + 1)) + fe
-          pw = pw + (f * pp%v(a, p))
-        end do
-        w = w + abs(pw)
-      end do
-    end associate
-    wdt = w * model%dt
-  end function dt_work_of_body_forces
 
   ! Whether the time loop goes on (Simulation::quasi_static_done with QuLo).
   logical function running()
@@ -301,6 +277,7 @@ contains
     write (u, '(a,es25.16e3)') 'kinetic_energy ', kinetic
     write (u, '(a,es25.16e3)') 'internal_energy ', internal
     write (u, '(a,es25.16e3)') 'initial_total_energy ', initial_total
+    write (u, '(a,es25.16e3)') 'external_work ', external_work
     write (u, '(a,3es25.16e3)') 'momentum ', momentum
     close (u)
   end subroutine write_energies
@@ -349,8 +326,6 @@ contains
     ctx%mats = c_loc(model%mats)
     ctx%patch_part = c_loc(grid%patch_part)
     ctx%patch_buf = c_null_ptr
-    ctx%reduce_block = REDUCE_BLOCK
-    ctx%partials = c_loc(partials)
     ctx%h = grid%h
     ctx%inv_h = 1.0_dp / grid%h
     ctx%dt = model%dt
@@ -434,6 +409,15 @@ contains
     end do
     ctx%nnode = grid_nnode(grid)
     ctx%npatch = grid%npatch
+    ! The energy stage's columns: one per patch and one for the particles outside the grid.
+    if (allocated(partials)) then
+      if (size(partials, 2) /= grid%npatch + 1) deallocate(partials)
+    end if
+    if (.not. allocated(partials)) then
+      allocate(partials(REDUCE_FIELDS, grid%npatch + 1))
+      partials = 0.0_dp
+    end if
+    ctx%partials = c_loc(partials)
   end subroutine bind_grid
 
   ! The node arrays and patch tables of grid g in context c.

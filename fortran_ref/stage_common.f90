@@ -14,7 +14,8 @@ module mpm3d_stage_common
   private
 
   integer, parameter, public :: SCHEME_MUSL = 0, SCHEME_USL = 1, SCHEME_USF = 2
-  integer, parameter, public :: REDUCE_FIELDS = 5
+  ! Fields of the energy stage's columns: kinetic, internal energy, momentum (3), sum |f.v|.
+  integer, parameter, public :: REDUCE_FIELDS = 6
 
   type, bind(C), public :: step_context
     ! Particles (np): x, v (3,np); sig (6,np); scalars (np).
@@ -32,8 +33,9 @@ module mpm3d_stage_common
     ! Patches: start (npatch+1), particle list (np), slot (npatch), buffers.
     type(c_ptr) :: patch_start = c_null_ptr, patch_part = c_null_ptr, patch_slot = c_null_ptr
     type(c_ptr) :: patch_buf = c_null_ptr
-    type(c_ptr) :: partials = c_null_ptr  ! (REDUCE_FIELDS, nblock)
-    real(c_double) :: result(8) = 0.0_dp  ! energy stage: kinetic, internal, momentum (3)
+    type(c_ptr) :: partials = c_null_ptr  ! (REDUCE_FIELDS, npatch + 1) columns of the energy stage
+    ! Energy stage: kinetic, internal, momentum (3) in 1..5, sum |f.v| in 9; contact: force in 6..8.
+    real(c_double) :: result(9) = 0.0_dp
     real(c_double) :: origin(3) = 0.0_dp
     real(c_double) :: h = 0.0_dp, inv_h = 0.0_dp, dt = 0.0_dp, dt_int = 0.0_dp, mass_cutoff = 0.0_dp
     integer(c_int) :: np = 0, nbody = 0, nmat = 0, nnode = 0
@@ -43,7 +45,6 @@ module mpm3d_stage_common
     integer(c_int) :: scheme = 0
     integer(c_int) :: has_body_force = 0
     integer(c_int) :: noutside = 0
-    integer(c_int) :: reduce_block = 0
     ! Explosives and bulk viscosity (stress stage only).
     type(c_ptr) :: tlight = c_null_ptr    ! (np) lighting times, or null (only with hiex)
     type(c_ptr) :: qv = c_null_ptr        ! (np) bulk viscosity pressures, or null (only with bulk)
@@ -216,7 +217,7 @@ contains
     out(2) = transfer(c_loc(c%result), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
     out(3) = transfer(c_loc(c%np), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
     out(4) = transfer(c_loc(c%fix), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
-    out(5) = transfer(c_loc(c%reduce_block), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
+    out(5) = transfer(c_loc(c%noutside), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
     out(6) = c_sizeof(m(1))
     out(7) = transfer(c_loc(m(1)%eos_e0), 0_c_intptr_t) - transfer(c_loc(m(1)), 0_c_intptr_t)
     out(8) = transfer(c_loc(m(1)%eos_type), 0_c_intptr_t) - transfer(c_loc(m(1)), 0_c_intptr_t)

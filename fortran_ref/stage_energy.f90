@@ -1,5 +1,6 @@
-! stage_energy: the energy stage (bind(C) mpm3d_f_energy): kinetic and internal energy and
-! momentum, in the fixed block order of the C++ reduction.
+! stage_energy: the energy stage (bind(C) mpm3d_f_energy): kinetic and internal energy,
+! momentum and the rate of the external work bound, as one column of partial sums per patch
+! (and one for the particles outside the grid) folded in column order, as mpm3d_cxx_energy.
 module mpm3d_stage_energy
   use, intrinsic :: iso_c_binding
   use mpm3d_material, only: dp
@@ -11,41 +12,91 @@ module mpm3d_stage_energy
 
 contains
 
-  ! Energy: kinetic and internal energy and momentum, summed per block of reduce_block
-  ! particles, then the block partials in block order.
+  ! Energy: result(1:5) = sum_p (m_p |v_p|^2 / 2, e_p, m_p v_p), result(9) = sum_p |f_p . v_p|
+  ! (0 without body forces). Column q+1 (q = 0..npatch-1) sums patch q's list, then (contact)
+  ! component 2's list of patch q; column npatch+1 the particles outside the grid (cell < 0,
+  ! the cell array shared by both components) in ascending index, scanned only when there are
+  ! any. All columns first, then every column folded in column order from 0.0.
   subroutine mpm3d_f_energy(c) bind(C, name='mpm3d_f_energy')
-    type(step_context), intent(inout) :: c
-    real(dp), pointer :: mass(:), v(:,:), ie(:), partials(:,:)
-    real(dp) :: part(REDUCE_FIELDS), m, s
-    integer :: bs, nblock, blk, last, p, f
-    bs = c%reduce_block
-    nblock = (c%np + bs - 1) / bs
+    type(step_context), intent(inout), target :: c
+    type(step_context), pointer :: c2
+    real(dp), pointer :: partials(:,:), mass(:), v(:,:), ie(:), grav(:,:), fext(:,:)
+    integer(c_int), pointer :: cell(:), body(:), start(:), ppart(:), start2(:), ppart2(:)
+    real(dp) :: part(REDUCE_FIELDS), s(REDUCE_FIELDS)
+    integer :: q, p, i, noutside
+    logical :: contact, work, has_fext
+    contact = c_associated(c%other)
+    work = c%has_body_force /= 0
+    has_fext = c_associated(c%fext)
+    noutside = c%noutside
     call c_f_pointer(c%mass, mass, [c%np])
     call c_f_pointer(c%v, v, [3, c%np])
     call c_f_pointer(c%ie, ie, [c%np])
-    call c_f_pointer(c%partials, partials, [REDUCE_FIELDS, max(nblock, 1)])
-    do blk = 0, nblock - 1
+    call c_f_pointer(c%body, body, [c%np])
+    if (work) call c_f_pointer(c%gravity, grav, [3, max(c%nbody, 1)])
+    if (has_fext) call c_f_pointer(c%fext, fext, [3, c%np])
+    call c_f_pointer(c%cell, cell, [c%np])
+    call c_f_pointer(c%patch_start, start, [c%npatch + 1])
+    call c_f_pointer(c%patch_part, ppart, [c%np])
+    if (contact) then
+      call c_f_pointer(c%other, c2)
+      noutside = noutside + c2%noutside
+      call c_f_pointer(c2%patch_start, start2, [c2%npatch + 1])
+      call c_f_pointer(c2%patch_part, ppart2, [c2%np])
+    end if
+    call c_f_pointer(c%partials, partials, [REDUCE_FIELDS, c%npatch + 1])
+    do q = 0, c%npatch - 1
       part = 0.0_dp
-      last = min((blk + 1) * bs, c%np)
-      do p = blk * bs + 1, last
-        m = mass(p)
-        part(1) = part(1) + ((0.5_dp * m) * (((v(1, p) * v(1, p)) + (v(2, p) * v(2, p))) + (v(3, p) * v(3, p))))
-        part(2) = part(2) + ie(p)
-        part(3) = part(3) + (m * v(1, p))
-        part(4) = part(4) + (m * v(2, p))
-        part(5) = part(5) + (m * v(3, p))
+      do i = start(q + 1) + 1, start(q + 2)
+        call add_particle(ppart(i) + 1)
       end do
-      do f = 1, REDUCE_FIELDS
-        partials(f, blk + 1) = part(f)
-      end do
+      if (contact) then
+        do i = start2(q + 1) + 1, start2(q + 2)
+          call add_particle(ppart2(i) + 1)
+        end do
+      end if
+      partials(:, q + 1) = part
     end do
-    do f = 1, REDUCE_FIELDS
-      s = 0.0_dp
-      do blk = 1, nblock
-        s = s + partials(f, blk)
+    part = 0.0_dp
+    if (noutside > 0) then
+      do p = 1, c%np
+        if (cell(p) < 0) call add_particle(p)
       end do
-      c%result(f) = s
+    end if
+    partials(:, c%npatch + 1) = part
+    ! The fold, apart from the columns (an MPI run folds the gathered columns).
+    s = 0.0_dp
+    do q = 1, c%npatch + 1
+      s = s + partials(:, q)
     end do
+    c%result(1:5) = s(1:5)
+    c%result(9) = s(6)
+
+  contains
+
+    ! Adds particle p (1-based) to part (the C++ add_particle): m |v|^2 / 2, e, m v and, with
+    ! body forces, |f . v| with f = m g + f_ext (neither ramped nor damped).
+    subroutine add_particle(p)
+      integer, intent(in) :: p
+      real(dp) :: m, f, fe, pw
+      integer :: a
+      m = mass(p)
+      part(1) = part(1) + ((0.5_dp * m) * (((v(1, p) * v(1, p)) + (v(2, p) * v(2, p))) + (v(3, p) * v(3, p))))
+      part(2) = part(2) + ie(p)
+      part(3) = part(3) + (m * v(1, p))
+      part(4) = part(4) + (m * v(2, p))
+      part(5) = part(5) + (m * v(3, p))
+      if (.not. work) return
+      pw = 0.0_dp
+      do a = 1, 3
+        fe = 0.0_dp
+        if (has_fext) fe = fext(a, p)
+        f = (m * grav(a, body(p) + 1)) + fe
+        pw = pw + (f * v(a, p))
+      end do
+      part(6) = part(6) + abs(pw)
+    end subroutine add_particle
+
   end subroutine mpm3d_f_energy
 
 end module mpm3d_stage_energy

@@ -8,7 +8,8 @@
 #            --kernels p2g=fortran) after STEPS steps: identical bits (plain h5diff), and
 #            the same energies, momentum, bounding box, ... in the --summary files.
 #   ref      state of `mpm3d` against the Fortran program `mpm3d_ref` after STEPS steps,
-#            and the same energies and momentum (mpm3d --summary, mpm3d_ref --energies).
+#            and the same energies, external-work bound and momentum (mpm3d --summary,
+#            mpm3d_ref --energies).
 #   regrid   `mpm3d OPTIONS` against `mpm3d_ref OPTIONS` (e.g. --regrid-every 5): the same
 #            states and the same adaptive-grid windows at the same steps (the 'regrid step K
 #            window ...' lines both print).
@@ -34,11 +35,11 @@ b="$out.b.h5"
 rm -f "$a" "$b"
 # The deterministic lines of a summary JSON (no clock times, no thread counts).
 summary_lines() {
-  grep -E '"(particles|steps|time|dt_min|dt_max|kinetic_energy|internal_energy|initial_total_energy|momentum|bbox_min|bbox_max|max_epeff|particles_outside_grid)":' "$1"
+  grep -E '"(particles|steps|time|dt_min|dt_max|kinetic_energy|internal_energy|initial_total_energy|external_work|momentum|bbox_min|bbox_max|max_epeff|particles_outside_grid)":' "$1"
 }
 # "key v [v v]" lines of the energies in a summary JSON (the order of mpm3d_ref --energies).
 summary_energies() {
-  summary_lines "$1" | grep -E '"(kinetic_energy|internal_energy|initial_total_energy|momentum)"' |
+  summary_lines "$1" | grep -E '"(kinetic_energy|internal_energy|initial_total_energy|external_work|momentum)"' |
     sed 's/[]",:[]/ /g'
 }
 run() {
@@ -65,7 +66,7 @@ case $kind in
     if ! paste "$a.txt" "$b.txt" | awk '
         NF % 2 != 0 || $1 != $(NF / 2 + 1) { bad = 1; next }
         { n = NF / 2; for (i = 2; i <= n; i++) if ($i + 0 != $(i + n) + 0) bad = 1 }
-        END { if (NR != 4) bad = 1; exit bad }'; then
+        END { if (NR != 5) bad = 1; exit bad }'; then
       echo "the energies differ"
       exit 1
     fi

@@ -257,7 +257,7 @@ TEST_F(Cli, SummaryAndStateHoldTheDocumentedContents) {
   const testutil::Json j = testutil::parse_json(testutil::read_file(summary));
   for (const char* k : {"deck", "title", "particles", "steps", "time", "dt_min", "dt_max", "threads", "wall_seconds",
                         "ns_per_particle_step", "kinetic_energy", "internal_energy", "initial_total_energy",
-                        "momentum", "bbox_min", "bbox_max", "max_epeff", "particles_outside_grid", "warnings"})
+                        "external_work", "momentum", "bbox_min", "bbox_max", "max_epeff", "particles_outside_grid", "warnings"})
     EXPECT_TRUE(j.has(k)) << "summary lacks " << k;
   EXPECT_EQ(j["deck"].str, d);
   EXPECT_EQ(j["title"].str, "*** small test deck: two blocks moving toward each other");
@@ -274,6 +274,7 @@ TEST_F(Cli, SummaryAndStateHoldTheDocumentedContents) {
   EXPECT_EQ(j["initial_total_energy"].num, e0);
   EXPECT_EQ(j["kinetic_energy"].num, sim.kinetic);
   EXPECT_EQ(j["internal_energy"].num, sim.internal);
+  EXPECT_EQ(j["external_work"].num, sim.external_work);
   ASSERT_EQ(j["momentum"].arr.size(), 3u);
   ASSERT_EQ(j["bbox_min"].arr.size(), 3u);
   ASSERT_EQ(j["bbox_max"].arr.size(), 3u);
