@@ -100,7 +100,7 @@ class MpiRanks final : public Ranks {
   int rank_ = 0, size_ = 1;
   int np_global_ = 0;
   double imbalance_ = 1.0;
-  double bytes_sent_ = 0.0;  // to other ranks, collectives counted as one copy to each
+  double bytes_sent_ = 0.0;  // put into messages to other ranks (a collective: this rank's part once)
   std::vector<int> gidx_;    // storage index of each local particle on one rank, ascending
   std::vector<int> first_;   // (size + 1) first patch of each rank
   std::vector<int> owner_;   // (npatch) rank of each patch
@@ -271,7 +271,7 @@ void MpiRanks::migrate(Simulation& sim) {
   }
   counts_.resize(size_t(npatch) + 1);
   check(MPI_Allreduce(local.data(), counts_.data(), npatch + 1, MPI_INT, MPI_SUM, comm_), "counts");
-  bytes_sent_ += double(npatch + 1) * sizeof(int) * (size_ - 1);
+  bytes_sent_ += double(npatch + 1) * sizeof(int);
   {
     long most = 0, all = 0;
     for (int u = 0; u < size_; ++u) {
@@ -306,7 +306,7 @@ void MpiRanks::migrate(Simulation& sim) {
       at[size_t(d)] += int(rb);
     }
   }
-  bytes_sent_ += double(out.size()) + double(size_ - 1) * sizeof(int);
+  bytes_sent_ += double(out.size()) + double(size_) * sizeof(int);
   check(MPI_Alltoallv(out.data(), sbytes.data(), sdisp.data(), MPI_BYTE, in.data(), rbytes.data(), rdisp.data(),
                       MPI_BYTE, comm_),
         "moving particles");
@@ -419,7 +419,7 @@ void MpiRanks::exchange_partials(const StepContext* c) {
     cnt[size_t(u)] = kReduceFields * cols;
     disp[size_t(u)] = kReduceFields * first_[size_t(u)];
   }
-  bytes_sent_ += double(cnt[size_t(rank_)]) * sizeof(double) * (size_ - 1);
+  bytes_sent_ += double(cnt[size_t(rank_)]) * sizeof(double);
   check(MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, c->partials, cnt.data(), disp.data(), MPI_DOUBLE, comm_),
         "energy partials");
 }

@@ -20,13 +20,19 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OMP_WAIT_POLICY=passive OMPI_MCA_mpi_yield_when_idle=1
 rm -rf "$work"; mkdir -p "$work"
 run=(--steps "$steps" --no-output --quiet)
-"$mpm3d" --threads 1 "${run[@]}" --state "$work/1x1.h5" "$deck"
+"$mpm3d" --threads 1 "${run[@]}" --state "$work/1x1.h5" --summary "$work/1x1.json" "$deck"
+# The summary's figures of the run (energies, momentum, external work, bounding box...), to
+# the last bit (printed with 17 digits); not its timings, its thread or rank counts.
+figures() {
+  grep -E '"(particles|steps|time|kinetic_energy|internal_energy|initial_total_energy|external_work|momentum|bbox_min|bbox_max|max_epeff|particles_outside_grid|patches_empty|patch_max_particles)"' "$1"
+}
 for rt in "${configs[@]}"; do
   r=${rt%x*}; t=${rt#*x}
   timeout 600 "$mpirun" --oversubscribe --bind-to none -np "$r" "$mpm3d" --threads "$t" "${run[@]}" \
     --state "$work/$rt.h5" --summary "$work/$rt.json" "$deck"
   grep -q "\"ranks\": $r," "$work/$rt.json" || { echo "$rt: the summary does not report $r ranks"; exit 1; }
   h5diff "$work/1x1.h5" "$work/$rt.h5" || { echo "$rt differs from one rank, one thread"; exit 1; }
+  diff <(figures "$work/1x1.json") <(figures "$work/$rt.json") || { echo "$rt: the summary's figures differ"; exit 1; }
 done
 if [ -n "$ref" ] && [ -x "$ref" ]; then
   "$ref" --steps "$steps" --state "$work/ref.h5" "$deck" > /dev/null

@@ -19,4 +19,13 @@ if(MPM3D_MPI AND MPI_CXX_FOUND AND MPIEXEC_EXECUTABLE)
   # USF with Johnson-Cook; explosive (programmed burn, JWL).
   mpm3d_rank_test(usf_john ${CMAKE_SOURCE_DIR}/fortran_ref/testdecks/usf_john.mpm 100)
   mpm3d_rank_test(slab_small ${CMAKE_SOURCE_DIR}/inputs/explosives/slab_small.mpm 200)
+  # drda (the kinetic energy decides, on every rank alike); particles leaving the grid (kept
+  # by the last rank, in the energies' last column).
+  mpm3d_rank_test(plate_hole_drda ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/plate_hole_drda.mpm 200)
+  mpm3d_rank_test(leaving_grid ${CMAKE_SOURCE_DIR}/inputs/stability/leaving_grid.mpm 200)
+  # A rank's health failure ends every rank (usl_blocks runs away at step 253); refusals.
+  add_test(NAME ranks.failure
+           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/rank_failure.sh $<TARGET_FILE:mpm3d> ${MPIEXEC_EXECUTABLE}
+                   ${CMAKE_SOURCE_DIR}/fortran_ref/testdecks/usl_blocks.mpm 300 ${CMAKE_CURRENT_BINARY_DIR}/ranks_failure)
+  set_tests_properties(ranks.failure PROPERTIES SKIP_RETURN_CODE 77 RUN_SERIAL TRUE)
 endif()

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Failures on several ranks (issue 17): a deck that fails its health check ends every rank
+# with status 3 and the one-process message, within the timeout (no rank left waiting); a
+# feature not yet distributed is refused with its name and status 1. Exit 77 (skipped)
+# without mpirun.
+# usage: rank_failure.sh MPM3D MPIRUN FAILING_DECK STEPS WORKDIR
+set -uo pipefail
+mpm3d=$1; mpirun=$2; deck=$3; steps=$4; work=$5
+[ -x "$mpirun" ] || { echo "mpirun absent: skipped"; exit 77; }
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+export OMP_WAIT_POLICY=passive OMPI_MCA_mpi_yield_when_idle=1
+rm -rf "$work"; mkdir -p "$work"
+"$mpm3d" --threads 1 --steps "$steps" --no-output --quiet "$deck" 2> "$work/one.err"
+rc=$?
+[ $rc -eq 3 ] || { echo "one process: status $rc, expected 3"; cat "$work/one.err"; exit 1; }
+for np in 2 3; do
+  timeout 120 "$mpirun" --oversubscribe --bind-to none -np $np "$mpm3d" --threads 1 --steps "$steps" --no-output \
+    --quiet "$deck" 2> "$work/r$np.err"
+  rc=$?
+  [ $rc -ne 124 ] || { echo "$np ranks: still running after 120 s (a rank left waiting)"; exit 1; }
+  [ $rc -eq 3 ] || { echo "$np ranks: status $rc, expected 3"; cat "$work/r$np.err"; exit 1; }
+  # The root prints the one-process message, once.
+  grep -F -x -f "$work/one.err" "$work/r$np.err" > /dev/null || { echo "$np ranks: not the one-process message"; cat "$work/r$np.err"; exit 1; }
+  [ "$(grep -c 'mpm3d: numerical' "$work/r$np.err")" -eq 1 ] || { echo "$np ranks: message not printed once"; exit 1; }
+done
+timeout 120 "$mpirun" --oversubscribe --bind-to none -np 2 "$mpm3d" --kernel fortran --steps 1 --no-output --quiet \
+  "$deck" 2> "$work/refused.err"
+rc=$?
+[ $rc -eq 1 ] && grep -q -- "--kernel/--kernels (the Fortran stages) cannot run on several MPI ranks" "$work/refused.err" ||
+  { echo "--kernel fortran on 2 ranks: status $rc"; cat "$work/refused.err"; exit 1; }
+echo "health failure: status 3 and the one-process message on 2 and 3 ranks; refusal named"
