@@ -455,6 +455,7 @@ int run_main(int argc, char** argv, Ranks* ranks) {
          << ",\n  \"ranks\": " << (ranks ? ranks->size() : 1)
          << ",\n  \"rank_imbalance\": " << json_number(ranks ? ranks->imbalance() : 1.0)
          << ",\n  \"rank_bytes_sent_per_step\": " << json_number(rank_bytes)
+         << ",\n  \"rank_rebalances\": " << (ranks ? ranks->rebalances() : 0)
          << ",\n  \"wall_seconds\": " << json_number(wall) << ",\n  \"ns_per_particle_step\": " << json_number(ns)
          << ",\n  \"kinetic_energy\": " << json_number(sim.kinetic) << ",\n  \"internal_energy\": " << json_number(sim.internal)
          << ",\n  \"initial_total_energy\": " << json_number(sim.initial_total_energy)

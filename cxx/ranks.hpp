@@ -56,6 +56,8 @@ class Ranks {
   virtual double imbalance() const = 0;
   // Bytes this rank has sent to other ranks in the steps so far.
   virtual double bytes_sent() const = 0;
+  // Times the ranks' patch runs were redrawn for balance.
+  virtual long rebalances() const = 0;
 };
 
 }  // namespace mpm3d

@@ -28,6 +28,10 @@
 namespace mpm3d {
 namespace {
 
+// The largest rank's share of the particles over the mean above which the ranks' patch runs
+// are redrawn before a step (docs/PERFORMANCE.md, "MPI ranks").
+constexpr double kRebalanceAbove = 1.03;
+
 void check(int rc, const char* what) {
   if (rc != MPI_SUCCESS) throw std::runtime_error(std::string("MPI: ") + what + " failed");
 }
@@ -43,6 +47,7 @@ class MpiRanks final : public Ranks {
   int global_np() const override { return np_global_; }
   double imbalance() const override { return imbalance_; }
   double bytes_sent() const override { return bytes_sent_; }
+  long rebalances() const override { return rebalances_; }
 
   void distribute(Simulation& sim) override;
   void migrate(Simulation& sim) override;
@@ -106,7 +111,8 @@ class MpiRanks final : public Ranks {
   std::vector<int> owner_;   // (npatch) rank of each patch
   std::vector<int> counts_;  // (npatch + 1) particles of each patch on all ranks, then the
                              // particles that change rank in this step
-  std::vector<int> dest_;    // rank of each local particle (migrate's scratch)
+  std::vector<int> patch_, dest_;  // patch and rank of each local particle (migrate's scratch)
+  long rebalances_ = 0;
   // Per neighbouring rank: this rank's patches next to one of its patches (what it is
   // sent) and its patches next to one of this rank's (what comes back), ascending.
   struct Neighbour {
@@ -118,7 +124,9 @@ class MpiRanks final : public Ranks {
   std::vector<int> fields_;  // indices in particle_fields() of the arrays this run has
 
   int patch_of(const StepContext& c, int p) const;
-  void partition(const Simulation& sim);
+  // The ranks' first patches by the rule above, from counts_.
+  std::vector<int> draw(int npatch) const;
+  void partition(const Simulation& sim, std::vector<int> first);
   size_t row_bytes(Particles& P) const;
   void pack_row(Particles& P, int p, int gidx, char* out) const;
   void exchange_buffers(const StepContext* c, int first, int count);
@@ -143,18 +151,23 @@ int MpiRanks::patch_of(const StepContext& c, int p) const {
 // The ranks' patch runs from counts_ (thread_patches' rule over ranks: rank u starts at
 // the first patch whose prefix count reaches u/size of the particles), then the patches
 // each neighbouring rank needs.
-void MpiRanks::partition(const Simulation& sim) {
-  const StepContext& c = sim.ctx;
-  const int npatch = c.npatch;
+std::vector<int> MpiRanks::draw(int npatch) const {
   std::vector<long> prefix(size_t(npatch) + 1, 0);
   for (int q = 0; q < npatch; ++q) prefix[size_t(q) + 1] = prefix[size_t(q)] + counts_[size_t(q)];
   const long total = prefix[size_t(npatch)];
-  first_.assign(size_t(size_) + 1, npatch);
+  std::vector<int> first(size_t(size_) + 1, npatch);
   for (int u = 0; u < size_; ++u) {
     const long target = total * u / size_;
-    first_[size_t(u)] = int(std::lower_bound(prefix.begin(), prefix.end() - 1, target) - prefix.begin());
+    first[size_t(u)] = int(std::lower_bound(prefix.begin(), prefix.end() - 1, target) - prefix.begin());
   }
-  first_[0] = 0;
+  first[0] = 0;
+  return first;
+}
+
+void MpiRanks::partition(const Simulation& sim, std::vector<int> first) {
+  const StepContext& c = sim.ctx;
+  const int npatch = c.npatch;
+  first_ = std::move(first);
   owner_.assign(size_t(npatch), 0);
   for (int u = 0; u < size_; ++u)
     for (int q = first_[size_t(u)]; q < first_[size_t(u) + 1]; ++q) owner_[size_t(q)] = u;
@@ -230,7 +243,7 @@ void MpiRanks::distribute(Simulation& sim) {
     patch[size_t(p)] = patch_of(c, p);
     if (patch[size_t(p)] >= 0) ++counts_[size_t(patch[size_t(p)])];
   }
-  partition(sim);
+  partition(sim, draw(c.npatch));
   std::vector<int> keep;
   for (int p = 0; p < P.np; ++p) {
     const int q = patch[size_t(p)];
@@ -261,18 +274,19 @@ void MpiRanks::migrate(Simulation& sim) {
   const int npatch = c.npatch;
   if (int(owner_.size()) != npatch) throw std::logic_error("ranks: the grid changed after the partition");
   std::vector<int> local(size_t(npatch) + 1, 0);
+  patch_.resize(size_t(P.np));
   dest_.resize(size_t(P.np));
+  auto rank_of = [&](int q) { return q >= 0 ? owner_[size_t(q)] : size_ - 1; };
   for (int p = 0; p < P.np; ++p) {
     const int q = patch_of(c, p);
+    patch_[size_t(p)] = q;
     if (q >= 0) ++local[size_t(q)];
-    const int d = q >= 0 ? owner_[size_t(q)] : size_ - 1;
-    dest_[size_t(p)] = d;
-    if (d != rank_) ++local[size_t(npatch)];
+    if (rank_of(q) != rank_) ++local[size_t(npatch)];
   }
   counts_.resize(size_t(npatch) + 1);
   check(MPI_Allreduce(local.data(), counts_.data(), npatch + 1, MPI_INT, MPI_SUM, comm_), "counts");
   bytes_sent_ += double(npatch + 1) * sizeof(int);
-  {
+  auto shares = [&]() {
     long most = 0, all = 0;
     for (int u = 0; u < size_; ++u) {
       long n = 0;
@@ -280,9 +294,24 @@ void MpiRanks::migrate(Simulation& sim) {
       most = std::max(most, n);
       all += n;
     }
-    imbalance_ = all > 0 ? double(most) * size_ / double(all) : 1.0;
+    return all > 0 ? double(most) * size_ / double(all) : 1.0;
+  };
+  imbalance_ = shares();
+  // The ranks' runs redrawn from the counts that every rank now holds, when the largest
+  // share has drifted past kRebalanceAbove of the mean and the rule draws other runs (the
+  // bits do not depend on them).
+  bool redrawn = false;
+  if (imbalance_ > kRebalanceAbove) {
+    std::vector<int> first = draw(npatch);
+    if (first != first_) {
+      partition(sim, std::move(first));
+      imbalance_ = shares();
+      ++rebalances_;
+      redrawn = true;
+    }
   }
-  if (counts_[size_t(npatch)] == 0) return;  // nobody moves
+  for (int p = 0; p < P.np; ++p) dest_[size_t(p)] = rank_of(patch_[size_t(p)]);
+  if (counts_[size_t(npatch)] == 0 && !redrawn) return;  // nobody moves
   // Rows to each rank, then the rows from each rank.
   std::vector<int> nsend(static_cast<size_t>(size_), 0), nrecv(static_cast<size_t>(size_), 0);
   for (int p = 0; p < P.np; ++p)

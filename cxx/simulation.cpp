@@ -274,12 +274,20 @@ void Simulation::distribute(Ranks& r) {
 }
 
 void Simulation::particles_changed() {
+  // This step's time step and clock (Simulation::step sets them before the bin stage, where
+  // the particles move between ranks) outlive the rebinding.
+  const double dt = ctx.dt, dt_int = ctx.dt_int, t = ctx.time;
   const size_t np = size_t(model.particles.np);
   lx_.assign(3 * np, 0.0);
   cell_.assign(np, -1);
   grid.patch_part.assign(np, 0);
   if (model.contact) grid2.patch_part.assign(np, 0);
   bind();
+  for (StepContext* c : {&ctx, &ctx2}) {
+    c->dt = dt;
+    c->dt_int = dt_int;
+    c->time = t;
+  }
 }
 
 void Simulation::ensure_patch_buffers() {
