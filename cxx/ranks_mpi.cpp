@@ -53,26 +53,10 @@ class MpiRanks final : public Ranks {
   void migrate(Simulation& sim) override;
   void add_ghost_slots(Simulation& sim) override;
 
-  long sum(long v) override {
-    long r = 0;
-    check(MPI_Allreduce(&v, &r, 1, MPI_LONG, MPI_SUM, comm_), "sum");
-    return r;
-  }
-  int min(int v) override {
-    int r = 0;
-    check(MPI_Allreduce(&v, &r, 1, MPI_INT, MPI_MIN, comm_), "min");
-    return r;
-  }
-  double min(double v) override {
-    double r = 0;
-    check(MPI_Allreduce(&v, &r, 1, MPI_DOUBLE, MPI_MIN, comm_), "min");
-    return r;
-  }
-  double max(double v) override {
-    double r = 0;
-    check(MPI_Allreduce(&v, &r, 1, MPI_DOUBLE, MPI_MAX, comm_), "max");
-    return r;
-  }
+  long sum(long v) override { return reduce(v, MPI_LONG, MPI_SUM); }
+  int min(int v) override { return reduce(v, MPI_INT, MPI_MIN); }
+  double min(double v) override { return reduce(v, MPI_DOUBLE, MPI_MIN); }
+  double max(double v) override { return reduce(v, MPI_DOUBLE, MPI_MAX); }
   std::string broadcast(const std::string& s, int from) override {
     int n = int(s.size());
     check(MPI_Bcast(&n, 1, MPI_INT, from, comm_), "broadcast");
@@ -123,6 +107,12 @@ class MpiRanks final : public Ranks {
   std::vector<Neighbour> neighbours_;
   std::vector<int> fields_;  // indices in particle_fields() of the arrays this run has
 
+  template <class T>
+  T reduce(T v, MPI_Datatype type, MPI_Op op) {
+    T r{};
+    check(MPI_Allreduce(&v, &r, 1, type, op, comm_), "reduction");
+    return r;
+  }
   int patch_of(const StepContext& c, int p) const;
   // The ranks' first patches by the rule above, from counts_.
   std::vector<int> draw(int npatch) const;

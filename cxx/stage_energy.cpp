@@ -4,10 +4,6 @@
 #include <cmath>
 #include <cstddef>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include "lanes.hpp"
 #include "patch_loops.hpp"
 #include "update_step.hpp"
@@ -88,38 +84,26 @@ inline void add_list(const StepContext* c, const int* list, int n, const int* li
 // component 2's list of the same patch; column npatch the particles outside the grid in
 // ascending index (one pass over the cells, only when there are any). Each column is one
 // serial sum, whichever thread computes it; each thread takes its run of patches
-// (thread_patches: the particles it updated in the stress stage).
+// (for_patches: the particles it updated in the stress stage).
 template <bool kWork>
 void compute_columns(StepContext* c) {
   const int npatch = c->npatch;
   const StepContext* c2 = c->other;
   const bool any_outside = c->noutside + (c2 ? c2->noutside : 0) > 0;
-#pragma omp parallel
-  {
-    int t = 0, T = 1;
-#ifdef _OPENMP
-    t = omp_get_thread_num();
-    T = omp_get_num_threads();
-#endif
-    int lo, hi;
-    thread_patches(c, t, T, lo, hi);
-    const int* end1 = c->patch_part + c->patch_start[npatch];
-    for (int q = lo; q < hi; ++q) {
-      Sums s;
-      add_list<kWork>(c, c->patch_part + c->patch_start[q], c->patch_start[q + 1] - c->patch_start[q], end1, s);
-      if (c2)
-        add_list<kWork>(c, c2->patch_part + c2->patch_start[q], c2->patch_start[q + 1] - c2->patch_start[q],
-                        c2->patch_part + c2->patch_start[npatch], s);
-      for (int f = 0; f < kReduceFields; ++f) c->partials[size_t(kReduceFields) * q + f] = s.f[f];
-    }
-    if (t == T - 1) {
-      Sums s;
-      if (any_outside)  // the cell array is shared by both contact components
-        for (int p = 0; p < c->np; ++p)
-          if (c->cell[p] < 0) add_particles<kWork, ScalarLane>(c, &p, s);
-      for (int f = 0; f < kReduceFields; ++f) c->partials[size_t(kReduceFields) * npatch + f] = s.f[f];
-    }
-  }
+  const int* end1 = c->patch_part + c->patch_start[npatch];
+  for_patches(c, [&](int q) {
+    Sums s;
+    add_list<kWork>(c, c->patch_part + c->patch_start[q], c->patch_start[q + 1] - c->patch_start[q], end1, s);
+    if (c2)
+      add_list<kWork>(c, c2->patch_part + c2->patch_start[q], c2->patch_start[q + 1] - c2->patch_start[q],
+                      c2->patch_part + c2->patch_start[npatch], s);
+    for (int f = 0; f < kReduceFields; ++f) c->partials[size_t(kReduceFields) * q + f] = s.f[f];
+  });
+  Sums s;
+  if (any_outside)  // the cell array is shared by both contact components
+    for (int p = 0; p < c->np; ++p)
+      if (c->cell[p] < 0) add_particles<kWork, ScalarLane>(c, &p, s);
+  for (int f = 0; f < kReduceFields; ++f) c->partials[size_t(kReduceFields) * npatch + f] = s.f[f];
 }
 
 }  // namespace

@@ -57,5 +57,11 @@ if [ -x "$build/fortran_ref/mpm3d_ref" ]; then
   done
   column -s, -t < "$ref_csv"
 fi
+# MPI ranks against threads (issue 17): 1x1, 1x2 and 2x1 side by side on the coarse and
+# medium Taylor models, when mpm3d is built with MPI.
+if command -v mpirun > /dev/null && ldd "$build/cxx/mpm3d" | grep -q libmpi; then
+  "$py" tools/rank_bench.py "$build" "$outdir/ranks.csv" --rounds "${BENCH_ROUNDS:-5}" --steps "$steps" \
+    inputs/taylor/taylor_coarse.mpm inputs/taylor/taylor_medium.mpm
+fi
 "$py" tools/bench_plot.py "$csv" "$outdir"
 column -s, -t < "$csv"
