@@ -407,7 +407,7 @@ int run_main(int argc, char** argv, Ranks* ranks) {
     if (!failure.empty()) {
       if (last_ckpt >= 0)
         failure += "; the last checkpoint (step " + std::to_string(last_ckpt) + ") is kept in " + last_ckpt_path;
-    } else if (interrupted) {
+    } else if (interrupted && !ranks) {  // several ranks write no checkpoint yet
       const std::string path = ckpt_path.empty() ? default_ckpt : ckpt_path;
       if (last_ckpt != sim.steps || last_ckpt_path != path) save_checkpoint(path);
     } else if (!ckpt_path.empty() && last_ckpt != sim.steps) {
@@ -439,8 +439,9 @@ int run_main(int argc, char** argv, Ranks* ranks) {
     std::string stop_note;
     if (interrupted) {
       stop_note = std::string("interrupted by ") + (interrupted == SIGINT ? "SIGINT" : "SIGTERM") + " at step " +
-                  std::to_string(sim.steps) + "; checkpoint " + last_ckpt_path + " (continue with --restart " +
-                  last_ckpt_path + ")";
+                  std::to_string(sim.steps) +
+                  (ranks ? std::string("; no checkpoint (not written by several MPI ranks yet)")
+                         : "; checkpoint " + last_ckpt_path + " (continue with --restart " + last_ckpt_path + ")");
       warnings.push_back(stop_note);
     }
     // The state file holds the final state: not written when a signal stopped the run.
