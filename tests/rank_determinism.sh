@@ -3,9 +3,8 @@
 # process with one thread, then under mpirun at each RANKSxTHREADS of CONFIGS (default
 # 2x1 3x1 4x1 2x2), and compares the final states with h5diff (no tolerance); with a
 # reference program given, its state must match too. The ranks run oversubscribed on a small
-# machine (--oversubscribe, no binding): this checks the bits, not the speed. Open MPI
-# refuses to start as root unless told: the allow-run-as-root settings are set here, for the
-# test only. Exit 77 (skipped) when the deck or mpirun is absent.
+# machine (--oversubscribe, no binding): this checks the bits, not the speed. Exit 77
+# (skipped) when the deck is absent, or mpirun (tests/mpirun_setup.sh).
 # usage: rank_determinism.sh MPM3D MPIRUN DECK STEPS WORKDIR [MPM3D_REF [CONFIGS...]]
 set -euo pipefail
 mpm3d=$1; mpirun=$2; deck=$3; steps=$4; work=$5; ref=${6:-}
@@ -13,15 +12,7 @@ shift $(( $# < 6 ? $# : 6 ))
 configs=("$@")
 [ ${#configs[@]} -gt 0 ] || configs=(2x1 3x1 4x1 2x2)
 [ -f "$deck" ] || { echo "deck $deck absent: skipped"; exit 77; }
-[ -x "$mpirun" ] || { echo "mpirun absent: skipped"; exit 77; }
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-# Oversubscribed, spinning threads and ranks wait for each other's time slices (2x2 on two
-# cores ran 25x slower): waiting threads and ranks yield.
-export OMP_WAIT_POLICY=passive OMPI_MCA_mpi_yield_when_idle=1
-# A machine where mpirun cannot start two processes at all (no shared memory, no network
-# interface) cannot run these tests: skipped, not failed.
-timeout 60 "$mpirun" --oversubscribe --bind-to none -np 2 true > /dev/null 2>&1 ||
-  { echo "mpirun cannot start 2 processes here: skipped"; exit 77; }
+source "$(dirname "$0")/mpirun_setup.sh"
 rm -rf "$work"; mkdir -p "$work"
 run=(--steps "$steps" --no-output --quiet)
 "$mpm3d" --threads 1 "${run[@]}" --state "$work/1x1.h5" --summary "$work/1x1.json" "$deck"

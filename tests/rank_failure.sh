@@ -2,17 +2,11 @@
 # Failures on several ranks (issue 17): a deck that fails its health check ends every rank
 # with status 3 and the one-process message, within the timeout (no rank left waiting); a
 # feature not yet distributed is refused with its name and status 1. Exit 77 (skipped)
-# without mpirun.
+# without a working mpirun (tests/mpirun_setup.sh).
 # usage: rank_failure.sh MPM3D MPIRUN FAILING_DECK STEPS WORKDIR
 set -uo pipefail
 mpm3d=$1; mpirun=$2; deck=$3; steps=$4; work=$5
-[ -x "$mpirun" ] || { echo "mpirun absent: skipped"; exit 77; }
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-export OMP_WAIT_POLICY=passive OMPI_MCA_mpi_yield_when_idle=1
-# A machine where mpirun cannot start two processes at all (no shared memory, no network
-# interface) cannot run these tests: skipped, not failed.
-timeout 60 "$mpirun" --oversubscribe --bind-to none -np 2 true > /dev/null 2>&1 ||
-  { echo "mpirun cannot start 2 processes here: skipped"; exit 77; }
+source "$(dirname "$0")/mpirun_setup.sh"
 rm -rf "$work"; mkdir -p "$work"
 "$mpm3d" --threads 1 --steps "$steps" --no-output --quiet "$deck" 2> "$work/one.err"
 rc=$?
