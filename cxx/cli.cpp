@@ -225,7 +225,6 @@ std::string not_distributed(const Options& opt, const Model& m) {
   if (m.regrid_every > 0) return "the adaptive grid (adgr, --regrid-every)";
   if (m.contact) return "contact (cont)";
   if (m.sg) return "sgmp";
-  if (m.shape() != 0) return m.gimp ? "GIMP" : "B-spline shape functions (bimp)";
   if (m.tl) return "TLmp";
   return "";
 }

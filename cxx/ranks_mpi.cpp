@@ -163,11 +163,17 @@ void MpiRanks::partition(const Simulation& sim, std::vector<int> first) {
     for (int q = first_[size_t(u)]; q < first_[size_t(u) + 1]; ++q) owner_[size_t(q)] = u;
   std::vector<std::vector<int>> send(static_cast<size_t>(size_)), recv(static_cast<size_t>(size_));
   const int n0 = c.npd[0], n1 = c.npd[1], n2 = c.npd[2];
+  // The patches whose buffers add into a node this rank's particles read, along one axis:
+  // a particle of patch q reads nodes q P - H .. (q + 1) P + H (H the halo of the wide
+  // stencils), and patch r's buffer holds nodes r P - H .. (r + 1) P + H, so r lies within
+  // q -+ (1 + floor(2 H / P)): one patch each way for the trilinear stencil, and for the
+  // 27-node ones when P >= 3.
+  const int R = 1 + (2 * c.patch_halo) / c.patch_cells;
   for (int q = first_[size_t(rank_)]; q < first_[size_t(rank_) + 1]; ++q) {
     const int qx = q % n0, qy = (q / n0) % n1, qz = q / (n0 * n1);
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
+    for (int dz = -R; dz <= R; ++dz)
+      for (int dy = -R; dy <= R; ++dy)
+        for (int dx = -R; dx <= R; ++dx) {
           const int x = qx + dx, y = qy + dy, z = qz + dz;
           if (x < 0 || y < 0 || z < 0 || x >= n0 || y >= n1 || z >= n2) continue;
           const int o = x + n0 * (y + n1 * z), s = owner_[size_t(o)];

@@ -5,16 +5,20 @@
 # reference program given, its state must match too. The ranks run oversubscribed on a small
 # machine (--oversubscribe, no binding): this checks the bits, not the speed. Exit 77
 # (skipped) when the deck is absent, or mpirun (tests/mpirun_setup.sh).
-# usage: rank_determinism.sh MPM3D MPIRUN DECK STEPS WORKDIR [MPM3D_REF [CONFIGS...]]
+# Arguments from the first one starting with -- on are options of every run (mpm3d and
+# mpm3d_ref), e.g. --patch-cells 2.
+# usage: rank_determinism.sh MPM3D MPIRUN DECK STEPS WORKDIR [MPM3D_REF [CONFIGS...] [OPTIONS...]]
 set -euo pipefail
 mpm3d=$1; mpirun=$2; deck=$3; steps=$4; work=$5; ref=${6:-}
 shift $(( $# < 6 ? $# : 6 ))
-configs=("$@")
+configs=(); opts=()
+while [ $# -gt 0 ] && [ "${1#--}" = "$1" ]; do configs+=("$1"); shift; done
+opts=("$@")
 [ ${#configs[@]} -gt 0 ] || configs=(2x1 3x1 4x1 2x2)
 [ -f "$deck" ] || { echo "deck $deck absent: skipped"; exit 77; }
 source "$(dirname "$0")/mpirun_setup.sh"
 rm -rf "$work"; mkdir -p "$work"
-run=(--steps "$steps" --no-output --quiet)
+run=(--steps "$steps" --no-output --quiet "${opts[@]}")
 "$mpm3d" --threads 1 "${run[@]}" --state "$work/1x1.h5" --summary "$work/1x1.json" "$deck"
 # The summary's figures of the run (energies, momentum, external work, bounding box...), to
 # the last bit (printed with 17 digits); not its timings, its thread or rank counts.
@@ -30,10 +34,10 @@ for rt in "${configs[@]}"; do
   diff <(figures "$work/1x1.json") <(figures "$work/$rt.json") || { echo "$rt: the summary's figures differ"; exit 1; }
 done
 if [ -n "$ref" ] && [ -x "$ref" ]; then
-  "$ref" --steps "$steps" --state "$work/ref.h5" "$deck" > /dev/null
+  "$ref" --steps "$steps" "${opts[@]}" --state "$work/ref.h5" "$deck" > /dev/null
   h5diff "$work/1x1.h5" "$work/ref.h5" || { echo "mpm3d_ref differs"; exit 1; }
 fi
 # Sanity: the run moved the particles (so equal files are not trivially equal).
-"$mpm3d" --steps 0 --no-output --quiet --state "$work/t0.h5" "$deck"
+"$mpm3d" --steps 0 --no-output --quiet "${opts[@]}" --state "$work/t0.h5" "$deck"
 if h5diff -q "$work/t0.h5" "$work/1x1.h5" > /dev/null; then echo "state did not change"; exit 1; fi
 echo "identical bits at ranks x threads ${configs[*]}, one process${ref:+ and mpm3d_ref} after $steps steps"

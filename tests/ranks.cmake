@@ -23,6 +23,12 @@ if(MPM3D_MPI AND MPI_CXX_FOUND AND MPIEXEC_EXECUTABLE)
   # by the last rank, in the energies' last column).
   mpm3d_rank_test(plate_hole_drda ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/plate_hole_drda.mpm 200)
   mpm3d_rank_test(leaving_grid ${CMAKE_SOURCE_DIR}/inputs/stability/leaving_grid.mpm 200)
+  # GIMP and B-splines (27-node stencils, buffers with a halo): a rank needs the buffers of
+  # patches up to 1 + floor(2 halo / patch cells) away, two with 2-cell patches.
+  mpm3d_rank_test(two_blocks_gimp ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks_gimp.mpm 100)
+  mpm3d_rank_test(two_blocks_gimp_patch2 ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks_gimp.mpm 100
+                  2x1 3x1 4x1 --patch-cells 2)
+  mpm3d_rank_test(cook_membrane_bimp ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/cook_membrane_bimp.mpm 60 2x1 3x1)
   # A rank's health failure ends every rank (usl_blocks runs away at step 253); refusals.
   add_test(NAME ranks.failure
            COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/rank_failure.sh $<TARGET_FILE:mpm3d> ${MPIEXEC_EXECUTABLE}
