@@ -223,7 +223,6 @@ std::string not_distributed(const Options& opt, const Model& m) {
   if (!opt.checkpoint.empty() || opt.checkpoint_every > 0 || !opt.restart.empty()) return "checkpoints and restarts";
   if (opt.particle_order == "deck") return "--particle-order deck";
   if (m.regrid_every > 0) return "the adaptive grid (adgr, --regrid-every)";
-  if (m.contact) return "contact (cont)";
   if (m.sg) return "sgmp";
   if (m.tl) return "TLmp";
   return "";
@@ -463,6 +462,8 @@ int run_main(int argc, char** argv, Ranks* ranks) {
          << json_number(sim.momentum[0]) << ", " << json_number(sim.momentum[1]) << ", " << json_number(sim.momentum[2])
          << "],\n  \"bbox_min\": [" << json_number(lo[0]) << ", " << json_number(lo[1]) << ", " << json_number(lo[2]) << "],\n  \"bbox_max\": ["
          << json_number(hi[0]) << ", " << json_number(hi[1]) << ", " << json_number(hi[2]) << "],\n  \"max_epeff\": " << json_number(max_epeff)
+         << ",\n  \"contact_force\": [" << json_number(sim.contact_force[0]) << ", " << json_number(sim.contact_force[1])
+         << ", " << json_number(sim.contact_force[2]) << "],\n  \"contact_nodes\": " << sim.contact_nodes
          << ",\n  \"particles_outside_grid\": " << sim.outside << ",\n  \"regrid_every\": " << sim.regrid_every << ",\n  \"regrids\": " << sim.regrids
          << ",\n  \"regrids_forced\": " << sim.regrids_forced << ",\n  \"grid_window_offset\": [" << sim.grid.off[0]
          << ", " << sim.grid.off[1] << ", " << sim.grid.off[2] << "],\n  \"grid_window_cells\": [" << sim.grid.nc[0]

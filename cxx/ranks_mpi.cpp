@@ -81,7 +81,8 @@ class MpiRanks final : public Ranks {
   static void exchange(const StepContext* c, int kind, int first, int count) {
     auto* self = static_cast<MpiRanks*>(c->exchange_data);
     if (kind == EXCHANGE_BUFFERS) self->exchange_buffers(c, first, count);
-    else self->exchange_partials(c);
+    else if (kind == EXCHANGE_PARTIALS) self->exchange_columns(c->partials, kReduceFields, true);
+    else self->exchange_columns(c->cpartials, kContactFields, false);
   }
 
  private:
@@ -94,7 +95,9 @@ class MpiRanks final : public Ranks {
   std::vector<int> first_;   // (size + 1) first patch of each rank
   std::vector<int> owner_;   // (npatch) rank of each patch
   std::vector<int> counts_;  // (npatch + 1) particles of each patch on all ranks, then the
-                             // particles that change rank in this step
+                             // particles that change rank in this step; with contact then
+                             // (npatch) component 2's particles of each patch
+  bool contact_ = false;
   std::vector<int> patch_, dest_;  // patch and rank of each local particle (migrate's scratch)
   long rebalances_ = 0;
   // Per neighbouring rank: this rank's patches next to one of its patches (what it is
@@ -114,13 +117,23 @@ class MpiRanks final : public Ranks {
     return r;
   }
   int patch_of(const StepContext& c, int p) const;
+  // Particles of patch q on all ranks: of the context's component (1 or 2 with contact).
+  int count(int q, int comp) const {
+    const size_t np1 = owner_.size() + 1;
+    if (comp == 0) return counts_[size_t(q)];
+    return comp == 2 ? counts_[np1 + size_t(q)] : counts_[size_t(q)] - counts_[np1 + size_t(q)];
+  }
+  // True when particle p is of contact component 2.
+  bool second(const StepContext& c, int p) const { return contact_ && c.body_comp[c.body[p]] == 2; }
   // The ranks' first patches by the rule above, from counts_.
   std::vector<int> draw(int npatch) const;
   void partition(const Simulation& sim, std::vector<int> first);
   size_t row_bytes(Particles& P) const;
   void pack_row(Particles& P, int p, int gidx, char* out) const;
-  void exchange_buffers(const StepContext* c, int first, int count);
-  void exchange_partials(const StepContext* c);
+  void exchange_buffers(const StepContext* c, int first, int nfield);
+  // A stage's per-patch columns of nf fields: every rank's own (and, with outside, the
+  // last rank's column of the particles outside the grid) to every rank.
+  void exchange_columns(double* cols, int nf, bool outside);
 };
 
 // The patch of particle p, or -1 outside the grid window: the bin stage's arithmetic
@@ -233,11 +246,15 @@ void MpiRanks::distribute(Simulation& sim) {
   }
   // Every rank holds every particle here: the counts need no communication.
   const StepContext& c = sim.ctx;
-  counts_.assign(size_t(c.npatch) + 1, 0);
+  contact_ = c.other != nullptr;
+  counts_.assign(size_t(c.npatch) + 1 + (contact_ ? size_t(c.npatch) : 0), 0);
   std::vector<int> patch(size_t(P.np));
   for (int p = 0; p < P.np; ++p) {
-    patch[size_t(p)] = patch_of(c, p);
-    if (patch[size_t(p)] >= 0) ++counts_[size_t(patch[size_t(p)])];
+    const int q = patch_of(c, p);
+    patch[size_t(p)] = q;
+    if (q < 0) continue;
+    ++counts_[size_t(q)];
+    if (second(c, p)) ++counts_[size_t(c.npatch) + 1 + size_t(q)];
   }
   partition(sim, draw(c.npatch));
   std::vector<int> keep;
@@ -259,9 +276,10 @@ void MpiRanks::distribute(Simulation& sim) {
   }
   P.np = int(keep.size());
   gidx_ = std::move(keep);
-  sim.particles_changed();
+  // Before the rebinding, which copies the context into component 2's (contact).
   sim.ctx.exchange = &MpiRanks::exchange;
   sim.ctx.exchange_data = this;
+  sim.particles_changed();
 }
 
 void MpiRanks::migrate(Simulation& sim) {
@@ -269,19 +287,23 @@ void MpiRanks::migrate(Simulation& sim) {
   const StepContext& c = sim.ctx;
   const int npatch = c.npatch;
   if (int(owner_.size()) != npatch) throw std::logic_error("ranks: the grid changed after the partition");
-  std::vector<int> local(size_t(npatch) + 1, 0);
+  const int ncount = npatch + 1 + (contact_ ? npatch : 0);
+  std::vector<int> local(size_t(ncount), 0);
   patch_.resize(size_t(P.np));
   dest_.resize(size_t(P.np));
   auto rank_of = [&](int q) { return q >= 0 ? owner_[size_t(q)] : size_ - 1; };
   for (int p = 0; p < P.np; ++p) {
     const int q = patch_of(c, p);
     patch_[size_t(p)] = q;
-    if (q >= 0) ++local[size_t(q)];
+    if (q >= 0) {
+      ++local[size_t(q)];
+      if (second(c, p)) ++local[size_t(npatch) + 1 + size_t(q)];
+    }
     if (rank_of(q) != rank_) ++local[size_t(npatch)];
   }
-  counts_.resize(size_t(npatch) + 1);
-  check(MPI_Allreduce(local.data(), counts_.data(), npatch + 1, MPI_INT, MPI_SUM, comm_), "counts");
-  bytes_sent_ += double(npatch + 1) * sizeof(int);
+  counts_.resize(size_t(ncount));
+  check(MPI_Allreduce(local.data(), counts_.data(), ncount, MPI_INT, MPI_SUM, comm_), "counts");
+  bytes_sent_ += double(ncount) * sizeof(int);
   auto shares = [&]() {
     long most = 0, all = 0;
     for (int u = 0; u < size_; ++u) {
@@ -376,46 +398,51 @@ void MpiRanks::migrate(Simulation& sim) {
 }
 
 void MpiRanks::add_ghost_slots(Simulation& sim) {
-  StepContext& c = sim.ctx;
   const int lo = first_[size_t(rank_)], hi = first_[size_t(rank_) + 1];
-  // This rank's particles must be exactly those binned into its patches.
-  long mine = 0;
-  for (int q = lo; q < hi; ++q) mine += counts_[size_t(q)];
-  if (c.patch_start[c.npatch] != mine || c.patch_start[lo] != 0 || c.patch_start[hi] != mine)
-    throw std::logic_error("ranks: a particle is binned into another rank's patch");
-  for (const Neighbour& n : neighbours_)
-    for (int q : n.recv)
-      if (counts_[size_t(q)] > 0) c.patch_slot[q] = c.nslot++;
-  // The patch statistics of the whole run.
+  for (StepContext* c : {&sim.ctx, contact_ ? &sim.ctx2 : nullptr}) {
+    if (!c) continue;
+    // This rank's particles (of the context's component) must be exactly those binned
+    // into its patches.
+    long mine = 0;
+    for (int q = lo; q < hi; ++q) mine += count(q, c->only_comp);
+    if (c->patch_start[c->npatch] != mine || c->patch_start[lo] != 0 || c->patch_start[hi] != mine)
+      throw std::logic_error("ranks: a particle is binned into another rank's patch");
+    for (const Neighbour& n : neighbours_)
+      for (int q : n.recv)
+        if (count(q, c->only_comp) > 0) c->patch_slot[q] = c->nslot++;
+  }
+  // The patch statistics of the whole run (with contact, component 1's, as on one rank).
+  const StepContext& c = sim.ctx;
   std::vector<int> start(size_t(c.npatch) + 1, 0);
-  for (int q = 0; q < c.npatch; ++q) start[size_t(q) + 1] = start[size_t(q)] + counts_[size_t(q)];
+  for (int q = 0; q < c.npatch; ++q) start[size_t(q) + 1] = start[size_t(q)] + count(q, c.only_comp);
   sim.stats = patch_stats(sim.grid, start.data());
 }
 
-void MpiRanks::exchange_buffers(const StepContext* c, int first, int count) {
+void MpiRanks::exchange_buffers(const StepContext* c, int first, int nfield) {
   const size_t pn = size_t(patch_nodes(c));
+  const int comp = c->only_comp;
   auto nonempty = [&](const std::vector<int>& qs) {
     size_t n = 0;
-    for (int q : qs) n += counts_[size_t(q)] > 0;
+    for (int q : qs) n += count(q, comp) > 0;
     return n;
   };
   std::vector<MPI_Request> req;
   req.reserve(2 * neighbours_.size());
   for (Neighbour& n : neighbours_) {
-    n.in.resize(nonempty(n.recv) * pn * size_t(count));
+    n.in.resize(nonempty(n.recv) * pn * size_t(nfield));
     if (!n.in.empty()) {
       req.emplace_back();
       check(MPI_Irecv(n.in.data(), int(n.in.size()), MPI_DOUBLE, n.rank, 1, comm_, &req.back()), "receive");
     }
   }
   for (Neighbour& n : neighbours_) {
-    n.out.resize(nonempty(n.send) * pn * size_t(count));
+    n.out.resize(nonempty(n.send) * pn * size_t(nfield));
     double* o = n.out.data();
     for (int q : n.send) {
-      if (counts_[size_t(q)] == 0) continue;
+      if (count(q, comp) == 0) continue;
       const double* b = c->patch_buf + size_t(c->patch_slot[q]) * pn * kNodeFields;
       for (size_t i = 0; i < pn; ++i)
-        for (int f = 0; f < count; ++f) *o++ = b[i * kNodeFields + size_t(first + f)];
+        for (int f = 0; f < nfield; ++f) *o++ = b[i * kNodeFields + size_t(first + f)];
     }
     bytes_sent_ += double(n.out.size()) * sizeof(double);
     if (!n.out.empty()) {
@@ -427,26 +454,24 @@ void MpiRanks::exchange_buffers(const StepContext* c, int first, int count) {
   for (Neighbour& n : neighbours_) {
     const double* in = n.in.data();
     for (int q : n.recv) {
-      if (counts_[size_t(q)] == 0) continue;
+      if (count(q, comp) == 0) continue;
       double* b = c->patch_buf + size_t(c->patch_slot[q]) * pn * kNodeFields;
       for (size_t i = 0; i < pn; ++i)
-        for (int f = 0; f < count; ++f) b[i * kNodeFields + size_t(first + f)] = *in++;
+        for (int f = 0; f < nfield; ++f) b[i * kNodeFields + size_t(first + f)] = *in++;
     }
   }
 }
 
-// Every rank's columns of the energy stage's partials (its patches; the last rank also the
-// column of the particles outside the grid) on every rank.
-void MpiRanks::exchange_partials(const StepContext* c) {
+void MpiRanks::exchange_columns(double* cols, int nf, bool outside) {
   std::vector<int> cnt(static_cast<size_t>(size_)), disp(static_cast<size_t>(size_));
   for (int u = 0; u < size_; ++u) {
-    const int cols = first_[size_t(u) + 1] - first_[size_t(u)] + (u == size_ - 1 ? 1 : 0);
-    cnt[size_t(u)] = kReduceFields * cols;
-    disp[size_t(u)] = kReduceFields * first_[size_t(u)];
+    const int n = first_[size_t(u) + 1] - first_[size_t(u)] + (outside && u == size_ - 1 ? 1 : 0);
+    cnt[size_t(u)] = nf * n;
+    disp[size_t(u)] = nf * first_[size_t(u)];
   }
   bytes_sent_ += double(cnt[size_t(rank_)]) * sizeof(double);
-  check(MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, c->partials, cnt.data(), disp.data(), MPI_DOUBLE, comm_),
-        "energy partials");
+  check(MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, cols, cnt.data(), disp.data(), MPI_DOUBLE, comm_),
+        "per-patch partials");
 }
 
 void MpiRanks::gather(const Particles& local_const, Particles& all) {

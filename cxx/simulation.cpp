@@ -184,9 +184,11 @@ void Simulation::bind() {
     // of its component on its own grid; the contact stage (in ctx) couples the two grids.
     body_comp_.assign(model.bodies.size(), 1);
     for (size_t b = 0; b < model.bodies.size(); ++b) body_comp_[b] = model.bodies[b].component;
-    gnormal1_.assign(3 * size_t(grid.nnode()), 0.0);
-    gnormal2_.assign(3 * size_t(grid.nnode()), 0.0);
-    cpartials_.assign(3 * size_t(grid.npatch), 0.0);
+    // The nodes' contact marks outlive a rebinding after particles changed rank (USF reads
+    // them in the next step); zero when the grid is new.
+    if (gnormal1_.size() != 3 * size_t(grid.nnode())) gnormal1_.assign(3 * size_t(grid.nnode()), 0.0);
+    if (gnormal2_.size() != 3 * size_t(grid.nnode())) gnormal2_.assign(3 * size_t(grid.nnode()), 0.0);
+    cpartials_.assign(size_t(kContactFields) * size_t(grid.npatch), 0.0);
     c.body_comp = body_comp_.data();
     c.contact_mu = model.contact_mu;
     c.contact_normbody = model.contact_normbody;

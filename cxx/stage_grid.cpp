@@ -117,8 +117,9 @@ void scatter_mass_gradient(StepContext* c) {
 // agree with the corrected momenta), and the unit normal of each corrected node is kept in
 // this context's gnormal (zero at the other nodes of the loop), marking the node as in
 // contact for this step. The contact force on component 1, the sum of d/dt_int over the
-// nodes, goes to result[5..7]: per-patch partials (owned nodes in k, j, i order) folded in
-// patch order.
+// nodes, goes to result[5..7] and the number of corrected nodes to ncontact: per-patch
+// partials (cpartials: force, count; owned nodes in k, j, i order) folded in patch order,
+// with several ranks after each rank's columns reached every rank.
 // Stage `recontact`: the momenta of the nodes marked in contact are corrected again with
 // the kept normals, for either sign of q.n, so that the strain rates see the same normal
 // velocity for both bodies at these nodes as the position update did. MUSL runs it after
@@ -189,10 +190,10 @@ inline bool contact_node(StepContext* c, StepContext* c2, int n, double part[3])
 template <bool kRemap>
 void contact_correct(StepContext* c) {
   StepContext* c2 = c->other;
-  int count = 0;
-#pragma omp parallel for schedule(dynamic, 1) reduction(+ : count)
+#pragma omp parallel for schedule(dynamic, 1)
   for (int q = 0; q < c->npatch; ++q) {
     double part[3] = {0.0, 0.0, 0.0};
+    int count = 0;
     const OwnedNodes o = owned_nodes(c, q);
     if (o.active && owned_nodes(c2, q).active) {
       for_owned_nodes(c, o, [&](int n) { count += contact_node<kRemap>(c, c2, n, part); });
@@ -204,18 +205,21 @@ void contact_correct(StepContext* c) {
         g1[0] = g1[1] = g1[2] = 0.0;
       });
     }
-    if (!kRemap)
-      for (int a = 0; a < 3; ++a) c->cpartials[3 * q + a] = part[a];
+    if (!kRemap) {
+      double* col = c->cpartials + size_t(kContactFields) * size_t(q);
+      for (int a = 0; a < 3; ++a) col[a] = part[a];
+      col[3] = double(count);
+    }
   }
   apply_bc(c, c->gmom);
   apply_bc(c2, c2->gmom);
   if (kRemap) return;
-  for (int a = 0; a < 3; ++a) {
-    double s = 0.0;
-    for (int q = 0; q < c->npatch; ++q) s += c->cpartials[3 * q + a];
-    c->result[5 + a] = s;
-  }
-  c->ncontact = count;
+  if (c->exchange) c->exchange(c, EXCHANGE_CONTACT, 0, 0);  // other ranks' columns
+  double s[kContactFields] = {0.0, 0.0, 0.0, 0.0};
+  for (int q = 0; q < c->npatch; ++q)
+    for (int a = 0; a < kContactFields; ++a) s[a] += c->cpartials[size_t(kContactFields) * size_t(q) + size_t(a)];
+  for (int a = 0; a < 3; ++a) c->result[5 + a] = s[a];
+  c->ncontact = int(s[3]);
   apply_bc(c, c->gforce);
   apply_bc(c2, c2->gforce);
 }

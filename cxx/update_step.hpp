@@ -53,7 +53,7 @@ struct StepContext {
   const int *body_comp;      // (nbody) contact component (1 or 2) of each body, or null
   struct StepContext *other; // contact: component 2's context, set in component 1's; else null
   double *gnormal;           // contact: (3,nnode) sum_p m_p grad N_i(x_p) of this component
-  double *cpartials;         // contact: (3,npatch) scratch of the contact-force sum
+  double *cpartials;         // contact: (kContactFields,npatch) scratch of the contact force and count
   double contact_mu;         // contact: Coulomb friction coefficient
   int shape;                 // 0 trilinear (8 nodes), 1 uGIMP, 2 B-spline (27 nodes)
   int patch_halo;            // node layers a patch buffer holds beyond its cells: 0 or 1 (27 nodes)
@@ -132,7 +132,9 @@ constexpr int kAuxFields = 34;  // doubles per cell in StepContext::aux (sgmp)
 // Fields of the energy stage's columns: kinetic, internal energy, momentum (3), sum |f.v|.
 constexpr int kReduceFields = 6;
 // StepContext::exchange's kind: what the stage is about to assemble or fold.
-enum ExchangeKind { EXCHANGE_BUFFERS = 0, EXCHANGE_PARTIALS = 1 };
+enum ExchangeKind { EXCHANGE_BUFFERS = 0, EXCHANGE_PARTIALS = 1, EXCHANGE_CONTACT = 2 };
+// Fields of the contact stage's columns: the force on component 1 (3), corrected nodes.
+constexpr int kContactFields = 4;
 
 // The stage table: which implementation each stage uses (cxx/stages.cpp).
 struct StageTable {

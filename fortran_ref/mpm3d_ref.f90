@@ -372,7 +372,7 @@ contains
       ! Two contexts over the same particles (Simulation::bind): component 1 in ctx,
       ! component 2 in ctx2 with its own grid; the contact stage couples them.
       allocate(body_comp(max(model%nbodies, 1)), gnormal1(3, grid_nnode(grid)), &
-               gnormal2(3, grid_nnode(grid)), cpartials(3, grid%npatch))
+               gnormal2(3, grid_nnode(grid)), cpartials(4, grid%npatch))
       body_comp = 1
       do a = 1, model%nbodies
         body_comp(a) = model%bodies(a)%component

@@ -56,7 +56,7 @@ module mpm3d_stage_common
     type(c_ptr) :: body_comp = c_null_ptr  ! int (nbody) contact component (1 or 2) of each body
     type(c_ptr) :: other = c_null_ptr      ! contact: component 2's step_context (in component 1's)
     type(c_ptr) :: gnormal = c_null_ptr    ! contact: (3,nnode) sum_p m_p grad N_i(x_p), this component
-    type(c_ptr) :: cpartials = c_null_ptr  ! contact: (3,npatch) scratch of the contact-force sum
+    type(c_ptr) :: cpartials = c_null_ptr  ! contact: (4,npatch) scratch of the contact force and count
     real(c_double) :: contact_mu = 0.0_dp  ! Coulomb friction coefficient
     integer(c_int) :: shape = 0            ! 0 trilinear, 1 uGIMP, 2 B-spline
     integer(c_int) :: patch_halo = 0       ! node layers a buffer holds beyond its cells: 0, 1

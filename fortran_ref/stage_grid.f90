@@ -60,7 +60,7 @@ contains
     logical, intent(in) :: remap
     type(step_context), pointer :: c2
     real(dp), pointer :: m1(:), m2(:), p1(:,:), p2(:,:), f1(:,:), f2(:,:), g1(:,:), g2(:,:), cpart(:,:)
-    real(dp) :: part(3), nv(3), un(3), qv(3), t(3), len, mt, qn, tl, fr, ft, d, fc, s
+    real(dp) :: part(3), nv(3), un(3), qv(3), t(3), len, mt, qn, tl, fr, ft, d, fc, s(4)
     integer :: q, i, j, k, n, a, nb, ncount
     integer :: q3(3), lo(3), hi(3)
     call c_f_pointer(c%other, c2)
@@ -72,11 +72,11 @@ contains
     call c_f_pointer(c2%gforce, f2, [3, c%nnode])
     call c_f_pointer(c%gnormal, g1, [3, c%nnode])
     call c_f_pointer(c2%gnormal, g2, [3, c%nnode])
-    call c_f_pointer(c%cpartials, cpart, [3, c%npatch])
+    call c_f_pointer(c%cpartials, cpart, [4, c%npatch])
     nb = c%contact_normbody
-    ncount = 0
     do q = 0, c%npatch - 1
       part = 0.0_dp
+      ncount = 0
       q3(1) = mod(q, c%npd(1))
       q3(2) = mod(q / c%npd(1), c%npd(2))
       q3(3) = q / (c%npd(1) * c%npd(2))
@@ -178,19 +178,23 @@ contains
         do a = 1, 3
           cpart(a, q + 1) = part(a)
         end do
+        cpart(4, q + 1) = real(ncount, dp)
       end if
     end do
     call apply_bc(c, p1)
     call apply_bc(c2, p2)
     if (remap) return
-    do a = 1, 3
-      s = 0.0_dp
-      do q = 1, c%npatch
-        s = s + cpart(a, q)
+    ! The per-patch force and count folded in patch order (cxx contact_correct).
+    s = 0.0_dp
+    do q = 1, c%npatch
+      do a = 1, 4
+        s(a) = s(a) + cpart(a, q)
       end do
-      c%result(5 + a) = s
     end do
-    c%ncontact = ncount
+    do a = 1, 3
+      c%result(5 + a) = s(a)
+    end do
+    c%ncontact = int(s(4))
     call apply_bc(c, f1)
     call apply_bc(c2, f2)
   end subroutine contact_correct

@@ -29,6 +29,13 @@ if(MPM3D_MPI AND MPI_CXX_FOUND AND MPIEXEC_EXECUTABLE)
   mpm3d_rank_test(two_blocks_gimp_patch2 ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks_gimp.mpm 100
                   2x1 3x1 4x1 --patch-cells 2)
   mpm3d_rank_test(cook_membrane_bimp ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/cook_membrane_bimp.mpm 60 2x1 3x1)
+  # Multi-velocity contact (two grids, each component's buffers exchanged; the contact
+  # force and count from per-patch columns): MUSL with friction (2-cell patches, so that
+  # the contact nodes reach past the root's patches and their neighbours), and USF with
+  # GIMP, whose contact marks outlive the particles' moves between ranks.
+  mpm3d_rank_test(contact_sliding_block ${CMAKE_SOURCE_DIR}/inputs/contact/sliding_block.mpm 150
+                  2x1 3x1 4x1 2x2 --patch-cells 2)
+  mpm3d_rank_test(contact_gimp_usf ${CMAKE_SOURCE_DIR}/fortran_ref/testdecks/gimp_contact_usf.mpm 150)
   # A rank's health failure ends every rank (usl_blocks runs away at step 253); refusals.
   add_test(NAME ranks.failure
            COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/rank_failure.sh $<TARGET_FILE:mpm3d> ${MPIEXEC_EXECUTABLE}
