@@ -94,7 +94,9 @@ bool get_array(const std::string& path, hid_t g, const char* name, hid_t type, v
 
 }  // namespace
 
-void write_checkpoint(const std::string& path, const Simulation& sim, const OutputSchedule& out) {
+void write_checkpoint(const std::string& path, const Simulation& sim, const OutputSchedule& out,
+                      const Particles* particles) {
+  const Particles& P = particles ? *particles : sim.model.particles;
   const std::string tmp = path + ".tmp";
   const H5ErrorSilencer quiet;
   {
@@ -105,7 +107,7 @@ void write_checkpoint(const std::string& path, const Simulation& sim, const Outp
       put_string(path, f.id, "format", kFormat);
       put(path, f.id, "version", H5T_NATIVE_INT, &kVersion);
       put_string(path, f.id, "deck", m.base_name);
-      const int counts[3] = {m.particles.np, int(m.bodies.size()), int(m.mats.size())};
+      const int counts[3] = {P.np, int(m.bodies.size()), int(m.mats.size())};
       put(path, f.id, "counts", H5T_NATIVE_INT, counts, 3);
 
       Id s{H5Gcreate2(f.id, "/simulation", H5P_DEFAULT, H5Untimed().group, H5P_DEFAULT), H5Gclose};
@@ -133,8 +135,8 @@ void write_checkpoint(const std::string& path, const Simulation& sim, const Outp
 
       Id g{H5Gcreate2(f.id, "/particles", H5P_DEFAULT, H5Untimed().group, H5P_DEFAULT), H5Gclose};
       if (g.id < 0) fail(path, "cannot create /particles");
-      const hsize_t np = hsize_t(m.particles.np);
-      for (const ParticleField& fd : particle_fields(const_cast<Particles&>(m.particles))) {
+      const hsize_t np = hsize_t(P.np);
+      for (const ParticleField& fd : particle_fields(const_cast<Particles&>(P))) {
         if (fd.d && !fd.d->empty()) put_array(path, g.id, fd.name, H5T_NATIVE_DOUBLE, fd.d->data(), np, hsize_t(fd.ncomp));
         if (fd.i && !fd.i->empty()) put_array(path, g.id, fd.name, H5T_NATIVE_INT32, fd.i->data(), np, hsize_t(fd.ncomp));
       }

@@ -9,6 +9,7 @@
 namespace mpm3d {
 
 class Simulation;
+struct Particles;
 
 // The driver's output schedule at the checkpoint: when the next animation frame and
 // progress line fall due, the times of the frames written so far (TecPlot zones, ParaView
@@ -23,8 +24,11 @@ struct OutputSchedule {
 
 // Writes the checkpoint atomically (temporary file + rename): format tag and version, the
 // simulation counters (step, time, dt, energies, external work), the grid definition, every
-// allocated particle array (particle_fields) and the output schedule.
-void write_checkpoint(const std::string& path, const Simulation& sim, const OutputSchedule& out);
+// allocated particle array (particle_fields) and the output schedule. particles: the whole
+// particle set in one process's storage order when sim holds only a rank's share (its
+// root writes for every rank), else null.
+void write_checkpoint(const std::string& path, const Simulation& sim, const OutputSchedule& out,
+                      const Particles* particles = nullptr);
 
 // Restores a checkpoint into sim, which must have been built from the same deck (the
 // particle, body and material counts are checked, and every particle array the model has

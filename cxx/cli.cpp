@@ -41,6 +41,8 @@ const char* kUsage =
     "  --summary F.json   write a summary of the run\n"
     "  --state F.h5       write the final particle state (HDF5)\n"
     "  --patch-cells N    cells per patch edge of the grid decomposition (default 4)\n"
+    "  --rebalance-above R  under mpirun: redraw the ranks' patch runs before a step when\n"
+    "                     the largest particle share exceeds R times the mean (default 1.03)\n"
     "  --regrid-every N   adaptive background grid: redefine the grid from the particles'\n"
     "                     extent every N steps (0: off; default: the deck's 'adgr', else off)\n"
     "  --time-step book|current  book: the initial dt for the whole run; current: dt\n"
@@ -67,6 +69,7 @@ const char* kUsage =
 struct Options {
   std::string deck, out_dir = ".", summary, state, kernel, kernels, checkpoint, restart;
   long max_steps = -1, checkpoint_every = 0;
+  double rebalance_above = 1.03;
   double end_time = -1.0;
   int threads = 0, patch_cells = 4;
   long regrid_every = -1;  // -1: the deck's
@@ -123,6 +126,10 @@ Options parse_args(int argc, char** argv, bool& exit_now) {
     } else if (a == "--steps") {
       o.max_steps = to_long(a, value());
       if (o.max_steps < 0) throw UsageError("--steps must not be negative");
+    } else if (a == "--rebalance-above") {
+      const char* s = value();
+      if (!parse_real(s, o.rebalance_above) || !(o.rebalance_above >= 1.0))
+        throw UsageError("--rebalance-above needs a number of at least 1");
     } else if (a == "--end-time") {
       const char* s = value();
       if (!parse_real(s, o.end_time) || !(o.end_time > 0.0)) throw UsageError("--end-time needs a positive number");
@@ -217,10 +224,15 @@ std::string json_number(double v) {
 }
 
 // What several ranks cannot run yet (cxx/ranks_mpi.cpp): the first such feature, or "".
+// An error every rank meets at once (after a collective decided it): each returns 1, the
+// root prints it.
+struct AllRanksError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 std::string not_distributed(const Options& opt, const Model& m) {
   if (!opt.kernel.empty() || !opt.kernels.empty()) return "--kernel/--kernels (the Fortran stages)";
   if (!opt.no_output || opt.hdf5 || m.hdf5) return "the animation, curve and log files (give --no-output)";
-  if (!opt.checkpoint.empty() || opt.checkpoint_every > 0 || !opt.restart.empty()) return "checkpoints and restarts";
   if (opt.particle_order == "deck") return "--particle-order deck";
   if (m.regrid_every > 0) return "the adaptive grid (adgr, --regrid-every)";
   if (m.sg) return "sgmp";
@@ -291,7 +303,6 @@ int run_main(int argc, char** argv, Ranks* ranks) {
     Simulation sim(std::move(model), patch_cells,
                    opt.particle_order == "deck" ? ParticleOrder::deck : ParticleOrder::blocks);
     sim.strict_energy = opt.strict_energy;
-    if (ranks) sim.distribute(*ranks);
     if (!root) opt.quiet = true;  // the root reports for every rank
     {
       StageTable t = cxx_stages();
@@ -301,7 +312,13 @@ int run_main(int argc, char** argv, Ranks* ranks) {
     }
     OutputSchedule resume;
     const bool restarted = !opt.restart.empty();
+    // Every rank reads the whole checkpoint (written by any number of ranks), then keeps
+    // its share.
     if (restarted) read_checkpoint(opt.restart, sim, resume);
+    if (ranks) {
+      ranks->set_rebalance_above(opt.rebalance_above);
+      sim.distribute(*ranks);
+    }
     const Model& m = sim.model;
     const double end_time = opt.end_time > 0.0 ? opt.end_time : m.endtime;
     const bool series = opt.hdf5 || (m.hdf5 && !opt.no_output);
@@ -352,7 +369,25 @@ int run_main(int argc, char** argv, Ranks* ranks) {
       out.save_state(o);
       o.next_out = next_out;
       o.next_rpt = next_rpt;
-      write_checkpoint(path, sim, o);
+      if (ranks) {
+        // The root writes every rank's particles, in one process's storage order, and (USF
+        // contact) the nodes' contact marks from their owners: the file of one process.
+        Particles all;
+        ranks->gather(sim.model.particles, all);
+        if (m.contact && m.scheme == SCHEME_USF) ranks->share_owned_nodes(sim.ctx, sim.ctx.gnormal, 3);
+        std::string error;
+        if (root) {
+          try {
+            write_checkpoint(path, sim, o, &all);
+          } catch (const std::exception& e) {
+            error = std::string(e.what()).empty() ? "checkpoint " + path + ": not written" : e.what();
+          }
+        }
+        error = ranks->broadcast(error, 0);
+        if (!error.empty()) throw AllRanksError(error);
+      } else {
+        write_checkpoint(path, sim, o);
+      }
       last_ckpt = sim.steps;
       last_ckpt_path = path;
     };
@@ -405,7 +440,7 @@ int run_main(int argc, char** argv, Ranks* ranks) {
     if (!failure.empty()) {
       if (last_ckpt >= 0)
         failure += "; the last checkpoint (step " + std::to_string(last_ckpt) + ") is kept in " + last_ckpt_path;
-    } else if (interrupted && !ranks) {  // several ranks write no checkpoint yet
+    } else if (interrupted) {
       const std::string path = ckpt_path.empty() ? default_ckpt : ckpt_path;
       if (last_ckpt != sim.steps || last_ckpt_path != path) save_checkpoint(path);
     } else if (!ckpt_path.empty() && last_ckpt != sim.steps) {
@@ -437,9 +472,8 @@ int run_main(int argc, char** argv, Ranks* ranks) {
     std::string stop_note;
     if (interrupted) {
       stop_note = std::string("interrupted by ") + (interrupted == SIGINT ? "SIGINT" : "SIGTERM") + " at step " +
-                  std::to_string(sim.steps) +
-                  (ranks ? std::string("; no checkpoint (not written by several MPI ranks yet)")
-                         : "; checkpoint " + last_ckpt_path + " (continue with --restart " + last_ckpt_path + ")");
+                  std::to_string(sim.steps) + "; checkpoint " + last_ckpt_path + " (continue with --restart " +
+                  last_ckpt_path + ")";
       warnings.push_back(stop_note);
     }
     // The state file holds the final state: not written when a signal stopped the run.
@@ -512,6 +546,9 @@ int run_main(int argc, char** argv, Ranks* ranks) {
     return 0;
   } catch (const DeckError& e) {
     err << "mpm3d: " << e.what() << "\n";
+    return 1;
+  } catch (const AllRanksError& e) {
+    err << "mpm3d: " << opt.deck << ": " << e.what() << "\n";
     return 1;
   } catch (const std::exception& e) {
     if (ranks && stepping) {  // this rank's alone: the others would wait for it

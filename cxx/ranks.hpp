@@ -36,6 +36,9 @@ class Ranks {
   // this rank's patches (the ghost patches), after this rank's own slots.
   virtual void add_ghost_slots(Simulation& sim) = 0;
 
+  // The largest particle share over the mean above which migrate redraws the ranks' runs.
+  virtual void set_rebalance_above(double ratio) = 0;
+
   // Collectives: exact whatever the order (integers, min, max).
   virtual long sum(long v) = 0;
   virtual int min(int v) = 0;
@@ -48,6 +51,9 @@ class Ranks {
   virtual void gather(const Particles& local, Particles& all) = 0;
   // The root's values on every rank.
   virtual void broadcast(std::vector<double>& values) = 0;
+  // A node field (ncomp per node) of context c made whole on every rank: each node's values
+  // from the rank owning the node's patch, whose sums are complete there.
+  virtual void share_owned_nodes(const StepContext& c, double* field, int ncomp) = 0;
   // Ends every rank at once with exit status code: for an error met by this rank alone.
   [[noreturn]] virtual void abort(int code) = 0;
   // Total particles of the run.

@@ -28,10 +28,6 @@
 namespace mpm3d {
 namespace {
 
-// The largest rank's share of the particles over the mean above which the ranks' patch runs
-// are redrawn before a step (docs/PERFORMANCE.md, "MPI ranks").
-constexpr double kRebalanceAbove = 1.03;
-
 void check(int rc, const char* what) {
   if (rc != MPI_SUCCESS) throw std::runtime_error(std::string("MPI: ") + what + " failed");
 }
@@ -48,6 +44,7 @@ class MpiRanks final : public Ranks {
   double imbalance() const override { return imbalance_; }
   double bytes_sent() const override { return bytes_sent_; }
   long rebalances() const override { return rebalances_; }
+  void set_rebalance_above(double ratio) override { rebalance_above_ = ratio; }
 
   void distribute(Simulation& sim) override;
   void migrate(Simulation& sim) override;
@@ -72,6 +69,7 @@ class MpiRanks final : public Ranks {
     if (n > 0) check(MPI_Bcast(values.data(), int(n), MPI_DOUBLE, 0, comm_), "broadcast");
   }
   void gather(const Particles& local, Particles& all) override;
+  void share_owned_nodes(const StepContext& c, double* field, int ncomp) override;
   [[noreturn]] void abort(int code) override {
     MPI_Abort(comm_, code);
     std::exit(code);
@@ -100,6 +98,9 @@ class MpiRanks final : public Ranks {
   bool contact_ = false;
   std::vector<int> patch_, dest_;  // patch and rank of each local particle (migrate's scratch)
   long rebalances_ = 0;
+  // The largest rank's share of the particles over the mean above which the ranks' patch
+  // runs are redrawn before a step (--rebalance-above; docs/PERFORMANCE.md, "MPI ranks").
+  double rebalance_above_ = 1.03;
   // Per neighbouring rank: this rank's patches next to one of its patches (what it is
   // sent) and its patches next to one of this rank's (what comes back), ascending.
   struct Neighbour {
@@ -316,12 +317,16 @@ void MpiRanks::migrate(Simulation& sim) {
   };
   imbalance_ = shares();
   // The ranks' runs redrawn from the counts that every rank now holds, when the largest
-  // share has drifted past kRebalanceAbove of the mean and the rule draws other runs (the
+  // share has drifted past rebalance_above_ of the mean and the rule draws other runs (the
   // bits do not depend on them).
   bool redrawn = false;
-  if (imbalance_ > kRebalanceAbove) {
+  if (imbalance_ > rebalance_above_) {
     std::vector<int> first = draw(npatch);
     if (first != first_) {
+      // USF contact reads the last step's contact marks at the nodes its particles read,
+      // which after the redraw include nodes this rank did not assemble: every node's from
+      // its old owner first.
+      if (contact_ && c.scheme == SCHEME_USF) share_owned_nodes(c, c.gnormal, 3);
       partition(sim, std::move(first));
       imbalance_ = shares();
       ++rebalances_;
@@ -508,6 +513,33 @@ void MpiRanks::gather(const Particles& local_const, Particles& all) {
     if (fk.d) place(*fk.d);
     else place(*fk.i);
   }
+}
+
+void MpiRanks::share_owned_nodes(const StepContext& c, double* field, int ncomp) {
+  // Rank u's part: the nodes owned by its patches, patch after patch, each in k, j, i order.
+  auto for_nodes_of = [&](int u, auto&& f) {
+    for (int q = first_[size_t(u)]; q < first_[size_t(u) + 1]; ++q) for_owned_nodes(&c, owned_nodes(&c, q), f);
+  };
+  std::vector<int> cnt(static_cast<size_t>(size_)), disp(size_t(size_) + 1, 0);
+  for (int u = 0; u < size_; ++u) {
+    int n = 0;
+    for_nodes_of(u, [&](int) { ++n; });
+    cnt[size_t(u)] = n * ncomp;
+    disp[size_t(u) + 1] = disp[size_t(u)] + cnt[size_t(u)];
+  }
+  std::vector<double> all(size_t(disp[size_t(size_)]));
+  double* o = all.data() + disp[size_t(rank_)];
+  for_nodes_of(rank_, [&](int n) {
+    for (int a = 0; a < ncomp; ++a) *o++ = field[size_t(ncomp) * size_t(n) + size_t(a)];
+  });
+  bytes_sent_ += double(cnt[size_t(rank_)]) * sizeof(double);
+  check(MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, all.data(), cnt.data(), disp.data(), MPI_DOUBLE, comm_),
+        "node values");
+  const double* in = all.data();
+  for (int u = 0; u < size_; ++u)
+    for_nodes_of(u, [&](int n) {
+      for (int a = 0; a < ncomp; ++a) field[size_t(ncomp) * size_t(n) + size_t(a)] = *in++;
+    });
 }
 
 // Launched by mpirun (Open MPI's or another's environment): the caller starts MPI only then,

@@ -6,14 +6,16 @@
 # machine (--oversubscribe, no binding): this checks the bits, not the speed. Exit 77
 # (skipped) when the deck is absent, or mpirun (tests/mpirun_setup.sh).
 # Arguments from the first one starting with -- on are options of every run (mpm3d and
-# mpm3d_ref), e.g. --patch-cells 2.
-# usage: rank_determinism.sh MPM3D MPIRUN DECK STEPS WORKDIR [MPM3D_REF [CONFIGS...] [OPTIONS...]]
+# mpm3d_ref), e.g. --patch-cells 2; those after a word 'ranks:' of the mpirun runs only.
+# usage: rank_determinism.sh MPM3D MPIRUN DECK STEPS WORKDIR [MPM3D_REF [CONFIGS...] [OPTIONS...] [ranks: OPTIONS...]]
 set -euo pipefail
 mpm3d=$1; mpirun=$2; deck=$3; steps=$4; work=$5; ref=${6:-}
 shift $(( $# < 6 ? $# : 6 ))
-configs=(); opts=()
-while [ $# -gt 0 ] && [ "${1#--}" = "$1" ]; do configs+=("$1"); shift; done
-opts=("$@")
+configs=()
+while [ $# -gt 0 ] && [ "${1#--}" = "$1" ] && [ "$1" != ranks: ]; do configs+=("$1"); shift; done
+opts=(); rank_opts=()
+while [ $# -gt 0 ] && [ "$1" != ranks: ]; do opts+=("$1"); shift; done
+if [ $# -gt 0 ]; then shift; rank_opts=("$@"); fi
 [ ${#configs[@]} -gt 0 ] || configs=(2x1 3x1 4x1 2x2)
 [ -f "$deck" ] || { echo "deck $deck absent: skipped"; exit 77; }
 source "$(dirname "$0")/mpirun_setup.sh"
@@ -27,7 +29,7 @@ figures() {
 }
 for rt in "${configs[@]}"; do
   r=${rt%x*}; t=${rt#*x}
-  timeout 600 "$mpirun" --oversubscribe --bind-to none -np "$r" "$mpm3d" --threads "$t" "${run[@]}" \
+  timeout 600 "$mpirun" --oversubscribe --bind-to none -np "$r" "$mpm3d" --threads "$t" "${run[@]}" "${rank_opts[@]}" \
     --state "$work/$rt.h5" --summary "$work/$rt.json" "$deck"
   grep -q "\"ranks\": $r," "$work/$rt.json" || { echo "$rt: the summary does not report $r ranks"; exit 1; }
   h5diff "$work/1x1.h5" "$work/$rt.h5" || { echo "$rt differs from one rank, one thread"; exit 1; }

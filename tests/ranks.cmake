@@ -35,7 +35,21 @@ if(MPM3D_MPI AND MPI_CXX_FOUND AND MPIEXEC_EXECUTABLE)
   # GIMP, whose contact marks outlive the particles' moves between ranks.
   mpm3d_rank_test(contact_sliding_block ${CMAKE_SOURCE_DIR}/inputs/contact/sliding_block.mpm 150
                   2x1 3x1 4x1 2x2 --patch-cells 2)
-  mpm3d_rank_test(contact_gimp_usf ${CMAKE_SOURCE_DIR}/fortran_ref/testdecks/gimp_contact_usf.mpm 150)
+  # (to its end, redrawing the ranks' runs whenever the rule draws others: 3 times on 3 ranks)
+  mpm3d_rank_test(contact_gimp_usf ${CMAKE_SOURCE_DIR}/fortran_ref/testdecks/gimp_contact_usf.mpm 414
+                  2x1 3x1 4x1 2x2 ranks: --rebalance-above 1)
+  # Checkpoints: written by 2 ranks = one process's file; continued on 3 ranks, on one
+  # process, and one process's on 2 ranks = the uninterrupted run (tests/rank_restart.sh).
+  # The USF contact deck's checkpoint holds the nodes' contact marks, gathered from their
+  # owners (2-cell patches: the contact nodes lie beyond the root's reach).
+  function(mpm3d_rank_restart_test name deck steps1 steps2)
+    add_test(NAME ranks.restart_${name}
+             COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/rank_restart.sh $<TARGET_FILE:mpm3d> ${MPIEXEC_EXECUTABLE}
+                     ${deck} ${steps1} ${steps2} ${CMAKE_CURRENT_BINARY_DIR}/ranks_restart_${name} ${ARGN})
+    set_tests_properties(ranks.restart_${name} PROPERTIES SKIP_RETURN_CODE 77 RUN_SERIAL TRUE)
+  endfunction()
+  mpm3d_rank_restart_test(taylor_coarse ${CMAKE_SOURCE_DIR}/inputs/taylor/taylor_coarse.mpm 30 60)
+  mpm3d_rank_restart_test(contact_usf ${CMAKE_SOURCE_DIR}/tests/decks/sliding_block_usf.mpm 40 150 --patch-cells 2)
   # A rank's health failure ends every rank (usl_blocks runs away at step 253); refusals.
   add_test(NAME ranks.failure
            COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/rank_failure.sh $<TARGET_FILE:mpm3d> ${MPIEXEC_EXECUTABLE}

@@ -196,7 +196,8 @@ TEST_F(Cli, UnwritableSummaryAndStateFiles) {
 TEST_F(Cli, BadOptions) {
   const std::string d = deck_file("good.mpm", kGood);
   for (const auto& args : std::vector<std::vector<std::string>>{
-           {"--bogus", d}, {"--steps", "x", d}, {"--threads", "0", d}, {"--end-time", "-1", d}, {}}) {
+           {"--bogus", d}, {"--steps", "x", d}, {"--threads", "0", d}, {"--end-time", "-1", d},
+           {"--rebalance-above", "0.9", d}, {}}) {
     const RunResult r = run(args);
     EXPECT_NE(r.code, 0);
     EXPECT_EQ(testutil::split_lines(r.err).size(), 1u) << r.err;
