@@ -29,8 +29,9 @@ class Ranks {
   // Set-up, after the Simulation is built from the whole deck on every rank: draw the
   // ranks' patch runs from the particle counts and keep this rank's particles.
   virtual void distribute(Simulation& sim) = 0;
-  // Before each bin stage: the particles whose patch is another rank's move there, with
-  // every field; this rank's particles stay in ascending storage index of one rank's run.
+  // Before each bin stage: bins this rank's particles (StepContext::prebinned) and moves
+  // those whose patch is another rank's there, with every field; StepContext::order lists
+  // this rank's particles in ascending storage index of one rank's run.
   virtual void migrate(Simulation& sim) = 0;
   // After each bin stage: buffer slots for the non-empty patches of other ranks next to
   // this rank's patches (the ghost patches), after this rank's own slots.

@@ -24,6 +24,7 @@
 #include "patch_index.hpp"
 #include "ranks.hpp"
 #include "simulation.hpp"
+#include "transfer_lanes.hpp"
 
 namespace mpm3d {
 namespace {
@@ -89,14 +90,17 @@ class MpiRanks final : public Ranks {
   int np_global_ = 0;
   double imbalance_ = 1.0;
   double bytes_sent_ = 0.0;  // put into messages to other ranks (a collective: this rank's part once)
-  std::vector<int> gidx_;    // storage index of each local particle on one rank, ascending
+  std::vector<int> gidx_;    // storage index of each local particle on one rank
   std::vector<int> first_;   // (size + 1) first patch of each rank
   std::vector<int> owner_;   // (npatch) rank of each patch
   std::vector<int> counts_;  // (npatch + 1) particles of each patch on all ranks, then the
                              // particles that change rank in this step; with contact then
                              // (npatch) component 2's particles of each patch
   bool contact_ = false;
-  std::vector<int> patch_, dest_;  // patch and rank of each local particle (migrate's scratch)
+  std::vector<int> dest_;  // rank of each local particle (migrate's scratch)
+  // The local rows in ascending storage index (StepContext::order), its next version, and
+  // each old row's new index (migrate's scratch).
+  std::vector<int> perm_, perm_next_, newidx_;
   long rebalances_ = 0;
   // The largest rank's share of the particles over the mean above which the ranks' patch
   // runs are redrawn before a step (--rebalance-above; docs/PERFORMANCE.md, "MPI ranks").
@@ -117,7 +121,11 @@ class MpiRanks final : public Ranks {
     check(MPI_Allreduce(&v, &r, 1, type, op, comm_), "reduction");
     return r;
   }
-  int patch_of(const StepContext& c, int p) const;
+  // The patch of each of the context's np particles into out (-1 outside the grid window).
+  static void patches_of(const StepContext& c, int np, int* out);
+  // The bin stage's binning of particles [lo, hi) of either component: cell, lx and patch
+  // (pscratch) rows, which the bin stage then takes as they are (StepContext::prebinned).
+  static void bin_rows(const StepContext& c, int lo, int hi);
   // Particles of patch q on all ranks: of the context's component (1 or 2 with contact).
   int count(int q, int comp) const {
     const size_t np1 = owner_.size() + 1;
@@ -137,19 +145,17 @@ class MpiRanks final : public Ranks {
   void exchange_columns(double* cols, int nf, bool outside);
 };
 
-// The patch of particle p, or -1 outside the grid window: the bin stage's arithmetic
-// (transfer_lanes.hpp, bin_range), so both always agree.
-int MpiRanks::patch_of(const StepContext& c, int p) const {
-  int idx[3];
-  for (int a = 0; a < 3; ++a) {
-    const double t = (c.xbin[3 * size_t(p) + a] - c.origin[a]) / c.h;
-    const double f = std::floor(t);
-    const double f0 = double(c.cell_off[a]);
-    if (!(f >= f0 && f < f0 + double(c.nc[a]))) return -1;
-    idx[a] = int(f) - c.cell_off[a];
-  }
-  const int P = c.patch_cells;
-  return idx[0] / P + c.npd[0] * (idx[1] / P + c.npd[1] * (idx[2] / P));
+// The bin stage's own kernel (transfer_lanes.hpp, bin_range), so both always agree.
+void MpiRanks::patches_of(const StepContext& c, int np, int* out) {
+  if (lanes_use_avx2()) patch_range_avx2(&c, 0, np, out);
+  else bin_range<VectorLane<kLanes>, false>(&c, 0, np, out);
+}
+
+void MpiRanks::bin_rows(const StepContext& c, int lo, int hi) {
+  StepContext all = c;
+  all.only_comp = 0;  // the patches of both contact components
+  if (lanes_use_avx2()) bin_range_avx2(&all, lo, hi, all.pscratch);
+  else bin_range<VectorLane<kLanes>>(&all, lo, hi, all.pscratch);
 }
 
 // The ranks' patch runs from counts_ (thread_patches' rule over ranks: rank u starts at
@@ -250,9 +256,9 @@ void MpiRanks::distribute(Simulation& sim) {
   contact_ = c.other != nullptr;
   counts_.assign(size_t(c.npatch) + 1 + (contact_ ? size_t(c.npatch) : 0), 0);
   std::vector<int> patch(size_t(P.np));
+  patches_of(c, P.np, patch.data());
   for (int p = 0; p < P.np; ++p) {
-    const int q = patch_of(c, p);
-    patch[size_t(p)] = q;
+    const int q = patch[size_t(p)];
     if (q < 0) continue;
     ++counts_[size_t(q)];
     if (second(c, p)) ++counts_[size_t(c.npatch) + 1 + size_t(q)];
@@ -277,10 +283,15 @@ void MpiRanks::distribute(Simulation& sim) {
   }
   P.np = int(keep.size());
   gidx_ = std::move(keep);
+  perm_.resize(gidx_.size());
+  std::iota(perm_.begin(), perm_.end(), 0);
   // Before the rebinding, which copies the context into component 2's (contact).
   sim.ctx.exchange = &MpiRanks::exchange;
   sim.ctx.exchange_data = this;
+  sim.ctx.order = perm_.data();
+  sim.ctx.prebinned = 1;
   sim.particles_changed();
+  bin_rows(sim.ctx, 0, P.np);
 }
 
 void MpiRanks::migrate(Simulation& sim) {
@@ -290,12 +301,13 @@ void MpiRanks::migrate(Simulation& sim) {
   if (int(owner_.size()) != npatch) throw std::logic_error("ranks: the grid changed after the partition");
   const int ncount = npatch + 1 + (contact_ ? npatch : 0);
   std::vector<int> local(size_t(ncount), 0);
-  patch_.resize(size_t(P.np));
   dest_.resize(size_t(P.np));
   auto rank_of = [&](int q) { return q >= 0 ? owner_[size_t(q)] : size_ - 1; };
+  // The bin stage's binning, done here (prebinned): it tells which particles move.
+  bin_rows(c, 0, P.np);
+  const int* patch = c.pscratch;
   for (int p = 0; p < P.np; ++p) {
-    const int q = patch_of(c, p);
-    patch_[size_t(p)] = q;
+    const int q = patch[p];
     if (q >= 0) {
       ++local[size_t(q)];
       if (second(c, p)) ++local[size_t(npatch) + 1 + size_t(q)];
@@ -333,7 +345,7 @@ void MpiRanks::migrate(Simulation& sim) {
       redrawn = true;
     }
   }
-  for (int p = 0; p < P.np; ++p) dest_[size_t(p)] = rank_of(patch_[size_t(p)]);
+  for (int p = 0; p < P.np; ++p) dest_[size_t(p)] = rank_of(patch[p]);
   if (counts_[size_t(npatch)] == 0 && !redrawn) return;  // nobody moves
   // Rows to each rank, then the rows from each rank.
   std::vector<int> nsend(static_cast<size_t>(size_), 0), nrecv(static_cast<size_t>(size_), 0);
@@ -362,44 +374,71 @@ void MpiRanks::migrate(Simulation& sim) {
   check(MPI_Alltoallv(out.data(), sbytes.data(), sdisp.data(), MPI_BYTE, in.data(), rbytes.data(), rdisp.data(),
                       MPI_BYTE, comm_),
         "moving particles");
-  // The staying and arriving rows merged by storage index: from >= 0 a staying particle,
-  // from < 0 arriving row -1 - from.
-  const int nin = int(in.size() / rb);
-  std::vector<std::pair<int, int>> order;
-  order.reserve(size_t(P.np + nin));
-  for (int p = 0; p < P.np; ++p)
-    if (dest_[size_t(p)] == rank_) order.emplace_back(gidx_[size_t(p)], p);
-  for (int j = 0; j < nin; ++j) {
-    int g;
-    std::memcpy(&g, in.data() + size_t(j) * rb, sizeof(int));
-    order.emplace_back(g, -1 - j);
-  }
-  std::sort(order.begin(), order.end());
-  const int n = int(order.size());
-  size_t offset = sizeof(int);  // of the field in an arriving row
+  // The rows move in O(movers): a leaving row's place is taken by the last staying row,
+  // arrivals are appended, and perm_ (the rows in ascending storage index, which the bin
+  // and energy stages follow through StepContext::order) is updated in place of the arrays.
   const std::vector<ParticleField> f = particle_fields(P);
-  for (int k : fields_) {
-    const ParticleField& fk = f[size_t(k)];
-    const size_t nc = size_t(fk.ncomp), w = fk.d ? sizeof(double) : sizeof(int32_t);
-    auto merge = [&](auto& vec) {
-      using V = typename std::decay_t<decltype(vec)>::value_type;
-      std::vector<V> merged(nc * size_t(n));
-      for (int i = 0; i < n; ++i) {
-        const int from = order[size_t(i)].second;
-        V* dst = merged.data() + nc * size_t(i);
-        if (from >= 0) std::memcpy(dst, vec.data() + nc * size_t(from), nc * sizeof(V));
-        else std::memcpy(dst, in.data() + size_t(-1 - from) * rb + offset, nc * sizeof(V));
-      }
-      vec = std::move(merged);
-    };
-    if (fk.d) merge(*fk.d);
-    else merge(*fk.i);
-    offset += nc * w;
+  auto for_arrays = [&](auto&& fn) {  // fn(array, values per row), over every array of the run
+    for (int k : fields_) {
+      const ParticleField& fk = f[size_t(k)];
+      if (fk.d) fn(*fk.d, size_t(fk.ncomp));
+      else fn(*fk.i, size_t(fk.ncomp));
+    }
+  };
+  const int n0 = P.np;
+  newidx_.resize(size_t(n0));  // each old row's new index, -1 when it left
+  int n = n0, i = 0;
+  for (;;) {
+    while (n > 0 && dest_[size_t(n) - 1] != rank_) newidx_[size_t(--n)] = -1;  // leaving rows at the end
+    while (i < n && dest_[size_t(i)] == rank_) {
+      newidx_[size_t(i)] = i;
+      ++i;
+    }
+    if (i >= n) break;
+    // Row i leaves, row n - 1 stays (i < n - 1): it moves to i, with its binning.
+    for_arrays([&](auto& vec, size_t nc) {
+      std::memcpy(vec.data() + nc * size_t(i), vec.data() + nc * (size_t(n) - 1), nc * sizeof(vec[0]));
+    });
+    for (int a = 0; a < 3; ++a) c.lx[3 * size_t(i) + size_t(a)] = c.lx[3 * (size_t(n) - 1) + size_t(a)];
+    c.cell[i] = c.cell[n - 1];
+    c.pscratch[i] = c.pscratch[n - 1];
+    newidx_[size_t(i)] = -1;
+    newidx_[size_t(n) - 1] = i;
+    gidx_[size_t(i)] = gidx_[size_t(n) - 1];
+    dest_[size_t(i)] = rank_;  // row i now holds a staying particle
+    --n;
+    ++i;
   }
-  gidx_.resize(size_t(n));
-  for (int i = 0; i < n; ++i) gidx_[size_t(i)] = order[size_t(i)].first;
-  P.np = n;
+  const int nin = int(in.size() / rb), total = n + nin;
+  {
+    size_t offset = sizeof(int);  // of the array's values in an arriving row
+    for_arrays([&](auto& vec, size_t nc) {
+      const size_t w = sizeof(vec[0]);
+      vec.resize(nc * size_t(total));
+      for (int j = 0; j < nin; ++j)
+        std::memcpy(vec.data() + nc * size_t(n + j), in.data() + size_t(j) * rb + offset, nc * w);
+      offset += nc * w;
+    });
+  }
+  gidx_.resize(size_t(total));
+  std::vector<int> arrived(static_cast<size_t>(nin));
+  for (int j = 0; j < nin; ++j) {
+    std::memcpy(&gidx_[size_t(n + j)], in.data() + size_t(j) * rb, sizeof(int));
+    arrived[size_t(j)] = n + j;
+  }
+  auto by_storage = [&](int a, int b) { return gidx_[size_t(a)] < gidx_[size_t(b)]; };
+  std::sort(arrived.begin(), arrived.end(), by_storage);
+  size_t kept = 0;  // perm_ without the leaving rows, in the rows' new indices (still ascending)
+  for (int p : perm_)
+    if (newidx_[size_t(p)] >= 0) perm_[kept++] = newidx_[size_t(p)];
+  perm_.resize(kept);
+  perm_next_.resize(size_t(total));
+  std::merge(perm_.begin(), perm_.end(), arrived.begin(), arrived.end(), perm_next_.begin(), by_storage);
+  perm_.swap(perm_next_);
+  P.np = total;
+  sim.ctx.order = perm_.data();  // before the rebinding, which copies it into component 2's context
   sim.particles_changed();
+  bin_rows(sim.ctx, n, total);  // the arrivals' binning
 }
 
 void MpiRanks::add_ghost_slots(Simulation& sim) {

@@ -123,7 +123,7 @@ void Simulation::bind() {
   c.mat = P.mat.data();
   c.body = P.body.data();
   c.cell = cell_.data();
-  pscratch_.assign(size_t(P.np), 0);
+  pscratch_.resize(size_t(P.np), 0);  // written by the bin stage (or the ranks) before it is read
   c.pscratch = pscratch_.data();
   std::vector<double>& grav = gravity_;
   grav.assign(3 * model.bodies.size(), 0.0);
@@ -279,11 +279,13 @@ void Simulation::particles_changed() {
   // This step's time step and clock (Simulation::step sets them before the bin stage, where
   // the particles move between ranks) outlive the rebinding.
   const double dt = ctx.dt, dt_int = ctx.dt_int, t = ctx.time;
+  // The per-particle scratch keeps its rows (the ranks may have binned them already, moving
+  // them with the particles: StepContext::prebinned).
   const size_t np = size_t(model.particles.np);
-  lx_.assign(3 * np, 0.0);
-  cell_.assign(np, -1);
-  grid.patch_part.assign(np, 0);
-  if (model.contact) grid2.patch_part.assign(np, 0);
+  lx_.resize(3 * np, 0.0);
+  cell_.resize(np, -1);
+  grid.patch_part.resize(np, 0);
+  if (model.contact) grid2.patch_part.resize(np, 0);
   bind();
   for (StepContext* c : {&ctx, &ctx2}) {
     c->dt = dt;

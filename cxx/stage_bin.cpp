@@ -32,6 +32,8 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
   };
   std::vector<RunSums> run_sums(static_cast<size_t>(team), RunSums{0, 0});
   const bool avx2 = lanes_use_avx2();
+  const bool pre = c->prebinned != 0;
+  const bool filter = c->only_comp > 0;
   // One team for the whole stage: each thread bins an equal run of particles and counts
   // them by patch; then a stable counting sort with those runs as its chunks. The runs are
   // consecutive and ascending, so each patch lists its particles in ascending index
@@ -46,10 +48,27 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
     const int lo = int(int64_t(c->np) * t / T), hi = int(int64_t(c->np) * (t + 1) / T);
     int* cnt = counts.get() + size_t(t) * size_t(npatch);
     std::fill(cnt, cnt + npatch, 0);
-    // Cells, local coordinates, patches (transfer_lanes.hpp).
-    outside += avx2 ? bin_range_avx2(c, lo, hi, patch_of) : bin_range<VectorLane<kLanes>>(c, lo, hi, patch_of);
-    for (int p = lo; p < hi; ++p)
-      if (patch_of[p] >= 0) ++cnt[patch_of[p]];
+    // Cells, local coordinates, patches (transfer_lanes.hpp), unless prebinned.
+    if (!pre)
+      outside += avx2 ? bin_range_avx2(c, lo, hi, patch_of) : bin_range<VectorLane<kLanes>>(c, lo, hi, patch_of);
+    // The patch of particle p in this context: prebinned patches are of every particle.
+    auto patch = [&](int p) { return pre && filter && other_component(c, p) ? -1 : patch_of[p]; };
+    // Each thread counts (and below fills) a run of the particles in their canonical order:
+    // the arrays' own, or c->order's (every particle binned first).
+    if (c->order) {
+#pragma omp barrier
+      for (int i = lo; i < hi; ++i) {
+        const int p = c->order[i], q = patch(p);
+        if (q >= 0) ++cnt[q];
+        else if (pre && c->cell[p] < 0 && !(filter && other_component(c, p))) ++outside;
+      }
+    } else {
+      for (int p = lo; p < hi; ++p) {
+        const int q = patch(p);
+        if (q >= 0) ++cnt[q];
+        else if (pre && c->cell[p] < 0 && !(filter && other_component(c, p))) ++outside;
+      }
+    }
 #pragma omp barrier
     // Patch starts, buffer slots, and each run's fill pointer into every patch's list: a
     // prefix sum over the patches in two passes, each thread over an equal run of patches
@@ -93,8 +112,17 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
       }
     }
 #pragma omp barrier
-    for (int p = lo; p < hi; ++p)
-      if (patch_of[p] >= 0) c->patch_part[cnt[patch_of[p]]++] = p;
+    if (c->order) {
+      for (int i = lo; i < hi; ++i) {
+        const int p = c->order[i], q = patch(p);
+        if (q >= 0) c->patch_part[cnt[q]++] = p;
+      }
+    } else {
+      for (int p = lo; p < hi; ++p) {
+        const int q = patch(p);
+        if (q >= 0) c->patch_part[cnt[q]++] = p;
+      }
+    }
   }
   c->nslot = nslot;
   c->noutside = outside;

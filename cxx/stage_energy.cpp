@@ -82,7 +82,7 @@ inline void add_list(const StepContext* c, const int* list, int n, const int* li
 
 // Every column of c->partials: column q < npatch sums patch q's list, then (contact)
 // component 2's list of the same patch; column npatch the particles outside the grid in
-// ascending index (one pass over the cells, only when there are any). Each column is one
+// ascending index (c->order's, when set; one pass over the cells, only when there are any). Each column is one
 // serial sum, whichever thread computes it; each thread takes its run of patches
 // (for_patches: the particles it updated in the stress stage).
 template <bool kWork>
@@ -101,8 +101,10 @@ void compute_columns(StepContext* c) {
   });
   Sums s;
   if (any_outside)  // the cell array is shared by both contact components
-    for (int p = 0; p < c->np; ++p)
+    for (int i = 0; i < c->np; ++i) {
+      const int p = c->order ? c->order[i] : i;
       if (c->cell[p] < 0) add_particles<kWork, ScalarLane>(c, &p, s);
+    }
   for (int f = 0; f < kReduceFields; ++f) c->partials[size_t(kReduceFields) * npatch + f] = s.f[f];
 }
 

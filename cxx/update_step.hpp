@@ -93,9 +93,19 @@ struct StepContext {
   // Distributed runs (cxx/ranks.hpp; null with one rank): called between a scatter into the
   // patch buffers and their assembly (kind EXCHANGE_BUFFERS, fields first .. first+count-1),
   // so that the ghost patches' buffers hold their owners' sums, and by the energy stage
-  // between its per-patch partials and their fold (EXCHANGE_PARTIALS).
+  // between its per-patch partials and their fold (EXCHANGE_PARTIALS; the contact stage's:
+  // EXCHANGE_CONTACT).
   void (*exchange)(const struct StepContext* c, int kind, int first, int count);
   void *exchange_data;
+  // Distributed runs: the particles in one process's storage order (order[i], i = 0..np-1,
+  // ascending storage index of the one-rank run), where a rank's arrays hold them in
+  // another; null: the arrays' own order. The bin stage fills the patch lists and the
+  // energy stage sums the particles outside the grid in this order.
+  const int *order;
+  // Distributed runs: 1 when cell, lx and pscratch (the patch of every particle, of either
+  // contact component) are already those of the particles' positions (the ranks binned
+  // them to decide which particles move): the bin stage then only builds the lists.
+  int prebinned;
 };
 
 typedef void (*StageFn)(StepContext*);
