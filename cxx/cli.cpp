@@ -223,13 +223,13 @@ std::string json_number(double v) {
   return b;
 }
 
-// What several ranks cannot run yet (cxx/ranks_mpi.cpp): the first such feature, or "".
 // An error every rank meets at once (after a collective decided it): each returns 1, the
 // root prints it.
 struct AllRanksError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// What several ranks cannot run yet (cxx/ranks_mpi.cpp): the first such feature, or "".
 std::string not_distributed(const Options& opt, const Model& m) {
   if (!opt.kernel.empty() || !opt.kernels.empty()) return "--kernel/--kernels (the Fortran stages)";
   if (!opt.no_output || opt.hdf5 || m.hdf5) return "the animation, curve and log files (give --no-output)";

@@ -121,8 +121,6 @@ class MpiRanks final : public Ranks {
     check(MPI_Allreduce(&v, &r, 1, type, op, comm_), "reduction");
     return r;
   }
-  // The patch of each of the context's np particles into out (-1 outside the grid window).
-  static void patches_of(const StepContext& c, int np, int* out);
   // The bin stage's binning of particles [lo, hi) of either component: cell, lx and patch
   // (pscratch) rows, which the bin stage then takes as they are (StepContext::prebinned).
   static void bin_rows(const StepContext& c, int lo, int hi);
@@ -146,11 +144,6 @@ class MpiRanks final : public Ranks {
 };
 
 // The bin stage's own kernel (transfer_lanes.hpp, bin_range), so both always agree.
-void MpiRanks::patches_of(const StepContext& c, int np, int* out) {
-  if (lanes_use_avx2()) patch_range_avx2(&c, 0, np, out);
-  else bin_range<VectorLane<kLanes>, false>(&c, 0, np, out);
-}
-
 void MpiRanks::bin_rows(const StepContext& c, int lo, int hi) {
   StepContext all = c;
   all.only_comp = 0;  // the patches of both contact components
@@ -255,10 +248,10 @@ void MpiRanks::distribute(Simulation& sim) {
   const StepContext& c = sim.ctx;
   contact_ = c.other != nullptr;
   counts_.assign(size_t(c.npatch) + 1 + (contact_ ? size_t(c.npatch) : 0), 0);
-  std::vector<int> patch(size_t(P.np));
-  patches_of(c, P.np, patch.data());
+  bin_rows(c, 0, P.np);  // every particle's patch, in pscratch
+  const int* patch = c.pscratch;
   for (int p = 0; p < P.np; ++p) {
-    const int q = patch[size_t(p)];
+    const int q = patch[p];
     if (q < 0) continue;
     ++counts_[size_t(q)];
     if (second(c, p)) ++counts_[size_t(c.npatch) + 1 + size_t(q)];
@@ -266,7 +259,7 @@ void MpiRanks::distribute(Simulation& sim) {
   partition(sim, draw(c.npatch));
   std::vector<int> keep;
   for (int p = 0; p < P.np; ++p) {
-    const int q = patch[size_t(p)];
+    const int q = patch[p];
     if ((q >= 0 ? owner_[size_t(q)] : size_ - 1) == rank_) keep.push_back(p);
   }
   for (const ParticleField& f : particle_fields(P)) {

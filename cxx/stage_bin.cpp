@@ -51,23 +51,19 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
     // Cells, local coordinates, patches (transfer_lanes.hpp), unless prebinned.
     if (!pre)
       outside += avx2 ? bin_range_avx2(c, lo, hi, patch_of) : bin_range<VectorLane<kLanes>>(c, lo, hi, patch_of);
-    // The patch of particle p in this context: prebinned patches are of every particle.
-    auto patch = [&](int p) { return pre && filter && other_component(c, p) ? -1 : patch_of[p]; };
     // Each thread counts (and below fills) a run of the particles in their canonical order:
-    // the arrays' own, or c->order's (every particle binned first).
-    if (c->order) {
+    // the arrays' own, or c->order's (every particle binned first). The patch of particle p
+    // in this context: prebinned patches are those of every particle, of either component.
+    const int* order = c->order;
+    auto particle = [&](int i) { return order ? order[i] : i; };
+    auto patch = [&](int p) { return pre && filter && other_component(c, p) ? -1 : patch_of[p]; };
+    if (order) {
 #pragma omp barrier
-      for (int i = lo; i < hi; ++i) {
-        const int p = c->order[i], q = patch(p);
-        if (q >= 0) ++cnt[q];
-        else if (pre && c->cell[p] < 0 && !(filter && other_component(c, p))) ++outside;
-      }
-    } else {
-      for (int p = lo; p < hi; ++p) {
-        const int q = patch(p);
-        if (q >= 0) ++cnt[q];
-        else if (pre && c->cell[p] < 0 && !(filter && other_component(c, p))) ++outside;
-      }
+    }
+    for (int i = lo; i < hi; ++i) {
+      const int p = particle(i), q = patch(p);
+      if (q >= 0) ++cnt[q];
+      else if (pre && c->cell[p] < 0 && !(filter && other_component(c, p))) ++outside;
     }
 #pragma omp barrier
     // Patch starts, buffer slots, and each run's fill pointer into every patch's list: a
@@ -112,16 +108,9 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
       }
     }
 #pragma omp barrier
-    if (c->order) {
-      for (int i = lo; i < hi; ++i) {
-        const int p = c->order[i], q = patch(p);
-        if (q >= 0) c->patch_part[cnt[q]++] = p;
-      }
-    } else {
-      for (int p = lo; p < hi; ++p) {
-        const int q = patch(p);
-        if (q >= 0) c->patch_part[cnt[q]++] = p;
-      }
+    for (int i = lo; i < hi; ++i) {
+      const int p = particle(i), q = patch(p);
+      if (q >= 0) c->patch_part[cnt[q]++] = p;
     }
   }
   c->nslot = nslot;

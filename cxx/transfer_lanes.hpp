@@ -28,12 +28,11 @@ constexpr int kLanes = kStressLanes;
 // other contact component). Returns the number outside the window. The divisions and
 // floors in lanes; the rest one lane after the other, with the scalar code's side effects
 // (an outside particle keeps the local coordinates of the axes tested before the one it
-// fails on). kCells false: the patches alone, of every particle whatever its component,
-// nothing else written (the ranks' migration, ranks_mpi.cpp).
-template <class VL, bool kCells = true>
+// fails on).
+template <class VL>
 int bin_range(const StepContext* c, int lo, int hi, int* patch_of) {
   typedef decltype(VL::splat(0.0)) T;
-  const bool filter = kCells && c->only_comp > 0;
+  const bool filter = c->only_comp > 0;
   const FastDiv divP{uint32_t(c->patch_cells)};
   int outside = 0;
   auto finish = [&](int p, const double* t, const double* fl) {
@@ -45,15 +44,15 @@ int bin_range(const StepContext* c, int lo, int hi, int* patch_of) {
     for (int a = 0; a < 3; ++a) {
       const double f0 = double(c->cell_off[a]);
       if (!(fl[a] >= f0 && fl[a] < f0 + double(c->nc[a]))) {  // also catches NaN
-        if (kCells) c->cell[p] = -1;
+        c->cell[p] = -1;
         patch_of[p] = -1;
         ++outside;
         return;
       }
       idx[a] = int(fl[a]) - c->cell_off[a];
-      if (kCells) c->lx[3 * p + a] = t[a] - fl[a];
+      c->lx[3 * p + a] = t[a] - fl[a];
     }
-    if (kCells) c->cell[p] = idx[0] + c->nc[0] * (idx[1] + c->nc[1] * idx[2]);
+    c->cell[p] = idx[0] + c->nc[0] * (idx[1] + c->nc[1] * idx[2]);
     patch_of[p] = int(divP(uint32_t(idx[0]))) +
                   c->npd[0] * (int(divP(uint32_t(idx[1]))) + c->npd[1] * int(divP(uint32_t(idx[2]))));
   };
@@ -297,7 +296,6 @@ void stress_list(StepContext* c, const CellDecoder& dec, const int* list, int co
 // transfer_lanes_avx2.cpp: the kernels above compiled for AVX2, for the CPUs where
 // lanes_use_avx2() (constitution.cpp) says so.
 int bin_range_avx2(const StepContext* c, int lo, int hi, int* patch_of);
-int patch_range_avx2(const StepContext* c, int lo, int hi, int* patch_of);  // bin_range<., false>
 void p2g_patch_avx2(const StepContext* c, int q, bool with_mass_mom, bool with_forces);
 void g2p_patch_avx2(StepContext* c, int q, bool remap);
 void stress_list_avx2(StepContext* c, const int* list, int count, const double* gvel,

@@ -10,10 +10,6 @@ int bin_range_avx2(const StepContext* c, int lo, int hi, int* patch_of) {
   return bin_range<VectorLane<kLanes>>(c, lo, hi, patch_of);
 }
 
-int patch_range_avx2(const StepContext* c, int lo, int hi, int* patch_of) {
-  return bin_range<VectorLane<kLanes>, false>(c, lo, hi, patch_of);
-}
-
 void p2g_patch_avx2(const StepContext* c, int q, bool with_mass_mom, bool with_forces) {
   p2g_patch<VectorLane<kLanes>>(c, CellDecoder(c), q, with_mass_mom, with_forces);
 }
