@@ -232,7 +232,8 @@ struct AllRanksError : std::runtime_error {
 // What several ranks cannot run yet (cxx/ranks_mpi.cpp): the first such feature, or "".
 std::string not_distributed(const Options& opt, const Model& m) {
   if (!opt.kernel.empty() || !opt.kernels.empty()) return "--kernel/--kernels (the Fortran stages)";
-  if (!opt.no_output || opt.hdf5 || m.hdf5) return "the animation, curve and log files (give --no-output)";
+  for (const auto& c : m.curves)
+    if (c.var == "spre" && !opt.no_output) return "the curve variable spre (smoothed pressure) (give --no-output)";
   if (opt.particle_order == "deck") return "--particle-order deck";
   if (m.regrid_every > 0) return "the adaptive grid (adgr, --regrid-every)";
   if (m.sg) return "sgmp";
@@ -322,8 +323,24 @@ int run_main(int argc, char** argv, Ranks* ranks) {
     const Model& m = sim.model;
     const double end_time = opt.end_time > 0.0 ? opt.end_time : m.endtime;
     const bool series = opt.hdf5 || (m.hdf5 && !opt.no_output);
+    // On several ranks the root writes every file: each frame from the particles gathered
+    // on it, each step's curve values from the ranks holding the curves' particles.
     Output out;
-    if (!opt.no_output || series) out.open(m, opt.out_dir, !opt.no_output, series, restarted ? &resume : nullptr);
+    if (root && (!opt.no_output || series))
+      out.open(m, opt.out_dir, !opt.no_output, series, restarted ? &resume : nullptr);
+    const bool animates = Output::animates(m, !opt.no_output, series);
+    const bool gather_curves = ranks && !opt.no_output && !m.curves.empty();
+    std::vector<int> curve_rows;
+    std::vector<double> curve_values;
+    auto write_frame = [&](double time, long step) {
+      if (!ranks) return out.frame(m, time, step);
+      Particles all;
+      ranks->gather(m.particles, all);
+      if (!root) return;
+      std::swap(sim.model.particles, all);
+      out.frame(m, time, step);
+      std::swap(sim.model.particles, all);
+    };
     install_signal_handlers();
     std::ostringstream head;
     head << "MPM3D-CXX: " << m.title << "\n  deck " << opt.deck << ", " << sim.global_np() << " particles, "
@@ -358,7 +375,7 @@ int run_main(int argc, char** argv, Ranks* ranks) {
 
     double step_seconds = 0.0, dt_min = m.dt, dt_max = m.dt, max_epeff = 0.0;
     double next_out = restarted ? resume.next_out : m.outtime, next_rpt = restarted ? resume.next_rpt : m.rpttime;
-    if (!restarted && out.animates()) out.frame(m, 0.0, 0);
+    if (!restarted && animates) write_frame(0.0, 0);
     const double eps = 1e-9 * m.dt;
     std::string failure;
     std::vector<std::string> energy_warnings;  // printed when raised, listed in the summary
@@ -415,9 +432,14 @@ int run_main(int argc, char** argv, Ranks* ranks) {
       }
       sim.new_energy_warnings.clear();
       if (!failure.empty()) break;
-      out.step(m, StepRecord{sim.time, sim.steps, sim.kinetic, sim.internal, sim.momentum, sim.contact_force});
+      if (gather_curves) {
+        held_curve_values(m, curve_rows, curve_values);
+        ranks->max(curve_values);
+      }
+      out.step(m, StepRecord{sim.time, sim.steps, sim.kinetic, sim.internal, sim.momentum, sim.contact_force,
+                             gather_curves ? curve_values.data() : nullptr});
       if (sim.time >= next_out - eps) {
-        if (out.animates()) out.frame(m, sim.time, sim.steps);
+        if (animates) write_frame(sim.time, sim.steps);
         next_out += m.outtime;
       }
       if (sim.time >= next_rpt - eps || sim.time >= end_time - eps) {

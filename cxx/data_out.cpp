@@ -108,6 +108,29 @@ double particle_variable(const Model& m, const std::string& var, int p) {
   return f ? f(m, p) : 0.0;
 }
 
+void held_curve_values(const Model& m, std::vector<int>& held, std::vector<double>& values) {
+  const Particles& P = m.particles;
+  const size_t nc = m.curves.size();
+  held.resize(nc, -1);
+  values.assign(nc, -INFINITY);
+  bool missing = false;
+  for (size_t c = 0; c < nc; ++c) {
+    const int p = held[c];
+    if (p >= 0 && p < P.np && P.deck_number(p) == m.curves[c].particle) values[c] = output_variable(m.curves[c].var)(m, p);
+    else missing = true;
+  }
+  if (!missing) return;
+  // One pass over the rows for the curves not where they were (few: a search per curve).
+  for (int p = 0; p < P.np; ++p) {
+    const int deck = P.deck_number(p);
+    for (size_t c = 0; c < nc; ++c) {
+      if (values[c] != -INFINITY || deck != m.curves[c].particle) continue;
+      held[c] = p;
+      values[c] = output_variable(m.curves[c].var)(m, p);
+    }
+  }
+}
+
 void write_state_h5(const std::string& path, const Model& m, double time, long step, double dt) {
   const std::string tmp = path + ".tmp";
   const H5ErrorSilencer quiet;  // our own messages instead; the caller's handler is restored
@@ -198,12 +221,8 @@ void Output::open(const Model& m, const std::string& dir, bool legacy, bool seri
     if (m.tecplot) writers_.push_back(make_tecplot_writer(m, files));
     if (m.contact) writers_.push_back(make_contact_writer(files));
     if (m.paraview) writers_.push_back(make_vtu_writer(m, files, frame_times_));
-    animates_ = m.tecplot || m.paraview;
   }
-  if (series) {
-    writers_.push_back(make_h5_series_writer(m, files, frame_times_));
-    animates_ = true;
-  }
+  if (series) writers_.push_back(make_h5_series_writer(m, files, frame_times_));
 }
 
 void Output::log(const std::string& line) {

@@ -40,6 +40,11 @@ double particle_variable(const Model& m, const std::string& var, int p);
 // Fills m.spre: the pressure smoothed through the grid (smoothed_pressure.cpp).
 void update_smoothed_pressure(const Model& m);
 
+// The curv/curx variables of m.curves for the particles this process holds, -infinity for
+// the others (several ranks: the largest over the ranks is every curve's value). held[c]
+// caches the row of curve c's particle; a particle not found where it was is looked up again.
+void held_curve_values(const Model& m, std::vector<int>& held, std::vector<double>& values);
+
 // Writes the final particle state (docs/DESIGN.md section 6) atomically (temporary + rename).
 void write_state_h5(const std::string& path, const Model& m, double time, long step, double dt);
 
@@ -59,7 +64,9 @@ class Output {
   void log(const std::string& line);  // name.out
   void step(const Model& m, const StepRecord& s);
   void frame(const Model& m, double time, long step);  // one frame of every animation format
-  bool animates() const { return animates_; }
+  // Whether open(m, ..., legacy, series) opens an animation (known to every rank, which all
+  // take part in gathering the particles of a frame).
+  static bool animates(const Model& m, bool legacy, bool series) { return (legacy && (m.tecplot || m.paraview)) || series; }
   // Flushes the text files and records their sizes and the frames written so far.
   void save_state(OutputSchedule& o);
   void close();
@@ -67,7 +74,6 @@ class Output {
  private:
   std::vector<std::unique_ptr<OutputWriter>> writers_;
   std::vector<double> frame_times_;
-  bool animates_ = false;
   bool spre_in_curves_ = false, spre_in_frames_ = false;  // spre is computed when written
 };
 

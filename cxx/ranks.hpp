@@ -45,6 +45,8 @@ class Ranks {
   virtual int min(int v) = 0;
   virtual double min(double v) = 0;
   virtual double max(double v) = 0;
+  // Each value the largest over the ranks (a rank without a value gives -infinity).
+  virtual void max(std::vector<double>& values) = 0;
   // The text s of rank `from` on every rank.
   virtual std::string broadcast(const std::string& s, int from) = 0;
   // All particles, in one rank's storage order (every field, with the deck numbers), on

@@ -55,6 +55,10 @@ class MpiRanks final : public Ranks {
   int min(int v) override { return reduce(v, MPI_INT, MPI_MIN); }
   double min(double v) override { return reduce(v, MPI_DOUBLE, MPI_MIN); }
   double max(double v) override { return reduce(v, MPI_DOUBLE, MPI_MAX); }
+  void max(std::vector<double>& values) override {
+    if (!values.empty())
+      check(MPI_Allreduce(MPI_IN_PLACE, values.data(), int(values.size()), MPI_DOUBLE, MPI_MAX, comm_), "reduction");
+  }
   std::string broadcast(const std::string& s, int from) override {
     int n = int(s.size());
     check(MPI_Bcast(&n, 1, MPI_INT, from, comm_), "broadcast");

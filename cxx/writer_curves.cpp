@@ -47,13 +47,17 @@ class CurveWriter : public OutputWriter {
     std::fprintf(curv_, "%s%s%s", t.c_str(), fortran_e12_4(s.kinetic).c_str(), fortran_e12_4(s.internal).c_str());
     // Stored index of each curve's particle (deck number m.curves[c].particle), found again
     // whenever the storage order is not the one it was found in (a restart).
-    const Particles& P = m.particles;
-    if (curve_at_.size() != m.curves.size()) curve_at_.assign(m.curves.size(), -1);
-    for (size_t c = 0; c < m.curves.size(); ++c) {
-      int& p = curve_at_[c];
-      if (p < 0 || p >= P.np || P.deck_number(p) != m.curves[c].particle)
-        p = stored_index(P)[size_t(m.curves[c].particle)];
-      std::fprintf(curv_, "%s", fortran_e12_4(curve_fn_[c](m, p)).c_str());
+    if (s.curve_values) {
+      for (size_t c = 0; c < m.curves.size(); ++c) std::fprintf(curv_, "%s", fortran_e12_4(s.curve_values[c]).c_str());
+    } else {
+      const Particles& P = m.particles;
+      if (curve_at_.size() != m.curves.size()) curve_at_.assign(m.curves.size(), -1);
+      for (size_t c = 0; c < m.curves.size(); ++c) {
+        int& p = curve_at_[c];
+        if (p < 0 || p >= P.np || P.deck_number(p) != m.curves[c].particle)
+          p = stored_index(P)[size_t(m.curves[c].particle)];
+        std::fprintf(curv_, "%s", fortran_e12_4(curve_fn_[c](m, p)).c_str());
+      }
     }
     std::fprintf(curv_, "\n");
   }

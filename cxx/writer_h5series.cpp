@@ -35,8 +35,7 @@ class H5SeriesWriter : public OutputWriter {
       : h5_(m.base_name + "_anim.h5"),
         h5_path_(files.path(h5_)),
         xdmf_path_(files.path(m.base_name + "_anim.xdmf")),
-        vars_(m.anim_vars),
-        np_(m.particles.np) {
+        vars_(m.anim_vars) {
     const H5ErrorSilencer quiet;
     if (!resume_times.empty() && file_size(h5_path_) > 0 && resume(resume_times)) return;
     // New file (or a restart whose earlier series is gone: frames before it are not listed).
@@ -83,13 +82,14 @@ class H5SeriesWriter : public OutputWriter {
       H5Gclose(g);
     }
     times_.push_back(time);
+    np_ = m.particles.np;
     write_xdmf();
   }
 
  private:
   std::string h5_, h5_path_, xdmf_path_;
   std::vector<std::string> vars_;
-  int np_;
+  int np_ = 0;  // particles of a frame (all of them, also when the run's ranks hold parts)
   std::vector<double> times_;  // times_[k]: time of /frames/<k>
   size_t first_ = 0;           // first frame present in the .h5 file
 

@@ -26,4 +26,12 @@ timeout 120 "$mpirun" --oversubscribe --bind-to none -np 2 "$mpm3d" --kernel for
 rc=$?
 [ $rc -eq 1 ] && grep -q -- "--kernel/--kernels (the Fortran stages) cannot run on several MPI ranks" "$work/refused.err" ||
   { echo "--kernel fortran on 2 ranks: status $rc"; cat "$work/refused.err"; exit 1; }
+# The curve variable spre needs every particle each step: refused on ranks with the files on.
+sed 's/^curv epef 100/curv spre 100/' "$deck" > "$work/spre_curve.mpm"
+grep -q '^curv spre 100' "$work/spre_curve.mpm" || { echo "the deck has no 'curv epef 100' to turn into spre"; exit 1; }
+timeout 120 "$mpirun" --oversubscribe --bind-to none -np 2 "$mpm3d" --steps 1 --quiet --out-dir "$work" \
+  "$work/spre_curve.mpm" 2> "$work/refused_spre.err"
+rc=$?
+[ $rc -eq 1 ] && grep -q -- "the curve variable spre (smoothed pressure) (give --no-output) cannot run on several MPI ranks" \
+  "$work/refused_spre.err" || { echo "a spre curve on 2 ranks: status $rc"; cat "$work/refused_spre.err"; exit 1; }
 echo "health failure: status 3 and the one-process message on 2 and 3 ranks; refusal named"

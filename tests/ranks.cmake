@@ -50,6 +50,23 @@ if(MPM3D_MPI AND MPI_CXX_FOUND AND MPIEXEC_EXECUTABLE)
   endfunction()
   mpm3d_rank_restart_test(taylor_coarse ${CMAKE_SOURCE_DIR}/inputs/taylor/taylor_coarse.mpm 30 60)
   mpm3d_rank_restart_test(contact_usf ${CMAKE_SOURCE_DIR}/tests/decks/sliding_block_usf.mpm 40 150 --patch-cells 2)
+  # The result files, written by the root: curves from the ranks holding the curves'
+  # particles, frames from the particles gathered on it (TecPlot, HDF5 series), identical to
+  # one process's; also continued from a 2-rank checkpoint on 3 ranks (tests/rank_outputs.sh).
+  function(mpm3d_rank_outputs_test name deck steps restart_at)
+    add_test(NAME ranks.outputs_${name}
+             COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/rank_outputs.sh $<TARGET_FILE:mpm3d> ${MPIEXEC_EXECUTABLE}
+                     ${deck} ${steps} ${restart_at} ${CMAKE_CURRENT_BINARY_DIR}/ranks_outputs_${name} ${ARGN})
+    set_tests_properties(ranks.outputs_${name} PROPERTIES SKIP_RETURN_CODE 77 RUN_SERIAL TRUE)
+  endfunction()
+  mpm3d_rank_outputs_test(usl_blocks ${CMAKE_SOURCE_DIR}/fortran_ref/testdecks/usl_blocks.mpm 400 90
+                          2x1 3x1 2x2 --end-time 0.004)
+  mpm3d_rank_outputs_test(slab_small ${CMAKE_SOURCE_DIR}/inputs/explosives/slab_small.mpm 200 0)
+  # (B-spline, QuLo, smoo: the smoothed pressure of each frame from the gathered particles)
+  mpm3d_rank_outputs_test(cook_membrane_bimp ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/cook_membrane_bimp.mpm 1000 30
+                          2x1 3x1 --end-time 1.0)
+  mpm3d_rank_outputs_test(contact_sliding_block ${CMAKE_SOURCE_DIR}/inputs/contact/sliding_block.mpm 1000 60
+                          2x1 3x1 --end-time 0.1 --patch-cells 2)
   # A rank's health failure ends every rank (usl_blocks runs away at step 253); refusals.
   add_test(NAME ranks.failure
            COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/rank_failure.sh $<TARGET_FILE:mpm3d> ${MPIEXEC_EXECUTABLE}
