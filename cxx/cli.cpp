@@ -235,7 +235,6 @@ std::string not_distributed(const Options& opt, const Model& m) {
   for (const auto& c : m.curves)
     if (c.var == "spre" && !opt.no_output) return "the curve variable spre (smoothed pressure) (give --no-output)";
   if (opt.particle_order == "deck") return "--particle-order deck";
-  if (m.regrid_every > 0) return "the adaptive grid (adgr, --regrid-every)";
   if (m.sg) return "sgmp";
   if (m.tl) return "TLmp";
   return "";

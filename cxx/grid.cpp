@@ -44,11 +44,8 @@ void Grid::set_window(const int off_[3], const int nc_[3]) {
   nslot = 0;
 }
 
-void adaptive_window(const Grid& g, const double* x, const double* v, int np, int every, double dt,
-                     int off[3], int nc[3]) {
-  int cmin[3] = {g.deck_nc[0], g.deck_nc[1], g.deck_nc[2]}, cmax[3] = {-1, -1, -1};
-  double vmax2 = 0.0;
-  bool any = false;
+WindowExtent window_extent(const Grid& g, const double* x, const double* v, int np) {
+  WindowExtent e = {{g.deck_nc[0], g.deck_nc[1], g.deck_nc[2]}, {-1, -1, -1}, 0.0};
   for (int p = 0; p < np; ++p) {
     int idx[3];
     bool in = true;
@@ -62,31 +59,40 @@ void adaptive_window(const Grid& g, const double* x, const double* v, int np, in
       idx[a] = int(fl);
     }
     if (!in) continue;
-    any = true;
     for (int a = 0; a < 3; ++a) {
-      if (idx[a] < cmin[a]) cmin[a] = idx[a];
-      if (idx[a] > cmax[a]) cmax[a] = idx[a];
+      if (idx[a] < e.cmin[a]) e.cmin[a] = idx[a];
+      if (idx[a] > e.cmax[a]) e.cmax[a] = idx[a];
     }
     const double* vp = v + 3 * p;
     const double s = (vp[0] * vp[0] + vp[1] * vp[1]) + vp[2] * vp[2];
-    if (s > vmax2) vmax2 = s;
+    if (s > e.vmax2) e.vmax2 = s;
   }
-  const double r = (2.0 * ((double(every) * std::sqrt(vmax2)) * dt)) / g.h;
+  return e;
+}
+
+void window_of_extent(const Grid& g, const WindowExtent& e, int every, double dt, int off[3], int nc[3]) {
+  const bool any = e.cmax[0] >= 0;
+  const double r = (2.0 * ((double(every) * std::sqrt(e.vmax2)) * dt)) / g.h;
   const int m = 1 + (r < 1.0e6 ? int(std::ceil(r)) : 1000000);
   for (int a = 0; a < 3; ++a) {
     int lo = 0, hi = g.deck_nc[a];
     if (any) {
-      lo = cmin[a] - m;
+      lo = e.cmin[a] - m;
       if (lo < 0) lo = 0;
       lo = (lo / g.patch_cells) * g.patch_cells;
       if (g.fix[2 * a] != 0) lo = 0;
-      hi = cmax[a] + 1 + m;
+      hi = e.cmax[a] + 1 + m;
       if (hi > g.deck_nc[a]) hi = g.deck_nc[a];
       if (g.fix[2 * a + 1] != 0) hi = g.deck_nc[a];
     }
     off[a] = lo;
     nc[a] = hi - lo;
   }
+}
+
+void adaptive_window(const Grid& g, const double* x, const double* v, int np, int every, double dt,
+                     int off[3], int nc[3]) {
+  window_of_extent(g, window_extent(g, x, v, np), every, dt, off, nc);
 }
 
 int count_escaped(const Grid& g, const double* x, const int* cell, int np) {

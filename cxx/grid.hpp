@@ -59,7 +59,15 @@ struct Grid {
 // rounded down to a whole patch of the deck's lattice (so the patches of the window are
 // those of the box, and every node sum keeps its bits), clipped to the box; a face with a
 // boundary condition (fix != 0) stays at the box face. No particle inside: the whole box.
-// Same operations as grid_adaptive_window in fortran_ref/grid.f90.
+// Same operations as grid_adaptive_window in fortran_ref/grid.f90. In two parts, so that
+// several ranks can merge their particles' extents (min and max: exact) before the window:
+// the extent of particles x, v inside the box, and the window of an extent.
+struct WindowExtent {
+  int cmin[3], cmax[3];  // occupied cells per axis (cmax[0] < 0: no particle inside)
+  double vmax2;          // largest |v|^2
+};
+WindowExtent window_extent(const Grid& g, const double* x, const double* v, int np);
+void window_of_extent(const Grid& g, const WindowExtent& e, int every, double dt, int off[3], int nc[3]);
 void adaptive_window(const Grid& g, const double* x, const double* v, int np, int every, double dt,
                      int off[3], int nc[3]);
 // Particles outside the window (cell < 0) but inside the deck's box.

@@ -30,7 +30,8 @@ class Ranks {
   // ranks' patch runs from the particle counts and keep this rank's particles.
   virtual void distribute(Simulation& sim) = 0;
   // Before each bin stage: bins this rank's particles (StepContext::prebinned) and moves
-  // those whose patch is another rank's there, with every field; StepContext::order lists
+  // those whose patch is another rank's there, with every field (on a new grid window, the
+  // adaptive grid's, after drawing the ranks' runs of its patches); StepContext::order lists
   // this rank's particles in ascending storage index of one rank's run.
   virtual void migrate(Simulation& sim) = 0;
   // After each bin stage: buffer slots for the non-empty patches of other ranks next to

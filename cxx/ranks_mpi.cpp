@@ -97,6 +97,7 @@ class MpiRanks final : public Ranks {
   std::vector<int> gidx_;    // storage index of each local particle on one rank
   std::vector<int> first_;   // (size + 1) first patch of each rank
   std::vector<int> owner_;   // (npatch) rank of each patch
+  int window_[6] = {};       // the grid window (offset, cells per axis) owner_ was drawn for
   std::vector<int> counts_;  // (npatch + 1) particles of each patch on all ranks, then the
                              // particles that change rank in this step; with contact then
                              // (npatch) component 2's particles of each patch
@@ -136,6 +137,11 @@ class MpiRanks final : public Ranks {
   }
   // True when particle p is of contact component 2.
   bool second(const StepContext& c, int p) const { return contact_ && c.body_comp[c.body[p]] == 2; }
+  bool same_window(const StepContext& c) const {
+    for (int a = 0; a < 3; ++a)
+      if (window_[a] != c.cell_off[a] || window_[3 + a] != c.nc[a]) return false;
+    return true;
+  }
   // The ranks' first patches by the rule above, from counts_.
   std::vector<int> draw(int npatch) const;
   void partition(const Simulation& sim, std::vector<int> first);
@@ -175,6 +181,10 @@ void MpiRanks::partition(const Simulation& sim, std::vector<int> first) {
   const StepContext& c = sim.ctx;
   const int npatch = c.npatch;
   first_ = std::move(first);
+  for (int a = 0; a < 3; ++a) {
+    window_[a] = c.cell_off[a];
+    window_[3 + a] = c.nc[a];
+  }
   owner_.assign(size_t(npatch), 0);
   for (int u = 0; u < size_; ++u)
     for (int q = first_[size_t(u)]; q < first_[size_t(u) + 1]; ++q) owner_[size_t(q)] = u;
@@ -295,11 +305,13 @@ void MpiRanks::migrate(Simulation& sim) {
   Particles& P = sim.model.particles;
   const StepContext& c = sim.ctx;
   const int npatch = c.npatch;
-  if (int(owner_.size()) != npatch) throw std::logic_error("ranks: the grid changed after the partition");
   const int ncount = npatch + 1 + (contact_ ? npatch : 0);
   std::vector<int> local(size_t(ncount), 0);
   dest_.resize(size_t(P.np));
   auto rank_of = [&](int q) { return q >= 0 ? owner_[size_t(q)] : size_ - 1; };
+  // A new grid window (the adaptive grid, on every rank alike) has other patches: the
+  // ranks' runs are drawn for it below, and the particles counted as moving then.
+  const bool new_window = !same_window(c);
   // The bin stage's binning, done here (prebinned): it tells which particles move.
   bin_rows(c, 0, P.np);
   const int* patch = c.pscratch;
@@ -309,7 +321,7 @@ void MpiRanks::migrate(Simulation& sim) {
       ++local[size_t(q)];
       if (second(c, p)) ++local[size_t(npatch) + 1 + size_t(q)];
     }
-    if (rank_of(q) != rank_) ++local[size_t(npatch)];
+    if (!new_window && rank_of(q) != rank_) ++local[size_t(npatch)];
   }
   counts_.resize(size_t(ncount));
   check(MPI_Allreduce(local.data(), counts_.data(), ncount, MPI_INT, MPI_SUM, comm_), "counts");
@@ -324,11 +336,15 @@ void MpiRanks::migrate(Simulation& sim) {
     }
     return all > 0 ? double(most) * size_ / double(all) : 1.0;
   };
+  bool redrawn = false;
+  if (new_window) {
+    partition(sim, draw(npatch));
+    redrawn = true;
+  }
   imbalance_ = shares();
   // The ranks' runs redrawn from the counts that every rank now holds, when the largest
   // share has drifted past rebalance_above_ of the mean and the rule draws other runs (the
   // bits do not depend on them).
-  bool redrawn = false;
   if (imbalance_ > rebalance_above_) {
     std::vector<int> first = draw(npatch);
     if (first != first_) {

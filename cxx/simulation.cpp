@@ -224,7 +224,18 @@ void Simulation::bind_grid() {
 void Simulation::regrid(int escaped) {
   int off[3], nc[3];
   const Particles& P = model.particles;
-  adaptive_window(grid, P.x.data(), P.v.data(), P.np, regrid_every > 0 ? regrid_every : 1, model.dt, off, nc);
+  WindowExtent e = window_extent(grid, P.x.data(), P.v.data(), P.np);
+  if (ranks) {  // every rank's particles: the extents merged by min and max (exact)
+    std::vector<double> m = {-double(e.cmin[0]), -double(e.cmin[1]), -double(e.cmin[2]), double(e.cmax[0]),
+                             double(e.cmax[1]),  double(e.cmax[2]),  e.vmax2};
+    ranks->max(m);
+    for (int a = 0; a < 3; ++a) {
+      e.cmin[a] = -int(m[size_t(a)]);
+      e.cmax[a] = int(m[3 + size_t(a)]);
+    }
+    e.vmax2 = m[6];
+  }
+  window_of_extent(grid, e, regrid_every > 0 ? regrid_every : 1, model.dt, off, nc);
   grid.set_window(off, nc);
   bind_grid();
   ++regrids;
@@ -383,18 +394,20 @@ void Simulation::bin_stage() {
   run_stage(ST_BIN);
   lists_binned_ = true;
   int escaped = 0;
-  if (c->noutside > 0 && !grid.window_is_box()) {
-    escaped = count_escaped(grid, c->x, c->cell, c->np);
+  if (!grid.window_is_box()) {
+    if (c->noutside > 0) escaped = count_escaped(grid, c->x, c->cell, c->np);
+    if (ranks) escaped = int(ranks->sum(escaped));
     if (escaped > 0) {
       const auto t0 = std::chrono::steady_clock::now();
       regrid(escaped);
       stage_seconds[ST_BIN] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      if (ranks) ranks->migrate(*this);  // the new window's patches, drawn over the ranks again
       run_stage(ST_BIN);
     }
   }
   stats = patch_stats(grid, c->patch_start);
-  if (scheduled || escaped > 0) note_regrid(escaped);
   if (ranks) ranks->add_ghost_slots(*this);  // also the patch statistics of every rank's particles
+  if (scheduled || escaped > 0) note_regrid(escaped);
   ensure_patch_buffers();
 }
 

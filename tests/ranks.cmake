@@ -38,6 +38,12 @@ if(MPM3D_MPI AND MPI_CXX_FOUND AND MPIEXEC_EXECUTABLE)
   # (to its end, redrawing the ranks' runs whenever the rule draws others: 3 times on 3 ranks)
   mpm3d_rank_test(contact_gimp_usf ${CMAKE_SOURCE_DIR}/fortran_ref/testdecks/gimp_contact_usf.mpm 414
                   2x1 3x1 4x1 2x2 ranks: --rebalance-above 1)
+  # The adaptive grid: each new window's patches drawn over the ranks again (the Taylor
+  # bar's window every 10 steps; a block outrunning its window: a forced regrid, from the
+  # particles outside the window summed over the ranks).
+  mpm3d_rank_test(adaptive_taylor_coarse ${CMAKE_SOURCE_DIR}/inputs/taylor/taylor_coarse.mpm 100
+                  2x1 3x1 2x2 --regrid-every 10)
+  mpm3d_rank_test(adaptive_rising_block ${CMAKE_SOURCE_DIR}/tests/decks/rising_block.mpm 100 2x1 3x1 4x1)
   # Checkpoints: written by 2 ranks = one process's file; continued on 3 ranks, on one
   # process, and one process's on 2 ranks = the uninterrupted run (tests/rank_restart.sh).
   # The USF contact deck's checkpoint holds the nodes' contact marks, gathered from their
@@ -49,6 +55,7 @@ if(MPM3D_MPI AND MPI_CXX_FOUND AND MPIEXEC_EXECUTABLE)
     set_tests_properties(ranks.restart_${name} PROPERTIES SKIP_RETURN_CODE 77 RUN_SERIAL TRUE)
   endfunction()
   mpm3d_rank_restart_test(taylor_coarse ${CMAKE_SOURCE_DIR}/inputs/taylor/taylor_coarse.mpm 30 60)
+  mpm3d_rank_restart_test(adaptive_taylor_coarse ${CMAKE_SOURCE_DIR}/inputs/taylor/taylor_coarse.mpm 35 70 --regrid-every 10)
   mpm3d_rank_restart_test(contact_usf ${CMAKE_SOURCE_DIR}/tests/decks/sliding_block_usf.mpm 40 150 --patch-cells 2)
   # The result files, written by the root: curves from the ranks holding the curves'
   # particles, frames from the particles gathered on it (TecPlot, HDF5 series), identical to
