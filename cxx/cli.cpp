@@ -234,7 +234,6 @@ std::string not_distributed(const Options& opt, const Model& m) {
   if (!opt.kernel.empty() || !opt.kernels.empty()) return "--kernel/--kernels (the Fortran stages)";
   for (const auto& c : m.curves)
     if (c.var == "spre" && !opt.no_output) return "the curve variable spre (smoothed pressure) (give --no-output)";
-  if (opt.particle_order == "deck") return "--particle-order deck";
   if (m.sg) return "sgmp";
   if (m.tl) return "TLmp";
   return "";

@@ -251,7 +251,7 @@ void MpiRanks::pack_row(Particles& P, int p, int gidx, char* out) const {
 void MpiRanks::distribute(Simulation& sim) {
   Particles& P = sim.model.particles;
   np_global_ = P.np;
-  if (P.id.empty()) throw std::runtime_error("several ranks need the particles in blocks order");
+  if (P.id.empty()) throw std::logic_error("ranks: the particles carry no deck numbers");
   {
     const std::vector<ParticleField> f = particle_fields(P);
     fields_.clear();

@@ -38,6 +38,9 @@ if(MPM3D_MPI AND MPI_CXX_FOUND AND MPIEXEC_EXECUTABLE)
   # (to its end, redrawing the ranks' runs whenever the rule draws others: 3 times on 3 ranks)
   mpm3d_rank_test(contact_gimp_usf ${CMAKE_SOURCE_DIR}/fortran_ref/testdecks/gimp_contact_usf.mpm 414
                   2x1 3x1 4x1 2x2 ranks: --rebalance-above 1)
+  # The particles stored in deck order: the ranks keep each one's storage index all the same.
+  mpm3d_rank_test(particle_order_deck ${CMAKE_SOURCE_DIR}/fortran_ref/testdecks/usl_blocks.mpm 200
+                  2x1 3x1 --particle-order deck)
   # The adaptive grid: each new window's patches drawn over the ranks again (the Taylor
   # bar's window every 10 steps; a block outrunning its window: a forced regrid, from the
   # particles outside the window summed over the ranks).
