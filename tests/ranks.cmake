@@ -38,6 +38,12 @@ if(MPM3D_MPI AND MPI_CXX_FOUND AND MPIEXEC_EXECUTABLE)
   # (to its end, redrawing the ranks' runs whenever the rule draws others: 3 times on 3 ranks)
   mpm3d_rank_test(contact_gimp_usf ${CMAKE_SOURCE_DIR}/fortran_ref/testdecks/gimp_contact_usf.mpm 414
                   2x1 3x1 4x1 2x2 ranks: --rebalance-above 1)
+  # Mixed runs on ranks: the Fortran stages that need none of the ranks' hooks (integrate,
+  # stress, and g2p without MUSL's remap) against one C++ process and mpm3d_ref.
+  mpm3d_rank_test(fortran_stages_usl ${CMAKE_SOURCE_DIR}/fortran_ref/testdecks/usl_blocks.mpm 200
+                  2x1 3x1 2x2 ranks: --kernels integrate=fortran,stress=fortran,g2p=fortran)
+  mpm3d_rank_test(fortran_stages_taylor_coarse ${CMAKE_SOURCE_DIR}/inputs/taylor/taylor_coarse.mpm 60
+                  2x1 3x1 ranks: --kernels integrate=fortran,stress=fortran)
   # The particles stored in deck order: the ranks keep each one's storage index all the same.
   mpm3d_rank_test(particle_order_deck ${CMAKE_SOURCE_DIR}/fortran_ref/testdecks/usl_blocks.mpm 200
                   2x1 3x1 --particle-order deck)
