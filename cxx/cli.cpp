@@ -231,20 +231,6 @@ struct AllRanksError : std::runtime_error {
 
 // What several ranks cannot run yet (cxx/ranks_mpi.cpp): the first such feature, or "".
 std::string not_distributed(const Options& opt, const Model& m) {
-  if (!opt.kernel.empty() || !opt.kernels.empty()) {
-    // The Fortran stages do not call the ranks' hooks (StepContext::exchange, prebinned,
-    // order): only those that need none run on several ranks.
-    StageTable t = cxx_stages();
-    if (!opt.kernel.empty()) select_stages(t, opt.kernel, false);
-    if (!opt.kernels.empty()) select_stages(t, opt.kernels, true);
-    const StageTable cxx = cxx_stages();
-    for (int s = 0; s < ST_COUNT; ++s) {
-      const bool hooks_free = s == ST_INTEGRATE || s == ST_STRESS || (s == ST_G2P && m.scheme != SCHEME_MUSL);
-      if (t.fn[s] != cxx.fn[s] && !hooks_free)
-        return std::string("the Fortran stage '") + kStageNames[s] +
-               "' (--kernel/--kernels: on several ranks integrate, stress and, without MUSL, g2p may come from Fortran)";
-    }
-  }
   for (const auto& c : m.curves)
     if (c.var == "spre" && !opt.no_output) return "the curve variable spre (smoothed pressure) (give --no-output)";
   if (m.sg) return "sgmp";

@@ -79,8 +79,8 @@ struct StepContext {
   // cell centres, aux (kAuxFields, ncell) their scratch fields (stage_sg.cpp); else null, 0.
   double *aux;
   int sg;
-  // Fields after this point are stage-internal scratch of the C++ kernels (a Fortran
-  // mirror of the struct may stop before them).
+  // Stage-internal scratch of the C++ kernels (the Fortran mirror, step_context in
+  // fortran_ref/stage_common.f90, holds them as untouched pointers).
   int *pscratch;       // (np) patch of each particle during binning
   // sgmp: each patch-list entry's auxiliary weights (8), centres (8) and per-axis centre
   // range (lo[3], hi[3]), written and read within one scatter (stage_sg.cpp); else null.

@@ -6,17 +6,18 @@
 
 #include "update_step.hpp"
 
-// The Fortran mirror stops after sg: later fields are C++-internal scratch.
+// The Fortran mirror covers the whole struct (the C++ kernels' scratch pointers as
+// placeholders), so that the Fortran stages reach the ranks' hooks at its end.
 // noutside is the last int before the pointer tlight: the padding before tlight would hide
 // one int missing from the ints there, so its own offset is checked.
 
-extern "C" void mpm3d_f_context_layout(size_t out[20]);
+extern "C" void mpm3d_f_context_layout(size_t out[23]);
 extern "C" void mpm3d_f_step_constants(int out[14]);
 
 int main() {
-  size_t f[20];
+  size_t f[23];
   mpm3d_f_context_layout(f);
-  const size_t c[20] = {sizeof(StepContext),
+  const size_t c[23] = {sizeof(StepContext),
                        offsetof(StepContext, result),
                        offsetof(StepContext, np),
                        offsetof(StepContext, fix),
@@ -35,18 +36,20 @@ int main() {
                        offsetof(StepContext, tl),
                        offsetof(StepContext, fix_layers),
                        offsetof(StepContext, aux),
-                       offsetof(StepContext, sg)};
-  const char* what[20] = {"sizeof(StepContext)", "offsetof(result)", "offsetof(np)", "offsetof(fix)",
+                       offsetof(StepContext, sg),
+                       offsetof(StepContext, exchange),
+                       offsetof(StepContext, order),
+                       offsetof(StepContext, prebinned)};
+  const char* what[23] = {"sizeof(StepContext)", "offsetof(result)", "offsetof(np)", "offsetof(fix)",
                          "offsetof(noutside)", "sizeof(MaterialParams)", "offsetof(eos_e0)",
                          "offsetof(eos_type)", "offsetof(bulk_q2)", "offsetof(dp_tension)", "offsetof(cell_off)",
                          "offsetof(psize)", "offsetof(ncontact)",
                          "offsetof(defgrad)", "offsetof(uvf)", "offsetof(damping)", "offsetof(tl)",
-                         "offsetof(fix_layers)", "offsetof(aux)", "offsetof(sg)"};
+                         "offsetof(fix_layers)", "offsetof(aux)", "offsetof(sg)",
+                         "offsetof(exchange)", "offsetof(order)", "offsetof(prebinned)"};
   int bad = 0;
-  for (int i = 0; i < 20; ++i) {
-    // sizeof(StepContext) may exceed the Fortran size by the C++ scratch fields only.
-    const bool ok = i == 0 ? (f[0] <= c[0] && f[0] >= offsetof(StepContext, sg) + sizeof(int))
-                           : c[i] == f[i];
+  for (int i = 0; i < 23; ++i) {
+    const bool ok = c[i] == f[i];
     std::printf("%-24s C %4zu  Fortran %4zu%s\n", what[i], c[i], f[i], ok ? "" : "  MISMATCH");
     if (!ok) bad = 1;
   }

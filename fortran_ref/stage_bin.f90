@@ -12,15 +12,16 @@ module mpm3d_stage_bin
 contains
 
   ! Bin: local coordinates, base cells, patch particle lists (ascending particle index
-  ! within each patch) and buffer slots of the non-empty patches.
+  ! within each patch) and buffer slots of the non-empty patches. Prebinned particles (a
+  ! distributed run's) are binned again: the same values.
   subroutine mpm3d_f_bin(c) bind(C, name='mpm3d_f_bin')
     type(step_context), intent(inout) :: c
     real(dp), pointer :: x(:,:), lx(:,:)
-    integer(c_int), pointer :: start(:), ppart(:), slots(:), cell(:), body(:), bcomp(:)
-    integer :: pc, q, p, a, outside, nslot, i, j, k, cl
+    integer(c_int), pointer :: start(:), ppart(:), slots(:), cell(:), body(:), bcomp(:), order(:)
+    integer :: pc, q, p, a, outside, nslot, i, j, k, cl, n
     integer :: idx(3)
     real(dp) :: t, fl, f0
-    logical :: inside, filter
+    logical :: inside, filter, has_order
     pc = c%patch_cells
     call view_components(c, filter, body, bcomp)     ! contact: this context's component only
     call c_f_pointer(c%xbin, x, [3, c%np])   ! the reference positions under TLmp
@@ -70,12 +71,17 @@ contains
     end do
     c%nslot = nslot
     c%noutside = outside
-    ! Second pass: a stable counting sort; the end offsets serve as fill pointers.
+    ! Second pass: a stable counting sort; the end offsets serve as fill pointers. The
+    ! particles go in one process's storage order (a distributed run's c%order).
     do q = c%npatch, 1, -1
       start(q + 1) = start(q)
     end do
     start(1) = 0
-    do p = 1, c%np
+    has_order = c_associated(c%order)
+    if (has_order) call c_f_pointer(c%order, order, [c%np])
+    do n = 1, c%np
+      p = n
+      if (has_order) p = order(n) + 1
       if (filter) then
         if (other_component(c, p, body, bcomp)) cycle
       end if

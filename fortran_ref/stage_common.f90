@@ -74,9 +74,32 @@ module mpm3d_stage_common
                                            ! version with 27-node stencils or sgmp)
     type(c_ptr) :: aux = c_null_ptr        ! sgmp: (32, ncell) the cell centres' fields
     integer(c_int) :: sg = 0               ! 1: smoothed-gradient MPM (stage_sg.f90)
+    ! The C++ kernels' scratch (not used here): pscratch, then sgmp's sg_w .. sg_side_count.
+    type(c_ptr) :: pscratch = c_null_ptr, sg_w = c_null_ptr, sg_cell = c_null_ptr, sg_range = c_null_ptr, &
+                   sg_reach = c_null_ptr, sg_side = c_null_ptr, sg_side_count = c_null_ptr
+    ! Distributed runs (cxx/ranks.hpp; null with one rank): the ranks' hook, called between a
+    ! scatter into the patch buffers and their assembly, and before the energy and contact
+    ! columns are folded (rank_exchange); the particles in one process's storage order
+    ! (int (np), 0-based), in which the bin stage fills the lists and the energy stage sums
+    ! the particles outside the grid; prebinned: cell and lx already hold the particles'
+    ! binning (the same values this bin stage computes).
+    type(c_funptr) :: exchange = c_null_funptr
+    type(c_ptr) :: exchange_data = c_null_ptr
+    type(c_ptr) :: order = c_null_ptr
+    integer(c_int) :: prebinned = 0
   end type step_context
 
-  public :: view_buffers, gimp_stencil
+  ! step_context%exchange's kinds (cxx/update_step.hpp ExchangeKind).
+  integer, parameter, public :: EXCHANGE_BUFFERS = 0, EXCHANGE_PARTIALS = 1, EXCHANGE_CONTACT = 2
+  abstract interface
+    subroutine exchange_hook(c, kind, first, count) bind(C)
+      import :: c_ptr, c_int
+      type(c_ptr), value :: c
+      integer(c_int), value :: kind, first, count
+    end subroutine exchange_hook
+  end interface
+
+  public :: view_buffers, gimp_stencil, rank_exchange
   public :: other_component, apply_bc, particle_body_force
   public :: mpm3d_f_context_layout
 
@@ -207,10 +230,22 @@ contains
     end do
   end subroutine apply_bc
 
+  ! The ranks' hook of a distributed run (nothing with one process): kind EXCHANGE_BUFFERS
+  ! gives the ghost patches' buffers fields first..first+count-1 (0-based) their owners' sums,
+  ! the others every rank's energy or contact columns.
+  subroutine rank_exchange(c, kind, first, count)
+    type(step_context), intent(in), target :: c
+    integer, intent(in) :: kind, first, count
+    procedure(exchange_hook), pointer :: hook
+    if (.not. c_associated(c%exchange)) return
+    call c_f_procpointer(c%exchange, hook)
+    call hook(c_loc(c), int(kind, c_int), int(first, c_int), int(count, c_int))
+  end subroutine rank_exchange
+
   ! Layout of step_context and material_params as this compiler sees them (for the
   ! layout test against the C structs): sizes and a few offsets, in bytes.
   subroutine mpm3d_f_context_layout(out) bind(C, name='mpm3d_f_context_layout')
-    integer(c_size_t), intent(out) :: out(20)
+    integer(c_size_t), intent(out) :: out(23)
     type(step_context), target :: c
     type(material_params), target :: m(2)
     out(1) = c_sizeof(c)
@@ -233,6 +268,9 @@ contains
     out(18) = transfer(c_loc(c%fix_layers), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
     out(19) = transfer(c_loc(c%aux), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
     out(20) = transfer(c_loc(c%sg), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
+    out(21) = transfer(c_loc(c%exchange), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
+    out(22) = transfer(c_loc(c%order), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
+    out(23) = transfer(c_loc(c%prebinned), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
   end subroutine mpm3d_f_context_layout
 
 end module mpm3d_stage_common

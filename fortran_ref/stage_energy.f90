@@ -21,7 +21,7 @@ contains
     type(step_context), intent(inout), target :: c
     type(step_context), pointer :: c2
     real(dp), pointer :: partials(:,:), mass(:), v(:,:), ie(:), grav(:,:), fext(:,:)
-    integer(c_int), pointer :: cell(:), body(:), start(:), ppart(:), start2(:), ppart2(:)
+    integer(c_int), pointer :: cell(:), body(:), start(:), ppart(:), start2(:), ppart2(:), order(:)
     real(dp) :: part(REDUCE_FIELDS), s(REDUCE_FIELDS)
     integer :: q, p, i, noutside
     logical :: contact, work, has_fext
@@ -58,13 +58,22 @@ contains
       partials(:, q + 1) = part
     end do
     part = 0.0_dp
-    if (noutside > 0) then
-      do p = 1, c%np
-        if (cell(p) < 0) call add_particle(p)
-      end do
+    if (noutside > 0) then   ! in one process's storage order (a distributed run's c%order)
+      if (c_associated(c%order)) then
+        call c_f_pointer(c%order, order, [c%np])
+        do i = 1, c%np
+          p = order(i) + 1
+          if (cell(p) < 0) call add_particle(p)
+        end do
+      else
+        do p = 1, c%np
+          if (cell(p) < 0) call add_particle(p)
+        end do
+      end if
     end if
     partials(:, c%npatch + 1) = part
-    ! The fold, apart from the columns (an MPI run folds the gathered columns).
+    ! The fold, apart from the columns (a distributed run's ranks exchange them first).
+    call rank_exchange(c, EXCHANGE_PARTIALS, 0, 0)
     s = 0.0_dp
     do q = 1, c%npatch + 1
       s = s + partials(:, q)

@@ -184,7 +184,9 @@ contains
     call apply_bc(c, p1)
     call apply_bc(c2, p2)
     if (remap) return
-    ! The per-patch force and count folded in patch order (cxx contact_correct).
+    ! The per-patch force and count folded in patch order (cxx contact_correct), after a
+    ! distributed run's ranks exchanged their columns.
+    call rank_exchange(c, EXCHANGE_CONTACT, 0, 0)
     s = 0.0_dp
     do q = 1, c%npatch
       do a = 1, 4

@@ -150,6 +150,7 @@ contains
     real(dp) :: acc(NODE_FIELDS)
     integer :: pc, qq, hh, i, j, k, qx, qy, qz, qx_lo, qx_hi, qy_lo, qy_hi, qz_lo, qz_hi
     integer :: q, slot, ln, n, f, field
+    call rank_exchange(c, EXCHANGE_BUFFERS, first, count)   ! ghost patches' buffers (ranks)
     pc = c%patch_cells
     hh = c%patch_halo
     qq = pc + 1 + 2 * hh

@@ -38,12 +38,20 @@ if(MPM3D_MPI AND MPI_CXX_FOUND AND MPIEXEC_EXECUTABLE)
   # (to its end, redrawing the ranks' runs whenever the rule draws others: 3 times on 3 ranks)
   mpm3d_rank_test(contact_gimp_usf ${CMAKE_SOURCE_DIR}/fortran_ref/testdecks/gimp_contact_usf.mpm 414
                   2x1 3x1 4x1 2x2 ranks: --rebalance-above 1)
-  # Mixed runs on ranks: the Fortran stages that need none of the ranks' hooks (integrate,
-  # stress, and g2p without MUSL's remap) against one C++ process and mpm3d_ref.
-  mpm3d_rank_test(fortran_stages_usl ${CMAKE_SOURCE_DIR}/fortran_ref/testdecks/usl_blocks.mpm 200
-                  2x1 3x1 2x2 ranks: --kernels integrate=fortran,stress=fortran,g2p=fortran)
-  mpm3d_rank_test(fortran_stages_taylor_coarse ${CMAKE_SOURCE_DIR}/inputs/taylor/taylor_coarse.mpm 60
-                  2x1 3x1 ranks: --kernels integrate=fortran,stress=fortran)
+  # Mixed runs on ranks: the Fortran stages (they call the same hooks: the buffer exchange
+  # before each assembly, the energy and contact columns' exchange before their folds, the
+  # one-process order in the bin stage's lists and the energy stage's outside column),
+  # every stage or a mix, against one C++ process and mpm3d_ref.
+  mpm3d_rank_test(fortran_usl_blocks ${CMAKE_SOURCE_DIR}/fortran_ref/testdecks/usl_blocks.mpm 200
+                  2x1 3x1 2x2 ranks: --kernel fortran)
+  mpm3d_rank_test(fortran_taylor_coarse ${CMAKE_SOURCE_DIR}/inputs/taylor/taylor_coarse.mpm 60
+                  2x1 3x1 ranks: --kernel fortran)
+  mpm3d_rank_test(fortran_leaving_grid ${CMAKE_SOURCE_DIR}/inputs/stability/leaving_grid.mpm 200
+                  2x1 3x1 ranks: --kernel fortran)
+  mpm3d_rank_test(fortran_contact_sliding_block ${CMAKE_SOURCE_DIR}/inputs/contact/sliding_block.mpm 150
+                  2x1 3x1 --patch-cells 2 ranks: --kernel fortran)
+  mpm3d_rank_test(mixed_slab_small ${CMAKE_SOURCE_DIR}/inputs/explosives/slab_small.mpm 200
+                  2x1 3x1 ranks: --kernels bin=fortran,g2p=fortran,energy=fortran)
   # The particles stored in deck order: the ranks keep each one's storage index all the same.
   mpm3d_rank_test(particle_order_deck ${CMAKE_SOURCE_DIR}/fortran_ref/testdecks/usl_blocks.mpm 200
                   2x1 3x1 --particle-order deck)
