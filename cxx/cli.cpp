@@ -234,7 +234,6 @@ std::string not_distributed(const Options& opt, const Model& m) {
   for (const auto& c : m.curves)
     if (c.var == "spre" && !opt.no_output) return "the curve variable spre (smoothed pressure) (give --no-output)";
   if (m.sg) return "sgmp";
-  if (m.tl) return "TLmp";
   return "";
 }
 

@@ -52,6 +52,10 @@ if(MPM3D_MPI AND MPI_CXX_FOUND AND MPIEXEC_EXECUTABLE)
                   2x1 3x1 --patch-cells 2 ranks: --kernel fortran)
   mpm3d_rank_test(mixed_slab_small ${CMAKE_SOURCE_DIR}/inputs/explosives/slab_small.mpm 200
                   2x1 3x1 ranks: --kernels bin=fortran,g2p=fortran,energy=fortran)
+  # Total Lagrangian MPM: the particles are binned by their reference positions (they never
+  # change rank); V0 P scattered and assembled with the buffers of the neighbouring ranks.
+  mpm3d_rank_test(soft_beam_tl ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/soft_beam_tl.mpm 300
+                  2x1 3x1 4x1 --patch-cells 2)
   # The particles stored in deck order: the ranks keep each one's storage index all the same.
   mpm3d_rank_test(particle_order_deck ${CMAKE_SOURCE_DIR}/fortran_ref/testdecks/usl_blocks.mpm 200
                   2x1 3x1 --particle-order deck)
