@@ -424,6 +424,12 @@ void Simulation::measure() {
   for (int a = 0; a < 3; ++a) momentum[a] = ctx.result[2 + a];
 }
 
+std::string Simulation::body_and_rank(int p) const {
+  std::string s = "body " + std::to_string(model.particles.body[size_t(p)] + 1);
+  if (ranks) s += ", rank " + std::to_string(ranks->rank());
+  return s;
+}
+
 template <class F>
 std::string Simulation::about_particle(int deck, F&& format) const {
   const Particles& P = model.particles;
@@ -467,8 +473,8 @@ void Simulation::health_check() {
     if (first != kNone)
       throw HealthError(about_particle(first, [&](int p) {
         std::ostringstream os;
-        os << "numerical breakdown at step " << steps << " (t = " << time << "): particle " << first + 1 << " (body "
-           << P.body[p] + 1 << ") has a non-finite " << non_finite(p);
+        os << "numerical breakdown at step " << steps << " (t = " << time << "): particle " << first + 1 << " ("
+           << body_and_rank(p) << ") has a non-finite " << non_finite(p);
         return os.str();
       }));
   }
@@ -493,8 +499,8 @@ void Simulation::health_check() {
     if (bad != kNone)
       throw HealthError(about_particle(bad, [&](int p) {
         std::ostringstream os;
-        os << "numerical breakdown at step " << steps << " (t = " << time << "): particle " << bad + 1 << " (body "
-           << P.body[p] + 1 << ") has ";
+        os << "numerical breakdown at step " << steps << " (t = " << time << "): particle " << bad + 1 << " ("
+           << body_and_rank(p) << ") has ";
         const double rho0 = mats[mat[p]].rho0;
         if (!(vol[p] > 0.0))
           os << "a non-positive volume " << vol[p]
@@ -534,7 +540,7 @@ void Simulation::health_check() {
       std::ostringstream os;
       os << "numerical instability at step " << steps << " (t = " << time << "): total energy " << total
          << " exceeds twice the initial energy " << initial_total_energy << " plus the external work "
-         << external_work << "; fastest particle " << worst + 1 << " (body " << P.body[p] + 1 << ") at speed "
+         << external_work << "; fastest particle " << worst + 1 << " (" << body_and_rank(p) << ") at speed "
          << std::sqrt(vmax) << " (reduce dtscale, or use MUSL)";
       return os.str();
     }));

@@ -123,6 +123,8 @@ class Simulation {
   // every rank), written by format(p) on the rank that stores it as p.
   template <class F>
   std::string about_particle(int deck, F&& format) const;
+  // "body B" of stored particle p, and ", rank R" when the run has several ranks.
+  std::string body_and_rank(int p) const;
   std::vector<char> body_ie_warned_;
   bool kinetic_warned_ = false;
   bool lists_binned_ = false;  // the patch lists come from a bin of the current grid
