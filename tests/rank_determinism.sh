@@ -7,9 +7,10 @@
 # (skipped) when the deck is absent, or mpirun (tests/mpirun_setup.sh).
 # Arguments from the first one starting with -- on are options of every run (mpm3d and
 # mpm3d_ref), e.g. --patch-cells 2; those after a word 'ranks:' of the mpirun runs only.
-# usage: rank_determinism.sh MPM3D MPIRUN DECK STEPS WORKDIR [MPM3D_REF [CONFIGS...] [OPTIONS...] [ranks: OPTIONS...]]
+# usage: rank_determinism.sh MPM3D MPIRUN DECK STEPS WORKDIR [MPM3D_REF|none [CONFIGS...] [OPTIONS...] [ranks: OPTIONS...]]
 set -euo pipefail
 mpm3d=$1; mpirun=$2; deck=$3; steps=$4; work=$5; ref=${6:-}
+[ "$ref" != none ] || ref=  # 'none': no reference program
 shift $(( $# < 6 ? $# : 6 ))
 configs=()
 while [ $# -gt 0 ] && [ "${1#--}" = "$1" ] && [ "$1" != ranks: ]; do configs+=("$1"); shift; done

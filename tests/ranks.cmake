@@ -1,13 +1,20 @@
 # MPI ranks x OpenMP threads (issue 17): identical bits for any ranks x threads, equal to one
 # process and to mpm3d_ref (tests/rank_determinism.sh). Only when mpm3d is built with MPI.
 if(MPM3D_MPI AND MPI_CXX_FOUND AND MPIEXEC_EXECUTABLE)
-  # mpm3d_rank_test(NAME DECK STEPS [CONFIGS...])
-  function(mpm3d_rank_test name deck steps)
+  # mpm3d_rank_script(NAME SCRIPT ARGS...): test ranks.NAME runs tests/SCRIPT MPM3D MPIRUN ARGS.
+  function(mpm3d_rank_script name script)
     add_test(NAME ranks.${name}
-             COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/rank_determinism.sh $<TARGET_FILE:mpm3d> ${MPIEXEC_EXECUTABLE}
-                     ${deck} ${steps} ${CMAKE_CURRENT_BINARY_DIR}/ranks_${name} "${_mpm3d_ref_exe}" ${ARGN})
+             COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/${script} $<TARGET_FILE:mpm3d> ${MPIEXEC_EXECUTABLE} ${ARGN})
     # Several ranks (and their threads) on the machine's cores: run alone.
     set_tests_properties(ranks.${name} PROPERTIES SKIP_RETURN_CODE 77 RUN_SERIAL TRUE)
+  endfunction()
+  # mpm3d_rank_test(NAME DECK STEPS [CONFIGS...] [OPTIONS...]): tests/rank_determinism.sh.
+  set(_rank_ref "${_mpm3d_ref_exe}")
+  if(NOT _rank_ref)
+    set(_rank_ref none)  # no reference to compare with (rank_determinism.sh skips it)
+  endif()
+  function(mpm3d_rank_test name deck steps)
+    mpm3d_rank_script(${name} rank_determinism.sh ${deck} ${steps} ${CMAKE_CURRENT_BINARY_DIR}/ranks_${name} ${_rank_ref} ${ARGN})
   endfunction()
   # USL, trilinear, gravity: a block and a sphere dropped on a plate; particles cross ranks.
   mpm3d_rank_test(usl_blocks ${CMAKE_SOURCE_DIR}/fortran_ref/testdecks/usl_blocks.mpm 200)
@@ -70,10 +77,7 @@ if(MPM3D_MPI AND MPI_CXX_FOUND AND MPIEXEC_EXECUTABLE)
   # The USF contact deck's checkpoint holds the nodes' contact marks, gathered from their
   # owners (2-cell patches: the contact nodes lie beyond the root's reach).
   function(mpm3d_rank_restart_test name deck steps1 steps2)
-    add_test(NAME ranks.restart_${name}
-             COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/rank_restart.sh $<TARGET_FILE:mpm3d> ${MPIEXEC_EXECUTABLE}
-                     ${deck} ${steps1} ${steps2} ${CMAKE_CURRENT_BINARY_DIR}/ranks_restart_${name} ${ARGN})
-    set_tests_properties(ranks.restart_${name} PROPERTIES SKIP_RETURN_CODE 77 RUN_SERIAL TRUE)
+    mpm3d_rank_script(restart_${name} rank_restart.sh ${deck} ${steps1} ${steps2} ${CMAKE_CURRENT_BINARY_DIR}/ranks_restart_${name} ${ARGN})
   endfunction()
   mpm3d_rank_restart_test(taylor_coarse ${CMAKE_SOURCE_DIR}/inputs/taylor/taylor_coarse.mpm 30 60)
   mpm3d_rank_restart_test(adaptive_taylor_coarse ${CMAKE_SOURCE_DIR}/inputs/taylor/taylor_coarse.mpm 35 70 --regrid-every 10)
@@ -82,10 +86,7 @@ if(MPM3D_MPI AND MPI_CXX_FOUND AND MPIEXEC_EXECUTABLE)
   # particles, frames from the particles gathered on it (TecPlot, HDF5 series), identical to
   # one process's; also continued from a 2-rank checkpoint on 3 ranks (tests/rank_outputs.sh).
   function(mpm3d_rank_outputs_test name deck steps restart_at)
-    add_test(NAME ranks.outputs_${name}
-             COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/rank_outputs.sh $<TARGET_FILE:mpm3d> ${MPIEXEC_EXECUTABLE}
-                     ${deck} ${steps} ${restart_at} ${CMAKE_CURRENT_BINARY_DIR}/ranks_outputs_${name} ${ARGN})
-    set_tests_properties(ranks.outputs_${name} PROPERTIES SKIP_RETURN_CODE 77 RUN_SERIAL TRUE)
+    mpm3d_rank_script(outputs_${name} rank_outputs.sh ${deck} ${steps} ${restart_at} ${CMAKE_CURRENT_BINARY_DIR}/ranks_outputs_${name} ${ARGN})
   endfunction()
   mpm3d_rank_outputs_test(usl_blocks ${CMAKE_SOURCE_DIR}/fortran_ref/testdecks/usl_blocks.mpm 400 90
                           2x1 3x1 2x2 --end-time 0.004)
@@ -96,8 +97,6 @@ if(MPM3D_MPI AND MPI_CXX_FOUND AND MPIEXEC_EXECUTABLE)
   mpm3d_rank_outputs_test(contact_sliding_block ${CMAKE_SOURCE_DIR}/inputs/contact/sliding_block.mpm 1000 60
                           2x1 3x1 --end-time 0.1 --patch-cells 2)
   # A rank's health failure ends every rank (usl_blocks runs away at step 253); refusals.
-  add_test(NAME ranks.failure
-           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/rank_failure.sh $<TARGET_FILE:mpm3d> ${MPIEXEC_EXECUTABLE}
-                   ${CMAKE_SOURCE_DIR}/fortran_ref/testdecks/usl_blocks.mpm 300 ${CMAKE_CURRENT_BINARY_DIR}/ranks_failure)
-  set_tests_properties(ranks.failure PROPERTIES SKIP_RETURN_CODE 77 RUN_SERIAL TRUE)
+  mpm3d_rank_script(failure rank_failure.sh ${CMAKE_SOURCE_DIR}/fortran_ref/testdecks/usl_blocks.mpm 300
+                    ${CMAKE_CURRENT_BINARY_DIR}/ranks_failure)
 endif()
