@@ -390,11 +390,12 @@ void Simulation::bin_stage() {
     regrid(0);
     stage_seconds[ST_BIN] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
-  if (ranks) {  // the ranks' binning and migration: part of the bin stage's time
+  auto migrate = [&]() {  // the ranks' binning and migration: part of the bin stage's time
     const auto t0 = std::chrono::steady_clock::now();
     ranks->migrate(*this);
     stage_seconds[ST_BIN] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  }
+  };
+  if (ranks) migrate();
   run_stage(ST_BIN);
   lists_binned_ = true;
   int escaped = 0;
@@ -405,7 +406,7 @@ void Simulation::bin_stage() {
       const auto t0 = std::chrono::steady_clock::now();
       regrid(escaped);
       stage_seconds[ST_BIN] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      if (ranks) ranks->migrate(*this);  // the new window's patches, drawn over the ranks again
+      if (ranks) migrate();  // the new window's patches, drawn over the ranks again
       run_stage(ST_BIN);
     }
   }
