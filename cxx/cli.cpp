@@ -325,7 +325,7 @@ int run_main(int argc, char** argv, Ranks* ranks) {
     if (root && (!opt.no_output || series))
       out.open(m, opt.out_dir, !opt.no_output, series, restarted ? &resume : nullptr);
     const bool animates = Output::animates(m, !opt.no_output, series);
-    const bool gather_curves = ranks && !opt.no_output && !m.curves.empty();
+    const bool curves = !opt.no_output && !m.curves.empty();
     std::vector<int> curve_rows;
     std::vector<double> curve_values;
     auto write_frame = [&](double time, long step) {
@@ -428,12 +428,12 @@ int run_main(int argc, char** argv, Ranks* ranks) {
       }
       sim.new_energy_warnings.clear();
       if (!failure.empty()) break;
-      if (gather_curves) {
+      if (curves) {
         held_curve_values(m, curve_rows, curve_values);
-        ranks->max(curve_values);
+        if (ranks) ranks->max(curve_values);
       }
       out.step(m, StepRecord{sim.time, sim.steps, sim.kinetic, sim.internal, sim.momentum, sim.contact_force,
-                             gather_curves ? curve_values.data() : nullptr});
+                             curve_values.data()});
       if (sim.time >= next_out - eps) {
         if (animates) write_frame(sim.time, sim.steps);
         next_out += m.outtime;

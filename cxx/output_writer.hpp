@@ -22,8 +22,8 @@ struct StepRecord {
   double kinetic = 0.0, internal = 0.0;
   const double* momentum = nullptr;       // 3 components
   const double* contact_force = nullptr;  // 3 components; decks with 'cont' only
-  // The curv/curx variables of m.curves, when the caller gathered them (several ranks,
-  // held_curve_values); otherwise the curve writer computes them from m.particles.
+  // The curv/curx variables of m.curves (held_curve_values; on several ranks the largest
+  // over the ranks).
   const double* curve_values = nullptr;
 };
 

@@ -18,7 +18,6 @@ void record(FILE* f, const std::string& name, std::vector<std::pair<std::string,
 class CurveWriter : public OutputWriter {
  public:
   CurveWriter(const Model& m, const OutputFiles& files) : base_(m.base_name) {
-    for (const auto& c : m.curves) curve_fn_.push_back(output_variable(c.var));
     bool appended;
     out_ = files.create(base_ + ".out", appended);
     if (appended) std::fprintf(out_, "(restarted)\n");
@@ -45,20 +44,7 @@ class CurveWriter : public OutputWriter {
     std::fprintf(momentum_, "%s%s%s%s\n", t.c_str(), fortran_e12_4(s.momentum[0]).c_str(),
                  fortran_e12_4(s.momentum[1]).c_str(), fortran_e12_4(s.momentum[2]).c_str());
     std::fprintf(curv_, "%s%s%s", t.c_str(), fortran_e12_4(s.kinetic).c_str(), fortran_e12_4(s.internal).c_str());
-    // Stored index of each curve's particle (deck number m.curves[c].particle), found again
-    // whenever the storage order is not the one it was found in (a restart).
-    if (s.curve_values) {
-      for (size_t c = 0; c < m.curves.size(); ++c) std::fprintf(curv_, "%s", fortran_e12_4(s.curve_values[c]).c_str());
-    } else {
-      const Particles& P = m.particles;
-      if (curve_at_.size() != m.curves.size()) curve_at_.assign(m.curves.size(), -1);
-      for (size_t c = 0; c < m.curves.size(); ++c) {
-        int& p = curve_at_[c];
-        if (p < 0 || p >= P.np || P.deck_number(p) != m.curves[c].particle)
-          p = stored_index(P)[size_t(m.curves[c].particle)];
-        std::fprintf(curv_, "%s", fortran_e12_4(curve_fn_[c](m, p)).c_str());
-      }
-    }
+    for (size_t c = 0; c < m.curves.size(); ++c) std::fprintf(curv_, "%s", fortran_e12_4(s.curve_values[c]).c_str());
     std::fprintf(curv_, "\n");
   }
 
@@ -72,8 +58,6 @@ class CurveWriter : public OutputWriter {
  private:
   std::string base_;
   FILE *out_, *curv_, *energy_, *momentum_;
-  std::vector<ParticleVarFn> curve_fn_;
-  std::vector<int> curve_at_;  // stored index of each curve's particle
 };
 
 class ContactWriter : public OutputWriter {
