@@ -19,27 +19,37 @@ constexpr long kParallelBcNodes = 16384;
 
 void apply_bc(const StepContext* c, double* a) {
   const int layers = c->fix_layers > 1 ? c->fix_layers : 1;  // 0 (unset) means 1
-  // Node (ju, jw) of node layer `layer` of a face.
-  auto clear = [&](int face, int layer, int ju, int jw) {
-    const int kind = c->fix[face], axis = face / 2;
-    const int u = (axis + 1) % 3, w = (axis + 2) % 3;
-    int idx[3];
-    idx[axis] = (face % 2 == 0) ? layer : c->nn[axis] - 1 - layer;
-    idx[u] = ju;
-    idx[w] = jw;
-    const int n = idx[0] + c->nn[0] * (idx[1] + c->nn[1] * idx[2]);
-    if (kind == 1) {
-      a[3 * n + 0] = 0.0;
-      a[3 * n + 1] = 0.0;
-      a[3 * n + 2] = 0.0;
+  const long stride[3] = {1, c->nn[0], long(c->nn[0]) * c->nn[1]};
+  // A face's node plane as rows: the outer of the two other axes over the inner (the one
+  // of smaller stride), each row a run of nodes `stride[inner]` apart. Clearing is the same
+  // in any order: only the loop's shape differs between the team and one thread.
+  struct Plane {
+    int kind, axis, n_outer, n_inner;
+    long s_outer, s_inner;
+  };
+  auto plane = [&](int face) {
+    const int axis = face / 2, o1 = axis == 0 ? 1 : 0, o2 = axis == 2 ? 1 : 2;
+    return Plane{c->fix[face], axis, c->nn[o2], c->nn[o1], stride[o2], stride[o1]};
+  };
+  auto layer_base = [&](int face, int layer) {
+    const int axis = face / 2;
+    return stride[axis] * ((face % 2 == 0) ? layer : c->nn[axis] - 1 - layer);
+  };
+  auto clear_row = [&](const Plane& f, long first) {
+    if (f.kind == 1) {
+      for (int i = 0; i < f.n_inner; ++i) {
+        double* v = a + 3 * (first + i * f.s_inner);
+        v[0] = 0.0;
+        v[1] = 0.0;
+        v[2] = 0.0;
+      }
     } else {
-      a[3 * n + axis] = 0.0;
+      for (int i = 0; i < f.n_inner; ++i) a[3 * (first + i * f.s_inner) + f.axis] = 0.0;
     }
   };
-  auto face_nodes = [&](int face) { return long(c->nn[(face / 2 + 1) % 3]) * c->nn[(face / 2 + 2) % 3]; };
   long held = 0;
   for (int face = 0; face < 6; ++face)
-    if (c->fix[face] != 0) held += layers * face_nodes(face);
+    if (c->fix[face] != 0) held += layers * long(plane(face).n_outer) * plane(face).n_inner;
   int threads = 1;
 #ifdef _OPENMP
   threads = omp_get_max_threads();
@@ -48,22 +58,23 @@ void apply_bc(const StepContext* c, double* a) {
 #pragma omp parallel
     for (int face = 0; face < 6; ++face) {
       if (c->fix[face] == 0) continue;
-      const int nu = c->nn[(face / 2 + 1) % 3], nw = c->nn[(face / 2 + 2) % 3];
+      const Plane f = plane(face);
       // One face at a time (the barrier closing the loop): faces share their edges' nodes.
       for (int layer = 0; layer < layers; ++layer) {
-#pragma omp for collapse(2) schedule(static)
-        for (int jw = 0; jw < nw; ++jw)
-          for (int ju = 0; ju < nu; ++ju) clear(face, layer, ju, jw);
+        const long base = layer_base(face, layer);
+#pragma omp for schedule(static)
+        for (int o = 0; o < f.n_outer; ++o) clear_row(f, base + o * f.s_outer);
       }
     }
     return;
   }
   for (int face = 0; face < 6; ++face) {
     if (c->fix[face] == 0) continue;
-    const int nu = c->nn[(face / 2 + 1) % 3], nw = c->nn[(face / 2 + 2) % 3];
-    for (int layer = 0; layer < layers; ++layer)
-      for (int jw = 0; jw < nw; ++jw)
-        for (int ju = 0; ju < nu; ++ju) clear(face, layer, ju, jw);
+    const Plane f = plane(face);
+    for (int layer = 0; layer < layers; ++layer) {
+      const long base = layer_base(face, layer);
+      for (int o = 0; o < f.n_outer; ++o) clear_row(f, base + o * f.s_outer);
+    }
   }
 }
 

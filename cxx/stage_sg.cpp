@@ -234,7 +234,9 @@ void scatter_to_centres(StepContext* c, bool with_mass_mom, bool with_forces) {
 // remapped momentum.
 enum GatherWhat { GATHER_MASS_MOM = 1, GATHER_FORCES = 2, GATHER_REMAP = 4 };
 
-void gather_to_nodes(StepContext* c, int what) {
+// One instance per field set and stress layout (the per-cell tests then fold away).
+template <int what, bool pk1>
+void gather_to_nodes(StepContext* c) {
   const double cutoff = c->mass_cutoff, gs = 0.25 * c->inv_h;
   for_patches(c, [&](int q) {
     const OwnedNodes o = owned_nodes(c, q);
@@ -262,7 +264,7 @@ void gather_to_nodes(StepContext* c, int what) {
                   const double gx = cx == i - 1 ? gs : -gs, gy = cy == j - 1 ? gs : -gs, gz = cz == k - 1 ? gs : -gs;
                   const double* sv = a + AUX_S;
                   double fx, fy, fz;
-                  if (c->pk1) {  // V0 P: row a gives force component a
+                  if (pk1) {  // V0 P: row a gives force component a
                     fx = -((sv[0] * gx + sv[1] * gy) + sv[2] * gz);
                     fy = -((sv[3] * gx + sv[4] * gy) + sv[5] * gz);
                     fz = -((sv[6] * gx + sv[7] * gy) + sv[8] * gz);
@@ -292,7 +294,14 @@ void gather_to_nodes(StepContext* c, int what) {
 
 void sg_p2g(StepContext* c, bool with_mass_mom, bool with_forces) {
   scatter_to_centres(c, with_mass_mom, with_forces);
-  gather_to_nodes(c, (with_mass_mom ? GATHER_MASS_MOM : 0) | (with_forces ? GATHER_FORCES : 0));
+  const bool pk1 = c->pk1 != nullptr;
+  if (with_mass_mom && with_forces)
+    pk1 ? gather_to_nodes<GATHER_MASS_MOM | GATHER_FORCES, true>(c)
+        : gather_to_nodes<GATHER_MASS_MOM | GATHER_FORCES, false>(c);
+  else if (with_forces)
+    pk1 ? gather_to_nodes<GATHER_FORCES, true>(c) : gather_to_nodes<GATHER_FORCES, false>(c);
+  else if (with_mass_mom)
+    gather_to_nodes<GATHER_MASS_MOM, false>(c);
 }
 
 void sg_g2p(StepContext* c, bool remap) {
@@ -367,7 +376,7 @@ void sg_g2p(StepContext* c, bool remap) {
       a[AUX_RP + 2] += mn * vp[2];
     }
   });
-  gather_to_nodes(c, GATHER_REMAP);
+  gather_to_nodes<GATHER_REMAP, false>(c);
 }
 
 void sg_cell_gradients(StepContext* c, const double* gvel) {
