@@ -322,6 +322,7 @@ void Simulation::step() {
     ctx2.dt_int = c->dt_int;
     ctx2.time = c->time;
   }
+  ctx.sg_cached = ctx2.sg_cached = 0;  // the particles are binned again below
   // The scheme's row of the step table (step_order.c), walked as the Fortran driver does.
   int order[MPM3D_MAX_STEP_STAGES];
   const int nstage = mpm3d_step_order(c->scheme, order);

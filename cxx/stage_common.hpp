@@ -27,10 +27,13 @@ void apply_bc(const StepContext* c, double* a);
 // (StepContext::aux, kAuxFields per cell). P2G: the nodes' mass and momentum and/or forces;
 // G2P: the particles' velocities and positions, with remap the nodes' momenta; stress: the
 // cells' velocity gradients from the node velocities gvel (each particle's:
-// sg_velocity_gradient, stage_sg.hpp).
+// sg_velocity_gradient, stage_sg.hpp, with the weights of sg_ensure_weights: each
+// patch-list entry's, in sg_w and sg_cell, computed once a step; with_reach: also what
+// the scatters of several threads need).
 void sg_p2g(StepContext* c, bool with_mass_mom, bool with_forces);
 void sg_g2p(StepContext* c, bool remap);
 void sg_cell_gradients(StepContext* c, const double* gvel);
+void sg_ensure_weights(StepContext* c, bool with_reach);
 
 namespace {
 

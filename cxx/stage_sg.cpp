@@ -71,11 +71,11 @@ inline int corner_node(const StepContext* c, int i, int j, int k, int corner) {
 // reaches only the centres of its own cell and its neighbours, so the centres of patch q
 // receive from the particles of q and of the patches next to it alone: with more threads,
 // each owns the centres of its patches and runs over those patches' particles in that
-// order, keeping the contributions that land on its own centres. The weights are computed
-// once per scatter, in parallel, beforehand (cache_weights): the neighbours' particles are
-// visited again (about half of them on the 4 x 4 patches of a one-layer deck), their
-// weights not rebuilt. That costs 1.2 times the single pass on one thread and pays from
-// two (docs/PERFORMANCE.md), hence the two paths.
+// order, keeping the contributions that land on its own centres; the neighbours'
+// particles are visited again (about half of them on the 4 x 4 patches of a one-layer
+// deck), hence the two paths. Both read each patch-list entry's weights, which the step's
+// first scatter computes in parallel (cache_weights): the later scatters and the stress
+// stage take the particles where the bin stage placed them, so with the same weights.
 
 // The centres of patch q: [lo, hi) per axis.
 inline void patch_centres(const StepContext* c, int q, int q3[3], int lo[3], int hi[3]) {
@@ -87,9 +87,11 @@ inline void patch_centres(const StepContext* c, int q, int q3[3], int lo[3], int
   }
 }
 
-// Every patch-list entry's weights and corner ranges (the P2G rule) into c->sg_w, sg_range,
-// which neighbour patches it reaches into c->sg_reach, and per side of its patch the
-// entries that reach past it, in list order, into c->sg_side.
+// Every patch-list entry's weights and centres (the P2G rule) into c->sg_w, sg_cell; with
+// kReach also its corner ranges into sg_range, which neighbour patches it reaches into
+// c->sg_reach, and per side of its patch the entries that reach past it, in list order,
+// into c->sg_side (the scatters of several threads).
+template <bool kReach>
 void cache_weights(const StepContext* c) {
   const CellDecoder dec(c);
   for_patches(c, [&](int q) {
@@ -97,11 +99,14 @@ void cache_weights(const StepContext* c) {
     patch_centres(c, q, q3, lo, hi);
     const size_t np = size_t(c->np);
     int* count = c->sg_side_count + 6 * size_t(q);
-    for (int b = 0; b < 6; ++b) count[b] = 0;
+    if (kReach)
+      for (int b = 0; b < 6; ++b) count[b] = 0;
     for (int e = c->patch_start[q]; e < c->patch_start[q + 1]; ++e) {
-      int* r = c->sg_range + 6 * size_t(e);
+      int own[6];
+      int* r = kReach ? c->sg_range + 6 * size_t(e) : own;
       sg_corner_weights(c, dec, c->patch_part[e], false, r, r + 3, c->sg_w + 8 * size_t(e));
       for (int k = 0; k < 8; ++k) c->sg_cell[8 * size_t(e) + k] = sg_corner_cell(c, r, r + 3, k);
+      if (!kReach) continue;
       unsigned reach = 0;
       for (int a = 0; a < 3; ++a) reach |= (r[a] < lo[a] ? 1u : 0u) << (2 * a) | (r[3 + a] >= hi[a] ? 2u : 0u) << (2 * a);
       c->sg_reach[e] = static_cast<unsigned char>(reach);
@@ -168,25 +173,22 @@ void for_contributions_in_order(const StepContext* c, F&& f) {
 // add(p, cell[8], w[8], mask) in the canonical order of every centre's sum: one pass on one
 // thread, the owners' passes on more.
 template <class F>
-void scatter_in_order(const StepContext* c, F&& add) {
+void scatter_in_order(StepContext* c, F&& add) {
   int threads = 1;
 #ifdef _OPENMP
   threads = omp_get_max_threads();
 #endif
+  sg_ensure_weights(c, threads > 1);
   if (threads > 1) {
-    cache_weights(c);
     for_contributions_in_order(c, add);
     return;
   }
-  const CellDecoder dec(c);
-  for (int q = 0; q < c->npatch; ++q)
-    for (int e = c->patch_start[q]; e < c->patch_start[q + 1]; ++e) {
-      const int p = c->patch_part[e];
-      int cell[8];
-      double w[8];
-      sg_weights(c, dec, p, false, cell, w);
-      add(p, cell, w, 0xFFu);
-    }
+  const int total = c->patch_start[c->npatch];
+  for (int e = 0; e < total; ++e) {
+    double w[8];  // a local copy: the centres' sums cannot alias it
+    for (int k = 0; k < 8; ++k) w[k] = c->sg_w[8 * size_t(e) + k];
+    add(c->patch_part[e], c->sg_cell + 8 * size_t(e), w, 0xFFu);
+  }
 }
 
 // The particles' scatter to the cell centres: mass and momentum, and/or body force and
@@ -291,6 +293,16 @@ void gather_to_nodes(StepContext* c) {
 }
 
 }  // namespace
+
+void sg_ensure_weights(StepContext* c, bool with_reach) {
+  const int need = with_reach ? 2 : 1;
+  if (c->sg_cached >= need) return;
+  if (with_reach)
+    cache_weights<true>(c);
+  else
+    cache_weights<false>(c);
+  c->sg_cached = need;
+}
 
 void sg_p2g(StepContext* c, bool with_mass_mom, bool with_forces) {
   scatter_to_centres(c, with_mass_mom, with_forces);

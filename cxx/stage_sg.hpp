@@ -72,18 +72,15 @@ __attribute__((always_inline)) inline void sg_weights(const StepContext* c, cons
 
 inline double* aux_cell(const StepContext* c, int cell) { return c->aux + size_t(cell) * kAuxFields; }
 
-// The velocity gradient of particle p from the cells' (sg_cell_gradients).
-inline void sg_velocity_gradient(const StepContext* c, const CellDecoder& dec, int p, double L[9]) {
-  int node[8];
-  double w[8];
-  sg_weights(c, dec, p, false, node, w);
+// The velocity gradient of a particle from the cells' (sg_cell_gradients), with its
+// weights w on the centres cell[8].
+inline void sg_velocity_gradient(const StepContext* c, const int cell[8], const double w[8], double L[9]) {
   for (int r = 0; r < 9; ++r) L[r] = 0.0;
   for (int k = 0; k < 8; ++k) {
-    const double* a = aux_cell(c, node[k]);
+    const double* a = aux_cell(c, cell[k]);
     for (int r = 0; r < 9; ++r) L[r] += w[k] * a[AUX_L + r];
   }
 }
-
 
 }  // namespace
 }  // namespace mpm3d

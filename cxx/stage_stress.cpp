@@ -62,46 +62,64 @@ void stress_trilinear(StepContext* c, const double* gvel) {
   });
 }
 
-// The particle loop of the 27-node stencils and of sgmp: fixed particle chunks; velocity
-// gradients one particle at a time (gradient(dec, p, L)), the update of kStressLanes
-// consecutive particles of one material at a time (stress_block; a shorter run lane by
-// lane).
+// The constitutive update of the particles list[i] (first + i where list is null), i in
+// [0, count): velocity gradients one particle at a time (gradient(dec, i, p, L)), the update
+// of kStressLanes consecutive particles of one material at a time (stress_block; a shorter
+// run lane by lane, which gives the same bits).
+template <class Gradient>
+void stress_run(StepContext* c, const CellDecoder& dec, const StressBlockArgs& args, const int* list, int first,
+                int count, Gradient& gradient) {
+  const bool filter = c->only_comp > 0;
+  StressBlock b;
+  int part[kStressLanes];
+  int n = 0, mat = -1;
+  auto flush = [&]() {
+    const MaterialParams& mp = c->mats[mat];
+    if (n == kStressLanes)
+      stress_block(mp, b, args);
+    else
+      for (int i = 0; i < n; ++i) stress_block_lane(mp, b, i, args);
+    for (int i = 0; i < n; ++i) stress_block_store(c, part[i], i, b);
+    n = 0;
+  };
+  for (int i = first; i < first + count; ++i) {
+    const int p = list ? list[i] : i;
+    if (c->cell[p] < 0) continue;
+    if (filter && other_component(c, p)) continue;
+    if (n > 0 && c->mat[p] != mat) flush();
+    mat = c->mat[p];
+    double L[9];
+    gradient(dec, i, p, L);
+    for (int r = 0; r < 9; ++r) b.L[r][n] = L[r];
+    stress_block_load(c, c->mats[mat], p, n, b);
+    part[n++] = p;
+    if (n == kStressLanes) flush();
+  }
+  if (n > 0) flush();
+}
+
+// The particle loop of the 27-node stencils: fixed chunks of the particles.
 template <class Gradient>
 void stress_particles(StepContext* c, Gradient&& gradient) {
   const CellDecoder dec(c);
   const StressBlockArgs args = stress_args(c);
-  const bool filter = c->only_comp > 0;
   constexpr int kChunk = 256;
   const int nchunk = (c->np + kChunk - 1) / kChunk;
 #pragma omp parallel for schedule(dynamic, 1)
-  for (int ch = 0; ch < nchunk; ++ch) {
-    StressBlock b;
-    int part[kStressLanes];
-    int n = 0, mat = -1;
-    auto flush = [&]() {
-      const MaterialParams& mp = c->mats[mat];
-      if (n == kStressLanes)
-        stress_block(mp, b, args);
-      else
-        for (int i = 0; i < n; ++i) stress_block_lane(mp, b, i, args);
-      for (int i = 0; i < n; ++i) stress_block_store(c, part[i], i, b);
-      n = 0;
-    };
-    const int hi = std::min(c->np, (ch + 1) * kChunk);
-    for (int p = ch * kChunk; p < hi; ++p) {
-      if (c->cell[p] < 0) continue;
-      if (filter && other_component(c, p)) continue;
-      if (n > 0 && c->mat[p] != mat) flush();
-      mat = c->mat[p];
-      double L[9];
-      gradient(dec, p, L);
-      for (int r = 0; r < 9; ++r) b.L[r][n] = L[r];
-      stress_block_load(c, c->mats[mat], p, n, b);
-      part[n++] = p;
-      if (n == kStressLanes) flush();
-    }
-    if (n > 0) flush();
-  }
+  for (int ch = 0; ch < nchunk; ++ch)
+    stress_run(c, dec, args, nullptr, ch * kChunk, std::min(c->np, (ch + 1) * kChunk) - ch * kChunk, gradient);
+}
+
+// sgmp: the patch lists in chunks, each entry's gradient from its weights of this step
+// (sg_ensure_weights).
+void stress_sg(StepContext* c) {
+  sg_ensure_weights(c, false);
+  const CellDecoder dec(c);
+  const StressBlockArgs args = stress_args(c);
+  auto gradient = [&](const CellDecoder&, int e, int, double* L) {
+    sg_velocity_gradient(c, c->sg_cell + 8 * size_t(e), c->sg_w + 8 * size_t(e), L);
+  };
+  for_list_chunks(c, [&](int first, int count) { stress_run(c, dec, args, c->patch_part, first, count, gradient); });
 }
 
 // Node velocities v_i = p_i / m_i at the nodes above the mass cut-off, once per node (the
@@ -135,9 +153,9 @@ extern "C" void mpm3d_cxx_stress(StepContext* c) {
   const double* gvel = node_velocities(c);
   if (c->sg) {
     sg_cell_gradients(c, gvel);
-    stress_particles(c, [&](const CellDecoder& dec, int p, double* L) { sg_velocity_gradient(c, dec, p, L); });
+    stress_sg(c);
   } else if (c->shape != 0) {
-    stress_particles(c, [&](const CellDecoder& dec, int p, double* L) { velocity_gradient_gimp(c, dec, p, gvel, L); });
+    stress_particles(c, [&](const CellDecoder& dec, int, int p, double* L) { velocity_gradient_gimp(c, dec, p, gvel, L); });
   } else {
     stress_trilinear(c, gvel);
   }
