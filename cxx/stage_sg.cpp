@@ -192,43 +192,56 @@ void scatter_in_order(StepContext* c, F&& add) {
 }
 
 // The particles' scatter to the cell centres: mass and momentum, and/or body force and
-// sigma V (TLmp: V0 P, the 9 entries of the first Piola-Kirchhoff stress times the
-// reference volume: the smoothed-gradient total Lagrangian MPM).
-void scatter_to_centres(StepContext* c, bool with_mass_mom, bool with_forces) {
-  if (with_mass_mom) zero_aux(c, AUX_M, 4);
-  if (with_forces) zero_aux(c, AUX_FB, 12);
+// sigma V (kNs = 6; TLmp: V0 P, the 9 entries of the first Piola-Kirchhoff stress times
+// the reference volume, kNs = 9: the smoothed-gradient total Lagrangian MPM). One instance
+// per field set, so that each corner's runs of fields are fixed-length loops in vector
+// lanes (each field's own sum, in the same order: the same bits).
+template <bool kMassMom, bool kForces, int kNs>
+void scatter_fields(StepContext* c) {
+  if (kMassMom) zero_aux(c, AUX_M, 4);
+  if (kForces) zero_aux(c, AUX_FB, 12);
   const bool with_body = c->has_body_force != 0;
-  const int ns = c->pk1 ? 9 : 6;
   scatter_in_order(c, [&](int p, const int* cell, const double* w, unsigned mask) {
     const double mp = c->mass[p];
     const double* vp = c->v + 3 * p;
-    double vs[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, fb[3] = {0, 0, 0};
-    if (with_forces) {
-      if (c->pk1) {
+    const double mv[4] = {1.0, vp[0], vp[1], vp[2]};  // m w (1, v): the mass and momentum
+    double vs[kNs > 0 ? kNs : 1], fb[3] = {0, 0, 0};
+    if (kForces) {
+      if (kNs == 9) {
         for (int s = 0; s < 9; ++s) vs[s] = c->pk1[9 * size_t(p) + size_t(s)];
       } else {
         const double volp = c->vol[p];
-        for (int s = 0; s < 6; ++s) vs[s] = c->sig[6 * p + s] * volp;
+        for (int s = 0; s < kNs; ++s) vs[s] = c->sig[6 * p + s] * volp;
       }
       if (with_body) particle_body_force(c, p, fb);
     }
     for (int k = 0; k < 8; ++k) {
       if (!(mask >> k & 1u)) continue;
       double* a = aux_cell(c, cell[k]);
-      if (with_mass_mom) {
-        const double mn = mp * w[k];
-        a[AUX_M] += mn;
-        a[AUX_P + 0] += mn * vp[0];
-        a[AUX_P + 1] += mn * vp[1];
-        a[AUX_P + 2] += mn * vp[2];
+      const double wk = w[k];
+      if (kMassMom) {
+        const double mn = mp * wk;
+#pragma omp simd
+        for (int d = 0; d < 4; ++d) a[AUX_M + d] += mn * mv[d];
       }
-      if (with_forces) {
+      if (kForces) {
         if (with_body)
-          for (int d = 0; d < 3; ++d) a[AUX_FB + d] += w[k] * fb[d];
-        for (int s = 0; s < ns; ++s) a[AUX_S + s] += w[k] * vs[s];
+          for (int d = 0; d < 3; ++d) a[AUX_FB + d] += wk * fb[d];
+#pragma omp simd
+        for (int s = 0; s < kNs; ++s) a[AUX_S + s] += wk * vs[s];
       }
     }
   });
+}
+
+void scatter_to_centres(StepContext* c, bool with_mass_mom, bool with_forces) {
+  const bool pk1 = c->pk1 != nullptr;
+  if (with_mass_mom && with_forces)
+    pk1 ? scatter_fields<true, true, 9>(c) : scatter_fields<true, true, 6>(c);
+  else if (with_forces)
+    pk1 ? scatter_fields<false, true, 9>(c) : scatter_fields<false, true, 6>(c);
+  else if (with_mass_mom)
+    scatter_fields<true, false, 0>(c);
 }
 
 // The cell centres' share of each node of the active patches, over the node's cells in

@@ -75,11 +75,14 @@ inline double* aux_cell(const StepContext* c, int cell) { return c->aux + size_t
 // The velocity gradient of a particle from the cells' (sg_cell_gradients), with its
 // weights w on the centres cell[8].
 inline void sg_velocity_gradient(const StepContext* c, const int cell[8], const double w[8], double L[9]) {
-  for (int r = 0; r < 9; ++r) L[r] = 0.0;
+  double l[9] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};  // local: the loads cannot alias it
   for (int k = 0; k < 8; ++k) {
-    const double* a = aux_cell(c, cell[k]);
-    for (int r = 0; r < 9; ++r) L[r] += w[k] * a[AUX_L + r];
+    const double wk = w[k];
+    const double* a = aux_cell(c, cell[k]) + AUX_L;
+#pragma omp simd
+    for (int r = 0; r < 9; ++r) l[r] += wk * a[r];
   }
+  for (int r = 0; r < 9; ++r) L[r] = l[r];
 }
 
 }  // namespace
