@@ -62,8 +62,8 @@ void stress_trilinear(StepContext* c, const double* gvel) {
   });
 }
 
-// The constitutive update of the particles list[i] (first + i where list is null), i in
-// [0, count): velocity gradients one particle at a time (gradient(dec, i, p, L)), the update
+// The constitutive update of the particles list[i] (i where list is null), i in
+// [first, first + count): velocity gradients one particle at a time (gradient(dec, i, p, L)), the update
 // of kStressLanes consecutive particles of one material at a time (stress_block; a shorter
 // run lane by lane, which gives the same bits).
 template <class Gradient>
