@@ -48,8 +48,11 @@ void apply_bc(const StepContext* c, double* a) {
     }
   };
   long held = 0;
-  for (int face = 0; face < 6; ++face)
-    if (c->fix[face] != 0) held += layers * long(plane(face).n_outer) * plane(face).n_inner;
+  for (int face = 0; face < 6; ++face) {
+    if (c->fix[face] == 0) continue;
+    const Plane f = plane(face);
+    held += layers * long(f.n_outer) * f.n_inner;
+  }
   int threads = 1;
 #ifdef _OPENMP
   threads = omp_get_max_threads();
