@@ -166,17 +166,11 @@ void Simulation::bind() {
   if (model.sg) {
     sg_w_.assign(8 * size_t(P.np), 0.0);
     sg_cell_.assign(8 * size_t(P.np), 0);
-    sg_range_.assign(6 * size_t(P.np), 0);
     sg_reach_.assign(size_t(P.np), 0);
-    sg_side_.assign(6 * size_t(P.np), 0);
-    sg_side_count_.assign(6 * size_t(grid.npatch), 0);
   }
   c.sg_w = model.sg ? sg_w_.data() : nullptr;
   c.sg_cell = model.sg ? sg_cell_.data() : nullptr;
-  c.sg_range = model.sg ? sg_range_.data() : nullptr;
   c.sg_reach = model.sg ? sg_reach_.data() : nullptr;
-  c.sg_side = model.sg ? sg_side_.data() : nullptr;
-  c.sg_side_count = model.sg ? sg_side_count_.data() : nullptr;
   c.sg = model.sg ? 1 : 0;
   bind_grid();  // before the contact copy: ctx2 starts as a copy of ctx
   if (model.contact) {

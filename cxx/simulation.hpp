@@ -101,9 +101,8 @@ class Simulation {
   std::vector<int> cell_, pscratch_;
   std::vector<double> aux_;  // sgmp: the cell centres' fields (kAuxFields per cell)
   std::vector<double> sg_w_;  // sgmp: the scatters' weights per patch-list entry (8 each)
-  std::vector<int> sg_cell_, sg_range_; // sgmp: and their centres (8 each), per-axis ranges (6 each)
+  std::vector<int> sg_cell_;  // sgmp: and their centres (8 each)
   std::vector<unsigned char> sg_reach_;  // sgmp: and the neighbour patches they reach
-  std::vector<int> sg_side_, sg_side_count_;  // sgmp: the entries reaching each side of a patch
   std::vector<double> gravity_;
   std::vector<int> body_comp_;                        // contact: component of each body
   std::vector<double> gnormal1_, gnormal2_, cpartials_;  // contact only

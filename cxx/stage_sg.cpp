@@ -21,6 +21,7 @@
 // axis, the outer half cells) pass their weight to the nearest centre. Both languages:
 // fortran_ref/stage_sg.f90, the same operations in the same order.
 #include <cstddef>
+#include <cstdint>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -68,14 +69,14 @@ inline int corner_node(const StepContext* c, int i, int j, int k, int corner) {
 // The scatters to the cell centres, in parallel with the bits of one thread. The canonical
 // order of every centre's sum is that of one pass over the particles, patches in index
 // order, each patch's list in order, corners k = 0..7 (one thread: that pass). A particle
-// reaches only the centres of its own cell and its neighbours, so the centres of patch q
-// receive from the particles of q and of the patches next to it alone: with more threads,
-// each owns the centres of its patches and runs over those patches' particles in that
-// order, keeping the contributions that land on its own centres; the neighbours'
-// particles are visited again (about half of them on the 4 x 4 patches of a one-layer
-// deck), hence the two paths. Both read each patch-list entry's weights, which the step's
-// first scatter computes in parallel (cache_weights): the later scatters and the stress
-// stage take the particles where the bin stage placed them, so with the same weights.
+// reaches only the centres of its own cell and its neighbours, so the centres of a run of
+// patches receive from the particles of the run and of the patches next to it alone: with
+// more threads, each owns the centres of its run of patches (thread_patches) and makes that
+// pass over the run and its neighbour patches, keeping the contributions that land on its
+// own centres. Only the particles on the runs' borders are visited twice. Both read each
+// patch-list entry's weights, which the step's first scatter computes in parallel
+// (cache_weights): the later scatters and the stress stage take the particles where the
+// bin stage placed them, so with the same weights.
 
 // The centres of patch q: [lo, hi) per axis.
 inline void patch_centres(const StepContext* c, int q, int q3[3], int lo[3], int hi[3]) {
@@ -88,86 +89,96 @@ inline void patch_centres(const StepContext* c, int q, int q3[3], int lo[3], int
 }
 
 // Every patch-list entry's weights and centres (the P2G rule) into c->sg_w, sg_cell; with
-// kReach also its corner ranges into sg_range, which neighbour patches it reaches into
-// c->sg_reach, and per side of its patch the entries that reach past it, in list order,
-// into c->sg_side (the scatters of several threads).
+// kReach also which neighbour patches its corners fall in, into c->sg_reach (the scatters
+// of several threads).
 template <bool kReach>
 void cache_weights(const StepContext* c) {
   const CellDecoder dec(c);
   for_patches(c, [&](int q) {
     int q3[3], lo[3], hi[3];
     patch_centres(c, q, q3, lo, hi);
-    const size_t np = size_t(c->np);
-    int* count = c->sg_side_count + 6 * size_t(q);
-    if (kReach)
-      for (int b = 0; b < 6; ++b) count[b] = 0;
     for (int e = c->patch_start[q]; e < c->patch_start[q + 1]; ++e) {
-      int own[6];
-      int* r = kReach ? c->sg_range + 6 * size_t(e) : own;
+      int r[6];  // the corners' cells per axis: lo[3], hi[3]
       sg_corner_weights(c, dec, c->patch_part[e], false, r, r + 3, c->sg_w + 8 * size_t(e));
       for (int k = 0; k < 8; ++k) c->sg_cell[8 * size_t(e) + k] = sg_corner_cell(c, r, r + 3, k);
       if (!kReach) continue;
       unsigned reach = 0;
       for (int a = 0; a < 3; ++a) reach |= (r[a] < lo[a] ? 1u : 0u) << (2 * a) | (r[3 + a] >= hi[a] ? 2u : 0u) << (2 * a);
       c->sg_reach[e] = static_cast<unsigned char>(reach);
-      for (int b = 0; b < 6; ++b)
-        if (reach >> b & 1u) c->sg_side[b * np + size_t(c->patch_start[q] + count[b]++)] = e;
     }
   });
 }
 
-// f(p, cell[8], w[8], mask) for every particle that reaches the centres of a patch, mask
-// bit k set where its corner k is one of them: each centre's contributions in the
-// canonical order when f adds corners k = 0..7 (cache_weights first).
+// For each reach value (sg_reach) and corner k: the patch the corner's centre lies in, as
+// the neighbour number (dx + 1) + 3 (dy + 1) + 9 (dz + 1) from the entry's own patch. The
+// corner's low side along axis a (bit a of k clear) is in the patch below when reach bit
+// 2a is set, its high side in the patch above when bit 2a + 1 is.
+struct CornerPatches {
+  unsigned char of[64][8];
+  CornerPatches() {
+    for (unsigned reach = 0; reach < 64; ++reach)
+      for (int k = 0; k < 8; ++k) {
+        int n = 0, scale = 1;
+        for (int a = 0; a < 3; ++a, scale *= 3) {
+          const int d = (k >> a & 1) ? int(reach >> (2 * a + 1) & 1u) : -int(reach >> (2 * a) & 1u);
+          n += (d + 1) * scale;
+        }
+        of[reach][k] = static_cast<unsigned char>(n);
+      }
+  }
+};
+
+// f(p, cell[8], w[8], mask) for every particle that reaches the centres of this thread's
+// patches, mask bit k set where its corner k is one of them: each centre's contributions
+// in the canonical order when f adds corners k = 0..7 (cache_weights<true> first).
 template <class F>
 void for_contributions_in_order(const StepContext* c, F&& f) {
-  for_patches(c, [&](int q) {
-    int q3[3], lo[3], hi[3], rlo[3], rhi[3];
-    patch_centres(c, q, q3, lo, hi);
-    for (int a = 0; a < 3; ++a) {
-      rlo[a] = q3[a] > 0 ? q3[a] - 1 : 0;  // the patches next to q (and q)
-      rhi[a] = q3[a] + 1 < c->npd[a] ? q3[a] + 1 : c->npd[a] - 1;
-    }
-    for (int rz = rlo[2]; rz <= rhi[2]; ++rz)
-      for (int ry = rlo[1]; ry <= rhi[1]; ++ry)
-        for (int rx = rlo[0]; rx <= rhi[0]; ++rx) {
-          const int r = rx + c->npd[0] * (ry + c->npd[1] * rz);
-          // The sides of r that face q: a particle of r reaches q only through all of them;
-          // r's entries that reach past the first of them, in list order (all: r = q).
-          const int off[3] = {rx - q3[0], ry - q3[1], rz - q3[2]};
-          unsigned need = 0;
-          int side = -1;
-          for (int a = 2; a >= 0; --a)
-            if (off[a] != 0) {
-              side = 2 * a + (off[a] > 0 ? 0 : 1);
-              need |= 1u << side;
-            }
-          const int first = c->patch_start[r];
-          const int n = side < 0 ? c->patch_start[r + 1] - first : c->sg_side_count[6 * size_t(r) + side];
-          const int* list = side < 0 ? nullptr : c->sg_side + size_t(side) * size_t(c->np) + first;
-          for (int m = 0; m < n; ++m) {
-            const int e = list ? list[m] : first + m;
-            const unsigned reach = c->sg_reach[e];
-            if ((reach & need) != need) continue;
-            unsigned mask = 0xFFu;  // an entry of q that stays inside q: every corner
-            if (reach != 0) {
-              const int* cl = c->sg_range + 6 * size_t(e);  // corner cells: lo[3], hi[3]
-              bool in[2][3];
-              for (int a = 0; a < 3; ++a) {
-                in[0][a] = cl[a] >= lo[a] && cl[a] < hi[a];
-                in[1][a] = cl[3 + a] >= lo[a] && cl[3 + a] < hi[a];
-              }
-              mask = 0;
-              for (int k = 0; k < 8; ++k)
-                if (in[k & 1][0] && in[(k >> 1) & 1][1] && in[(k >> 2) & 1][2]) mask |= 1u << k;
-              if (mask == 0) continue;
-            }
-            double w[8];  // a local copy: the centres' sums cannot alias it
-            for (int k = 0; k < 8; ++k) w[k] = c->sg_w[8 * size_t(e) + k];
-            f(c->patch_part[e], c->sg_cell + 8 * size_t(e), w, mask);
+  static const CornerPatches corners;
+#pragma omp parallel
+  {
+    int t = 0, T = 1;
+#ifdef _OPENMP
+    t = omp_get_thread_num();
+    T = omp_get_num_threads();
+#endif
+    int lo, hi;
+    thread_patches(c, t, T, lo, hi);
+    // The run and every patch next to one of its patches lie within one layer of patches
+    // (and one row and one patch) of it in index order.
+    const int layer = 1 + c->npd[0] + c->npd[0] * c->npd[1];
+    const int first = lo - layer > 0 ? lo - layer : 0;
+    const int last = hi + layer < c->npatch ? hi + layer : c->npatch;
+    for (int r = lo < hi ? first : last; r < last; ++r) {
+      if (c->patch_start[r] == c->patch_start[r + 1]) continue;
+      int r3[3];
+      patch_coords(c, r, r3);
+      uint32_t mine = 0;  // bit n: neighbour n of r is one of this thread's patches
+      for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int x = r3[0] + dx, y = r3[1] + dy, z = r3[2] + dz;
+            if (x < 0 || y < 0 || z < 0 || x >= c->npd[0] || y >= c->npd[1] || z >= c->npd[2]) continue;
+            const int n = x + c->npd[0] * (y + c->npd[1] * z);
+            if (n >= lo && n < hi) mine |= 1u << ((dx + 1) + 3 * (dy + 1) + 9 * (dz + 1));
           }
+      if (mine == 0) continue;
+      const bool own = (mine >> 13 & 1u) != 0;  // r itself is this thread's
+      for (int e = c->patch_start[r]; e < c->patch_start[r + 1]; ++e) {
+        const unsigned reach = c->sg_reach[e];
+        unsigned mask = 0;
+        if (reach == 0) {
+          if (!own) continue;
+          mask = 0xFFu;  // every corner in r
+        } else {
+          for (int k = 0; k < 8; ++k) mask |= (mine >> corners.of[reach][k] & 1u) << k;
+          if (mask == 0) continue;
         }
-  });
+        double w[8];  // a local copy: the centres' sums cannot alias it
+        for (int k = 0; k < 8; ++k) w[k] = c->sg_w[8 * size_t(e) + k];
+        f(c->patch_part[e], c->sg_cell + 8 * size_t(e), w, mask);
+      }
+    }
+  }
 }
 
 // add(p, cell[8], w[8], mask) in the canonical order of every centre's sum: one pass on one

@@ -82,14 +82,11 @@ struct StepContext {
   // Stage-internal scratch of the C++ kernels (the Fortran mirror, step_context in
   // fortran_ref/stage_common.f90, holds them as untouched pointers).
   int *pscratch;       // (np) patch of each particle during binning
-  // sgmp: each patch-list entry's auxiliary weights (8), centres (8) and per-axis centre
-  // range (lo[3], hi[3]), written and read within one scatter (stage_sg.cpp); else null.
+  // sgmp: each patch-list entry's auxiliary weights (8) and centres (8), written by the
+  // step's first scatter and read by the later ones (stage_sg.cpp); else null.
   double *sg_w;
   int *sg_cell;             // (np, 8) the centres of the entry's corners
-  int *sg_range;
-  unsigned char *sg_reach;  // bits 2a, 2a+1: the entry reaches the patch below, above on axis a
-  int *sg_side;             // (np, 6): per patch and reach bit b, its entries with bit b, from
-  int *sg_side_count;       // patch_start[q] on; (npatch, 6) their counts
+  unsigned char *sg_reach;  // bits 2a, 2a+1: a corner lies in the patch below, above on axis a
   // Distributed runs (cxx/ranks.hpp; null with one rank): called between a scatter into the
   // patch buffers and their assembly (kind EXCHANGE_BUFFERS, fields first .. first+count-1),
   // so that the ghost patches' buffers hold their owners' sums, and by the energy stage
@@ -108,8 +105,8 @@ struct StepContext {
   int prebinned;
   // C++ kernels' scratch (sgmp): nonzero once this step's C++ P2G has written sg_w and
   // sg_cell, the weights of the particles' binned places, which the step's later scatters
-  // and the stress stage reuse (2: with sg_range .. sg_side_count, the scatters of several
-  // threads). The driver clears it before every step; the Fortran stages leave it alone.
+  // and the stress stage reuse (2: with sg_reach, for the scatters of several threads).
+  // The driver clears it before every step; the Fortran stages leave it alone.
   int sg_cached;
 };
 

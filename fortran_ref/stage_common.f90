@@ -74,9 +74,8 @@ module mpm3d_stage_common
                                            ! version with 27-node stencils or sgmp)
     type(c_ptr) :: aux = c_null_ptr        ! sgmp: (32, ncell) the cell centres' fields
     integer(c_int) :: sg = 0               ! 1: smoothed-gradient MPM (stage_sg.f90)
-    ! The C++ kernels' scratch (not used here): pscratch, then sgmp's sg_w .. sg_side_count.
-    type(c_ptr) :: pscratch = c_null_ptr, sg_w = c_null_ptr, sg_cell = c_null_ptr, sg_range = c_null_ptr, &
-                   sg_reach = c_null_ptr, sg_side = c_null_ptr, sg_side_count = c_null_ptr
+    ! The C++ kernels' scratch (not used here): pscratch, then sgmp's sg_w, sg_cell, sg_reach.
+    type(c_ptr) :: pscratch = c_null_ptr, sg_w = c_null_ptr, sg_cell = c_null_ptr, sg_reach = c_null_ptr
     ! Distributed runs (cxx/ranks.hpp; null with one rank): the ranks' hook, called between a
     ! scatter into the patch buffers and their assembly, and before the energy and contact
     ! columns are folded (rank_exchange); the particles in one process's storage order
