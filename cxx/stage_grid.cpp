@@ -12,9 +12,9 @@
 
 namespace mpm3d {
 
-// Faces holding more nodes than this are cleared by a team, face by face (a one-cell-thick
-// deck's faces hold every node); smaller ones on the calling thread, where a team's fork
-// and join cost more than it saves (docs/PERFORMANCE.md).
+// Faces holding more nodes than this are cleared by a team (a one-cell-thick deck's faces
+// hold every node); smaller ones on the calling thread, where a team's fork and join cost
+// more than it saves (docs/PERFORMANCE.md).
 constexpr long kParallelBcNodes = 16384;
 
 void apply_bc(const StepContext* c, double* a) {
@@ -58,15 +58,42 @@ void apply_bc(const StepContext* c, double* a) {
   threads = omp_get_max_threads();
 #endif
   if (threads > 1 && held > kParallelBcNodes) {
+    // Each thread one run of the node order, every face's components in it: no thread
+    // writes another's nodes, so no barrier between the faces (clearing twice is clearing).
+    unsigned comps[6];  // the components face f holds: all (fixed) or its normal one
+    for (int face = 0; face < 6; ++face)
+      comps[face] = c->fix[face] == 0 ? 0u : (c->fix[face] == 1 ? 7u : 1u << (face / 2));
+    const int n0 = c->nn[0], n1 = c->nn[1], n2 = c->nn[2];
+    const long nodes = long(n0) * n1 * n2;
+    auto clear = [&](double* v, unsigned m) {
+      for (int d = 0; d < 3; ++d)
+        if (m >> d & 1u) v[d] = 0.0;
+    };
 #pragma omp parallel
-    for (int face = 0; face < 6; ++face) {
-      if (c->fix[face] == 0) continue;
-      const Plane f = plane(face);
-      // One face at a time (the barrier closing the loop): faces share their edges' nodes.
-      for (int layer = 0; layer < layers; ++layer) {
-        const long base = layer_base(face, layer);
-#pragma omp for schedule(static)
-        for (int o = 0; o < f.n_outer; ++o) clear_row(f, base + o * f.s_outer);
+    {
+      int t = 0, T = 1;
+#ifdef _OPENMP
+      t = omp_get_thread_num();
+      T = omp_get_num_threads();
+#endif
+      const long first = nodes * t / T, last = nodes * (t + 1) / T;
+      for (long r = first / n0; r * n0 < last; ++r) {  // node rows along x
+        const int j = int(r % n1), k = int(r / n1);
+        unsigned m = 0;  // the y and z faces holding the row
+        if (j < layers) m |= comps[2];
+        if (j >= n1 - layers) m |= comps[3];
+        if (k < layers) m |= comps[4];
+        if (k >= n2 - layers) m |= comps[5];
+        const long i0 = first > r * n0 ? first - r * n0 : 0;
+        const long i1 = last < (r + 1) * n0 ? last - r * n0 : n0;
+        double* row = a + 3 * r * n0;
+        for (int d = 0; d < 3; ++d)
+          if (m >> d & 1u)
+            for (long i = i0; i < i1; ++i) row[3 * i + d] = 0.0;
+        for (long l = 0; l < layers; ++l) {  // the x faces' nodes of the row
+          if (l >= i0 && l < i1) clear(row + 3 * l, comps[0]);
+          if (n0 - 1 - l >= i0 && n0 - 1 - l < i1) clear(row + 3 * (n0 - 1 - l), comps[1]);
+        }
       }
     }
     return;
