@@ -35,14 +35,6 @@ namespace mpm3d {
 
 namespace {
 
-// Fields first..first+count-1 of every cell centre set to zero.
-void zero_aux(const StepContext* c, int first, int count) {
-  const int ncell = c->nc[0] * c->nc[1] * c->nc[2];
-#pragma omp parallel for schedule(static)
-  for (int cell = 0; cell < ncell; ++cell)
-    for (int f = first; f < first + count; ++f) aux_cell(c, cell)[f] = 0.0;
-}
-
 // f(cell, i, j, k) for the cells of the active patches (the ones the particles reach).
 template <class F>
 void for_active_cells(const StepContext* c, F&& f) {
@@ -128,11 +120,26 @@ struct CornerPatches {
   }
 };
 
-// f(p, cell[8], w[8], mask) for every particle that reaches the centres of this thread's
-// patches, mask bit k set where its corner k is one of them: each centre's contributions
-// in the canonical order when f adds corners k = 0..7 (cache_weights<true> first).
+// Fields first..first+count-1 of the centres of patches [lo, hi) set to zero.
+void zero_centres(const StepContext* c, int lo, int hi, int first, int count) {
+  for (int q = lo; q < hi; ++q) {
+    int q3[3], clo[3], chi[3];
+    patch_centres(c, q, q3, clo, chi);
+    for (int k = clo[2]; k < chi[2]; ++k)
+      for (int j = clo[1]; j < chi[1]; ++j)
+        for (int i = clo[0]; i < chi[0]; ++i) {
+          double* a = aux_cell(c, i + c->nc[0] * (j + c->nc[1] * k));
+          for (int f = first; f < first + count; ++f) a[f] = 0.0;
+        }
+  }
+}
+
+// Fields first..first+count-1 of this thread's centres set to zero (no other thread adds
+// to them), then f(p, cell[8], w[8], mask) for every particle that reaches them, mask bit
+// k set where its corner k is one of them: each centre's contributions in the canonical
+// order when f adds corners k = 0..7 (cache_weights<true> first).
 template <class F>
-void for_contributions_in_order(const StepContext* c, F&& f) {
+void for_contributions_in_order(const StepContext* c, int first_field, int nfield, F&& f) {
   static const CornerPatches corners;
 #pragma omp parallel
   {
@@ -143,6 +150,7 @@ void for_contributions_in_order(const StepContext* c, F&& f) {
 #endif
     int lo, hi;
     thread_patches(c, t, T, lo, hi);
+    zero_centres(c, lo, hi, first_field, nfield);
     // The run and every patch next to one of its patches lie within one layer of patches
     // (and one row and one patch) of it in index order.
     const int layer = 1 + c->npd[0] + c->npd[0] * c->npd[1];
@@ -181,19 +189,21 @@ void for_contributions_in_order(const StepContext* c, F&& f) {
   }
 }
 
-// add(p, cell[8], w[8], mask) in the canonical order of every centre's sum: one pass on one
-// thread, the owners' passes on more.
+// Fields first..first+count-1 of every centre set to zero, then add(p, cell[8], w[8], mask)
+// in the canonical order of every centre's sum: one pass on one thread, the owners'
+// passes on more.
 template <class F>
-void scatter_in_order(StepContext* c, F&& add) {
+void scatter_in_order(StepContext* c, int first_field, int nfield, F&& add) {
   int threads = 1;
 #ifdef _OPENMP
   threads = omp_get_max_threads();
 #endif
   sg_ensure_weights(c, threads > 1);
   if (threads > 1) {
-    for_contributions_in_order(c, add);
+    for_contributions_in_order(c, first_field, nfield, add);
     return;
   }
+  zero_centres(c, 0, c->npatch, first_field, nfield);
   const int total = c->patch_start[c->npatch];
   for (int e = 0; e < total; ++e) {
     double w[8];  // a local copy: the centres' sums cannot alias it
@@ -209,10 +219,10 @@ void scatter_in_order(StepContext* c, F&& add) {
 // lanes (each field's own sum, in the same order: the same bits).
 template <bool kMassMom, bool kForces, int kNs>
 void scatter_fields(StepContext* c) {
-  if (kMassMom) zero_aux(c, AUX_M, 4);
-  if (kForces) zero_aux(c, AUX_FB, 12);
+  static_assert(AUX_P == AUX_M + 1 && AUX_FB == AUX_M + 4 && AUX_S == AUX_FB + 3, "one run of fields");
   const bool with_body = c->has_body_force != 0;
-  scatter_in_order(c, [&](int p, const int* cell, const double* w, unsigned mask) {
+  // The fields summed: mass and momentum (4), body force and stress (12), or both.
+  scatter_in_order(c, kMassMom ? AUX_M : AUX_FB, (kMassMom ? 4 : 0) + (kForces ? 12 : 0), [&](int p, const int* cell, const double* w, unsigned mask) {
     const double mp = c->mass[p];
     const double* vp = c->v + 3 * p;
     const double mv[4] = {1.0, vp[0], vp[1], vp[2]};  // m w (1, v): the mass and momentum
@@ -399,8 +409,7 @@ void sg_g2p(StepContext* c, bool remap) {
   if (!remap) return;
   // MUSL: the new particle momenta to the cell centres, then the nodes (no mass cut-off,
   // as the current program).
-  zero_aux(c, AUX_RP, 3);
-  scatter_in_order(c, [&](int p, const int* cell, const double* w, unsigned mask) {
+  scatter_in_order(c, AUX_RP, 3, [&](int p, const int* cell, const double* w, unsigned mask) {
     const double mp = c->mass[p];
     const double* vp = c->v + 3 * p;
     for (int k = 0; k < 8; ++k) {
