@@ -156,5 +156,13 @@ inline int stencil_offset(int k, int r0, int r1) {
   return a + r0 * (b + r1 * cc);
 }
 
+// All 27 of them, for the loops over a stencil's nodes (no division per node).
+struct StencilOffsets {
+  int of[27];
+  StencilOffsets(int r0, int r1) {
+    for (int k = 0; k < 27; ++k) of[k] = stencil_offset(k, r0, r1);
+  }
+};
+
 }  // namespace
 }  // namespace mpm3d

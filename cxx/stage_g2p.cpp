@@ -28,6 +28,7 @@ void g2p_gimp(StepContext* c, bool remap) {
   const int pn = patch_nodes(c);
   const int nn0 = c->nn[0], nn1 = c->nn[1];
   const CellDecoder dec(c);
+  const StencilOffsets in_grid(nn0, nn1), in_buffer(Q, Q);
   for_filled_patches(c, [&](int q, const int q3[3], double* buf) {
     if (remap) zero_fields(buf, pn, 1, 3);
     for (int idx = c->patch_start[q]; idx < c->patch_start[q + 1]; ++idx) {
@@ -35,11 +36,10 @@ void g2p_gimp(StepContext* c, bool remap) {
       GimpStencil st;
       gimp_stencil(c, dec, p, st, false);
       const int base = gimp_corner(c, st);
-      g2p_particle<27>(c, p, st.N, [&](int k) { return base + stencil_offset(k, nn0, nn1); });
+      g2p_particle<27>(c, p, st.N, [&](int k) { return base + in_grid.of[k]; });
       if (remap) {
-        const int pbase = gimp_patch_corner(c, q3, st);
-        remap_particle<27>(c, p, st.N,
-                           [&](int k) { return buf + size_t(pbase + stencil_offset(k, Q, Q)) * kNodeFields; });
+        double* corner = buf + size_t(gimp_patch_corner(c, q3, st)) * kNodeFields;
+        remap_particle<27>(c, p, st.N, [&](int k) { return corner + size_t(in_buffer.of[k]) * kNodeFields; });
       }
     }
   });

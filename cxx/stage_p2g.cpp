@@ -146,21 +146,34 @@ void assemble_wide(const StepContext* c, int first, int count, double* dst_mass,
 }
 
 // The scatter with the 27-node GIMP stencils (buffers with a halo of one node layer).
-void scatter_p2g_gimp(StepContext* c, bool with_mass_mom, bool with_forces) {
+// One instance per flag set: constant flags, no test per node.
+template <bool kMassMom, bool kForces, bool kBody>
+void scatter_p2g_gimp(StepContext* c) {
   const int Q = c->patch_cells + 1 + 2 * c->patch_halo;
   const int pn = patch_nodes(c);
   const CellDecoder dec(c);
+  const StencilOffsets in_buffer(Q, Q);
   for_filled_patches(c, [&](int q, const int q3[3], double* buf) {
     std::memset(buf, 0, sizeof(double) * size_t(pn) * kNodeFields);
     for (int idx = c->patch_start[q]; idx < c->patch_start[q + 1]; ++idx) {
       const int p = c->patch_part[idx];
       GimpStencil st;
       gimp_stencil(c, dec, p, st);
-      const int base = gimp_patch_corner(c, q3, st);
-      p2g_particle<27>(c, p, st.N, st.G, with_mass_mom, with_forces, c->has_body_force != 0,
-                       [&](int k) { return buf + size_t(base + stencil_offset(k, Q, Q)) * kNodeFields; });
+      double* corner = buf + size_t(gimp_patch_corner(c, q3, st)) * kNodeFields;
+      p2g_particle<27>(c, p, st.N, st.G, kMassMom, kForces, kBody,
+                       [&](int k) { return corner + size_t(in_buffer.of[k]) * kNodeFields; });
     }
   });
+}
+
+void scatter_p2g_gimp(StepContext* c, bool with_mass_mom, bool with_forces) {
+  const bool body = c->has_body_force != 0;
+  if (with_mass_mom && with_forces)
+    body ? scatter_p2g_gimp<true, true, true>(c) : scatter_p2g_gimp<true, true, false>(c);
+  else if (with_forces)
+    body ? scatter_p2g_gimp<false, true, true>(c) : scatter_p2g_gimp<false, true, false>(c);
+  else if (with_mass_mom)
+    scatter_p2g_gimp<true, false, false>(c);
 }
 
 // Scatter of mass, momentum and (optionally) forces of every particle into its patch

@@ -15,14 +15,14 @@ namespace {
 // Velocity gradient L[3a+b] = d v_a / d x_b of particle p from the node velocities gvel,
 // summed over the 27 GIMP stencil nodes in stencil order (the trilinear one:
 // gradient_values in transfer_lanes.hpp).
-inline void velocity_gradient_gimp(const StepContext* c, const CellDecoder& dec, int p, const double* gvel,
-                                   double L[9]) {
+inline void velocity_gradient_gimp(const StepContext* c, const CellDecoder& dec, const StencilOffsets& in_grid, int p,
+                                   const double* gvel, double L[9]) {
   double l0 = 0, l1 = 0, l2 = 0, l3 = 0, l4 = 0, l5 = 0, l6 = 0, l7 = 0, l8 = 0;
   GimpStencil st;
   gimp_stencil(c, dec, p, st);
   const int base = gimp_corner(c, st);
   for (int k = 0; k < 27; ++k) {
-    const int n = base + stencil_offset(k, c->nn[0], c->nn[1]);
+    const int n = base + in_grid.of[k];
     if (!(c->gmass[n] > c->mass_cutoff)) continue;
     const double vx = gvel[3 * n], vy = gvel[3 * n + 1], vz = gvel[3 * n + 2];
     const double gx = st.G[3 * k], gy = st.G[3 * k + 1], gz = st.G[3 * k + 2];
@@ -155,7 +155,10 @@ extern "C" void mpm3d_cxx_stress(StepContext* c) {
     sg_cell_gradients(c, gvel);
     stress_sg(c);
   } else if (c->shape != 0) {
-    stress_particles(c, [&](const CellDecoder& dec, int, int p, double* L) { velocity_gradient_gimp(c, dec, p, gvel, L); });
+    const StencilOffsets in_grid(c->nn[0], c->nn[1]);
+    stress_particles(c, [&](const CellDecoder& dec, int, int p, double* L) {
+      velocity_gradient_gimp(c, dec, in_grid, p, gvel, L);
+    });
   } else {
     stress_trilinear(c, gvel);
   }
