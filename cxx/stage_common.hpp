@@ -109,28 +109,12 @@ __attribute__((always_inline)) inline void p2g_particle(const StepContext* c, in
                                                         bool with_body, NodeOf node) {
   const double mp = c->mass[p];
   const double* vp = c->v + 3 * p;
-  // Force component d at a node: -((s0[d] gx + s1[d] gy) + s2[d] gz), with s the columns
-  // of sigma V (Voigt: xx yy zz yz xz xy) or under TLmp of V0 P (row d gives component d).
-  double s0[3] = {0, 0, 0}, s1[3] = {0, 0, 0}, s2[3] = {0, 0, 0}, fb[3] = {0, 0, 0};
+  // sigma V (Voigt), or under TLmp V0 P (pk, a 3x3 matrix, row i giving force component i).
+  double vs[6] = {0, 0, 0, 0, 0, 0}, fb[3] = {0, 0, 0};
+  const double* pk = c->pk1 ? c->pk1 + 9 * size_t(p) : nullptr;
   if (with_forces) {
-    if (c->pk1) {
-      const double* pk = c->pk1 + 9 * size_t(p);
-      for (int d = 0; d < 3; ++d) {
-        s0[d] = pk[3 * d];
-        s1[d] = pk[3 * d + 1];
-        s2[d] = pk[3 * d + 2];
-      }
-    } else {
-      const double volp = c->vol[p];
-      double vs[6];
-      for (int s = 0; s < 6; ++s) vs[s] = c->sig[6 * p + s] * volp;
-      const double c0[3] = {vs[0], vs[5], vs[4]}, c1[3] = {vs[5], vs[1], vs[3]}, c2[3] = {vs[4], vs[3], vs[2]};
-      for (int d = 0; d < 3; ++d) {
-        s0[d] = c0[d];
-        s1[d] = c1[d];
-        s2[d] = c2[d];
-      }
-    }
+    const double volp = c->vol[p];
+    for (int s = 0; s < 6; ++s) vs[s] = c->sig[6 * p + s] * volp;
     if (with_body) particle_body_force(c, p, fb);
   }
   for (int k = 0; k < kNodes; ++k) {
@@ -144,11 +128,24 @@ __attribute__((always_inline)) inline void p2g_particle(const StepContext* c, in
     }
     if (with_forces) {
       const double gx = G[3 * k], gy = G[3 * k + 1], gz = G[3 * k + 2];
-      double f[3];
-      for (int d = 0; d < 3; ++d) f[d] = -((s0[d] * gx + s1[d] * gy) + s2[d] * gz);
-      if (with_body)
-        for (int d = 0; d < 3; ++d) f[d] = N[k] * fb[d] + f[d];
-      for (int d = 0; d < 3; ++d) b[4 + d] += f[d];
+      double fx, fy, fz;
+      if (pk) {
+        fx = -((pk[0] * gx + pk[1] * gy) + pk[2] * gz);
+        fy = -((pk[3] * gx + pk[4] * gy) + pk[5] * gz);
+        fz = -((pk[6] * gx + pk[7] * gy) + pk[8] * gz);
+      } else {
+        fx = -((vs[0] * gx + vs[5] * gy) + vs[4] * gz);
+        fy = -((vs[5] * gx + vs[1] * gy) + vs[3] * gz);
+        fz = -((vs[4] * gx + vs[3] * gy) + vs[2] * gz);
+      }
+      if (with_body) {
+        fx = N[k] * fb[0] + fx;
+        fy = N[k] * fb[1] + fy;
+        fz = N[k] * fb[2] + fz;
+      }
+      b[4] += fx;
+      b[5] += fy;
+      b[6] += fz;
     }
   }
 }
