@@ -25,6 +25,17 @@ namespace mpm3d {
 // entries: runs of whole lane groups.
 constexpr int kListChunk = 64;
 
+// The calling thread's number t in its team and the team's size T (0 and 1 outside a
+// parallel region).
+inline void team_position(int& t, int& T) {
+  t = 0;
+  T = 1;
+#ifdef _OPENMP
+  t = omp_get_thread_num();
+  T = omp_get_num_threads();
+#endif
+}
+
 // Patches [lo, hi) of thread t of T: the first patch whose list starts at or after the
 // thread's equal share of the binned particles, up to the next thread's.
 inline void thread_patches(const StepContext* c, int t, int T, int& lo, int& hi) {
@@ -44,12 +55,8 @@ template <class F>
 inline void for_patches(const StepContext* c, F&& f) {
 #pragma omp parallel
   {
-    int t = 0, T = 1;
-#ifdef _OPENMP
-    t = omp_get_thread_num();
-    T = omp_get_num_threads();
-#endif
-    int lo, hi;
+    int t, T, lo, hi;
+    team_position(t, T);
     thread_patches(c, t, T, lo, hi);
     for (int q = lo; q < hi; ++q) f(q);
   }

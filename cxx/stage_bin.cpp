@@ -40,11 +40,8 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
   // whatever the number of threads: the lists do not depend on it.
 #pragma omp parallel num_threads(team) reduction(+ : outside)
   {
-    int t = 0, T = 1;
-#ifdef _OPENMP
-    t = omp_get_thread_num();
-    T = omp_get_num_threads();
-#endif
+    int t, T;
+    team_position(t, T);
     const int lo = int(int64_t(c->np) * t / T), hi = int(int64_t(c->np) * (t + 1) / T);
     int* cnt = counts.get() + size_t(t) * size_t(npatch);
     std::fill(cnt, cnt + npatch, 0);

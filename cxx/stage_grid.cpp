@@ -71,11 +71,8 @@ void apply_bc(const StepContext* c, double* a) {
     };
 #pragma omp parallel
     {
-      int t = 0, T = 1;
-#ifdef _OPENMP
-      t = omp_get_thread_num();
-      T = omp_get_num_threads();
-#endif
+      int t, T;
+      team_position(t, T);
       const long first = nodes * t / T, last = nodes * (t + 1) / T;
       for (long r = first / n0; r * n0 < last; ++r) {  // node rows along x
         const int j = int(r % n1), k = int(r / n1);

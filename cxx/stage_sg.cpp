@@ -143,12 +143,8 @@ void for_contributions_in_order(const StepContext* c, int first_field, int nfiel
   static const CornerPatches corners;
 #pragma omp parallel
   {
-    int t = 0, T = 1;
-#ifdef _OPENMP
-    t = omp_get_thread_num();
-    T = omp_get_num_threads();
-#endif
-    int lo, hi;
+    int t, T, lo, hi;
+    team_position(t, T);
     thread_patches(c, t, T, lo, hi);
     zero_centres(c, lo, hi, first_field, nfield);
     // The run and every patch next to one of its patches lie within one layer of patches
