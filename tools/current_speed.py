@@ -1,17 +1,17 @@
 #!/usr/bin/env python3
 """mpm3d against the current MPM3D-F90 itself, side by side, on its public decks.
 
-usage: tools/current_speed.py BUILD_DIR ORIGINAL_EXE [--threads 2] [--rounds 3] [--steps 1000]
+usage: tools/current_speed.py BUILD_DIR ORIGINAL_EXE [--threads 2[,4,...]] [--rounds 3] [--steps 1000]
 
 ORIGINAL_EXE is the current public program built on this machine (it is not part of the
 repository: build it from github.com/xzhang66/MPM3D-F90 at commit 4a6275f for this
 measurement only). Each deck of ../shared/decks/current is cut to its first STEPS steps (the
 end time set to the time of that step in ../shared/reference/current, and QuLo's run-on rule
 taken out, so that both programs stop there), then each round runs the original and mpm3d
-one after the other (alternating which goes first) and takes both programs' own "time per
-particle-step". Prints per deck the medians and the median of the per-round ratios
-original / mpm3d: this machine is noisy, and a ratio of two runs seconds apart is what it
-can measure.
+one after the other (alternating which goes first; mpm3d once at each thread count given) and
+takes both programs' own "time per particle-step". Prints per deck and thread count the
+medians and the median of the per-round ratios original / mpm3d: this machine is noisy, and
+a ratio of two runs seconds apart is what it can measure.
 """
 import argparse
 import json
@@ -64,37 +64,42 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("build")
     ap.add_argument("original")
-    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--threads", default="2", help="thread counts, comma separated")
     ap.add_argument("--rounds", type=int, default=3)
     ap.add_argument("--steps", type=int, default=1000)
     a = ap.parse_args()
+    threads = [int(t) for t in a.threads.split(",")]
     mpm3d = os.path.join(os.path.abspath(a.build), "cxx", "mpm3d")
     original = os.path.abspath(a.original)
-    print("%-38s %10s %10s %8s" % ("deck", "orig ns", "mpm3d ns", "ratio"))
+    print("%-38s %7s %10s %10s %8s" % ("deck", "threads", "orig ns", "mpm3d ns", "ratio"))
     for name in sorted(f[:-4] for f in os.listdir(DECKS) if f.endswith(".mpm")):
         with open(os.path.join(REFS, name, "EnergyPlot.dat")) as f:
             times = [float(l.split()[0]) for l in f if l.strip()]
         end = times[min(a.steps, len(times)) - 1]
-        orig, ours, ratios = [], [], []
+        orig, ours, ratios = [], {t: [] for t in threads}, {t: [] for t in threads}
         with tempfile.TemporaryDirectory() as work:
             deck = os.path.join(work, name + ".mpm")
             shortened(os.path.join(DECKS, name + ".mpm"), end, deck)
             for r in range(a.rounds):
+                order = ["orig"] + threads if r % 2 == 0 else threads[::-1] + ["orig"]
                 pair = {}
-                for who in (("orig", "ours") if r % 2 == 0 else ("ours", "orig")):
+                for who in order:
                     if who == "orig":
                         pair[who] = original_ns(original, deck, work)
                     else:
-                        pair[who] = mpm3d_ns(mpm3d, deck, a.threads, work)
-                if pair["orig"] and pair["ours"]:
+                        pair[who] = mpm3d_ns(mpm3d, deck, who, work)
+                if pair["orig"]:
                     orig.append(pair["orig"])
-                    ours.append(pair["ours"])
-                    ratios.append(pair["orig"] / pair["ours"])
-        if ratios:
-            print("%-38s %10.1f %10.1f %8.2f" % (name, statistics.median(orig), statistics.median(ours),
-                                                 statistics.median(ratios)), flush=True)
+                    for t in threads:
+                        ours[t].append(pair[t])
+                        ratios[t].append(pair["orig"] / pair[t])
+        if orig:
+            for t in threads:
+                print("%-38s %7d %10.1f %10.1f %8.2f" % (name, t, statistics.median(orig),
+                                                         statistics.median(ours[t]),
+                                                         statistics.median(ratios[t])), flush=True)
         else:
-            print("%-38s %10s" % (name, "failed"), flush=True)
+            print("%-38s %7s %10s" % (name, "", "failed"), flush=True)
 
 
 if __name__ == "__main__":
