@@ -5,7 +5,8 @@
 // indices with equal shares of the particles, the rule OpenMP threads use inside a rank),
 // the particles inside them, and those outside the grid if it is the last rank. Every
 // rank keeps the whole grid window's node arrays; it assembles the nodes its particles read
-// from its own patch buffers and copies of its neighbours' (ghost patches).
+// from its own patch buffers and copies of its neighbours' (ghost patches), of which only
+// those nodes travel.
 #include <mpi.h>
 
 #include <algorithm>
@@ -112,10 +113,16 @@ class MpiRanks final : public Ranks {
   double rebalance_above_ = 1.03;
   // Per neighbouring rank: this rank's patches next to one of its patches (what it is
   // sent) and its patches next to one of this rank's (what comes back), ascending.
+  // Of each of those patches' buffers only the nodes inside the node span of one of the
+  // receiving rank's patches travel (the nodes its particles read and it assembles; the
+  // rest of a ghost buffer is never read): local buffer indices, ascending, per patch
+  // (send_nodes[send_start[i] ..] for send[i]; the same for recv). Both ranks draw them
+  // from owner_ by the same rule, so the lists agree.
   struct Neighbour {
     int rank;
     std::vector<int> send, recv;
-    std::vector<double> out, in;  // the packed buffers of the non-empty ones
+    std::vector<int> send_nodes, send_start, recv_nodes, recv_start;
+    std::vector<double> out, in;  // the packed values of the non-empty ones
   };
   std::vector<Neighbour> neighbours_;
   std::vector<int> fields_;  // indices in particle_fields() of the arrays this run has
@@ -145,11 +152,16 @@ class MpiRanks final : public Ranks {
   // The ranks' first patches by the rule above, from counts_.
   std::vector<int> draw(int npatch) const;
   void partition(const Simulation& sim, std::vector<int> first);
+  // Appends to out the local indices of the nodes of patch q's buffer that lie inside the
+  // node span of a patch of rank reader (mark: scratch).
+  void shared_nodes(const StepContext& c, int q, int reader, std::vector<unsigned char>& mark,
+                    std::vector<int>& out) const;
   size_t row_bytes(Particles& P) const;
   void pack_row(Particles& P, int p, int gidx, char* out) const;
   void exchange_buffers(const StepContext* c, int first, int nfield);
   // A stage's per-patch columns of nf fields: every rank's own (and, with outside, the
-  // last rank's column of the particles outside the grid) to every rank.
+  // last rank's column of the particles outside the grid) to every rank; with outside
+  // (the energy stage's particle sums) only the non-empty patches' columns.
   void exchange_columns(double* cols, int nf, bool outside);
 };
 
@@ -220,8 +232,48 @@ void MpiRanks::partition(const Simulation& sim, std::vector<int> first) {
     }
     n.send = std::move(send[size_t(s)]);
     n.recv = std::move(recv[size_t(s)]);
+    std::vector<unsigned char> mark;
+    n.send_start.assign(1, 0);
+    for (int q : n.send) {
+      shared_nodes(c, q, s, mark, n.send_nodes);
+      n.send_start.push_back(int(n.send_nodes.size()));
+    }
+    n.recv_start.assign(1, 0);
+    for (int q : n.recv) {
+      shared_nodes(c, q, rank_, mark, n.recv_nodes);
+      n.recv_start.push_back(int(n.recv_nodes.size()));
+    }
     neighbours_.push_back(std::move(n));
   }
+}
+
+// Patch o's particles read the nodes o P - H .. (o + 1) P + H per axis, which is also the
+// span of o's buffer; in the local coordinates of q's buffer (first node q P - H) that is
+// (o - q) P .. (o - q) P + P + 2 H. The patches whose span meets q's lie within R of it.
+void MpiRanks::shared_nodes(const StepContext& c, int q, int reader, std::vector<unsigned char>& mark,
+                            std::vector<int>& out) const {
+  const int P = c.patch_cells, H = c.patch_halo, Q = P + 1 + 2 * H, R = 1 + (2 * H) / P;
+  const int n0 = c.npd[0], n1 = c.npd[1], n2 = c.npd[2];
+  const int q3[3] = {q % n0, (q / n0) % n1, q / (n0 * n1)};
+  mark.assign(size_t(Q) * size_t(Q) * size_t(Q), 0);
+  for (int dz = -R; dz <= R; ++dz)
+    for (int dy = -R; dy <= R; ++dy)
+      for (int dx = -R; dx <= R; ++dx) {
+        const int d[3] = {dx, dy, dz};
+        const int x = q3[0] + dx, y = q3[1] + dy, z = q3[2] + dz;
+        if (x < 0 || y < 0 || z < 0 || x >= n0 || y >= n1 || z >= n2) continue;
+        if (owner_[size_t(x + n0 * (y + n1 * z))] != reader) continue;
+        int lo[3], hi[3];
+        for (int a = 0; a < 3; ++a) {
+          lo[a] = std::max(0, d[a] * P);
+          hi[a] = std::min(Q - 1, d[a] * P + P + 2 * H);
+        }
+        for (int k = lo[2]; k <= hi[2]; ++k)
+          for (int j = lo[1]; j <= hi[1]; ++j)
+            for (int i = lo[0]; i <= hi[0]; ++i) mark[size_t(i + Q * (j + Q * k))] = 1;
+      }
+  for (size_t i = 0; i < mark.size(); ++i)
+    if (mark[i]) out.push_back(int(i));
 }
 
 size_t MpiRanks::row_bytes(Particles& P) const {
@@ -478,28 +530,31 @@ void MpiRanks::add_ghost_slots(Simulation& sim) {
 void MpiRanks::exchange_buffers(const StepContext* c, int first, int nfield) {
   const size_t pn = size_t(patch_nodes(c));
   const int comp = c->only_comp;
-  auto nonempty = [&](const std::vector<int>& qs) {
+  // The values of the non-empty ones among patches qs (node lists start).
+  auto values = [&](const std::vector<int>& qs, const std::vector<int>& start) {
     size_t n = 0;
-    for (int q : qs) n += count(q, comp) > 0;
-    return n;
+    for (size_t i = 0; i < qs.size(); ++i)
+      if (count(qs[i], comp) > 0) n += size_t(start[i + 1] - start[i]);
+    return n * size_t(nfield);
   };
+  auto buffer = [&](int q) { return c->patch_buf + size_t(c->patch_slot[q]) * pn * kNodeFields + size_t(first); };
   std::vector<MPI_Request> req;
   req.reserve(2 * neighbours_.size());
   for (Neighbour& n : neighbours_) {
-    n.in.resize(nonempty(n.recv) * pn * size_t(nfield));
+    n.in.resize(values(n.recv, n.recv_start));
     if (!n.in.empty()) {
       req.emplace_back();
       check(MPI_Irecv(n.in.data(), int(n.in.size()), MPI_DOUBLE, n.rank, 1, comm_, &req.back()), "receive");
     }
   }
   for (Neighbour& n : neighbours_) {
-    n.out.resize(nonempty(n.send) * pn * size_t(nfield));
+    n.out.resize(values(n.send, n.send_start));
     double* o = n.out.data();
-    for (int q : n.send) {
-      if (count(q, comp) == 0) continue;
-      const double* b = c->patch_buf + size_t(c->patch_slot[q]) * pn * kNodeFields;
-      for (size_t i = 0; i < pn; ++i)
-        for (int f = 0; f < nfield; ++f) *o++ = b[i * kNodeFields + size_t(first + f)];
+    for (size_t i = 0; i < n.send.size(); ++i) {
+      if (count(n.send[i], comp) == 0) continue;
+      const double* b = buffer(n.send[i]);
+      for (int k = n.send_start[i]; k < n.send_start[i + 1]; ++k)
+        for (int f = 0; f < nfield; ++f) *o++ = b[size_t(n.send_nodes[size_t(k)]) * kNodeFields + size_t(f)];
     }
     bytes_sent_ += double(n.out.size()) * sizeof(double);
     if (!n.out.empty()) {
@@ -510,25 +565,51 @@ void MpiRanks::exchange_buffers(const StepContext* c, int first, int nfield) {
   check(MPI_Waitall(int(req.size()), req.data(), MPI_STATUSES_IGNORE), "buffer exchange");
   for (Neighbour& n : neighbours_) {
     const double* in = n.in.data();
-    for (int q : n.recv) {
-      if (count(q, comp) == 0) continue;
-      double* b = c->patch_buf + size_t(c->patch_slot[q]) * pn * kNodeFields;
-      for (size_t i = 0; i < pn; ++i)
-        for (int f = 0; f < nfield; ++f) b[i * kNodeFields + size_t(first + f)] = *in++;
+    for (size_t i = 0; i < n.recv.size(); ++i) {
+      if (count(n.recv[i], comp) == 0) continue;
+      double* b = buffer(n.recv[i]);
+      for (int k = n.recv_start[i]; k < n.recv_start[i + 1]; ++k)
+        for (int f = 0; f < nfield; ++f) b[size_t(n.recv_nodes[size_t(k)]) * kNodeFields + size_t(f)] = *in++;
     }
   }
 }
 
 void MpiRanks::exchange_columns(double* cols, int nf, bool outside) {
+  // The energy stage's columns (outside: one per patch, then the particles outside the
+  // grid, the last rank's) sum particles, so a patch without particles (counts_, the step's
+  // binning) has a column of zeros on every rank: only the others travel. The contact
+  // stage's sum nodes, which patches without particles have too: all of them travel.
+  auto travels = [&](int q) { return !outside || count(q, 0) > 0; };
   std::vector<int> cnt(static_cast<size_t>(size_)), disp(static_cast<size_t>(size_));
+  int total = 0;
   for (int u = 0; u < size_; ++u) {
-    const int n = first_[size_t(u) + 1] - first_[size_t(u)] + (outside && u == size_ - 1 ? 1 : 0);
+    int n = outside && u == size_ - 1 ? 1 : 0;
+    for (int q = first_[size_t(u)]; q < first_[size_t(u) + 1]; ++q) n += travels(q);
     cnt[size_t(u)] = nf * n;
-    disp[size_t(u)] = nf * first_[size_t(u)];
+    disp[size_t(u)] = total;
+    total += nf * n;
   }
+  std::vector<double> all(static_cast<size_t>(total));
+  // Rank u's columns in patch order, then (the last rank) the outside column; pack (true)
+  // copies them from cols into all, unpack (false) back.
+  auto copy = [&](int u, bool pack) {
+    double* a = all.data() + disp[size_t(u)];
+    auto one = [&](int q) {
+      double* col = cols + size_t(nf) * size_t(q);
+      if (pack) std::copy(col, col + nf, a);
+      else std::copy(a, a + nf, col);
+      a += nf;
+    };
+    for (int q = first_[size_t(u)]; q < first_[size_t(u) + 1]; ++q)
+      if (travels(q)) one(q);
+    if (outside && u == size_ - 1) one(int(owner_.size()));
+  };
+  copy(rank_, true);
   bytes_sent_ += double(cnt[size_t(rank_)]) * sizeof(double);
-  check(MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, cols, cnt.data(), disp.data(), MPI_DOUBLE, comm_),
+  check(MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, all.data(), cnt.data(), disp.data(), MPI_DOUBLE, comm_),
         "per-patch partials");
+  for (int u = 0; u < size_; ++u)
+    if (u != rank_) copy(u, false);
 }
 
 void MpiRanks::gather(const Particles& local_const, Particles& all) {

@@ -8,15 +8,18 @@ The particles of a Taylor bar (radius 3.8, length 25.4, the lattice spacing dp o
 cells of 2 dp, patches of 4^3 cells, the decks' boxes) are counted per patch; the ranks' patch
 runs are drawn by mpm3d's rule (contiguous patch indices, equal particle shares); for every
 rank the model counts what it sends in one MUSL step as cxx/ranks_mpi.cpp does:
-- the buffers of its non-empty patches next to another rank's patches, whole (125 nodes x 8
-  bytes x 7 fields for P2G, 3 for the remap), one copy per neighbouring rank;
+- of the buffers of its non-empty patches next to another rank's patches, the nodes inside
+  the node spans of that rank's patches (8 bytes x 7 fields for P2G, 3 for the remap; a
+  face neighbour's share is one layer of 25 of the 125 nodes), one copy per neighbouring
+  rank;
 - its contribution to the per-patch particle counts (4 bytes per patch of the grid, an
-  MPI_Allreduce) and its own columns of the energy partials (48 bytes per patch, an
-  MPI_Allgatherv), as the summary's rank_bytes_sent_per_step counts them;
+  MPI_Allreduce) and its own columns of the energy partials (48 bytes per non-empty patch,
+  an MPI_Allgatherv), as the summary's rank_bytes_sent_per_step counts them;
 - migrating particles are left out (a few KB a step in the measured runs).
 A step then costs compute = (the largest rank's particles) x ns per particle-step, plus
-communication = messages x latency + (the halo bytes a rank sends and receives + the npatch
-x 52 bytes every rank receives from the two per-patch collectives) / bandwidth, with the
+communication = messages x latency + (the halo bytes a rank sends and receives + the 4
+bytes per patch and 48 per non-empty patch every rank receives from the two per-patch
+collectives) / bandwidth, with the
 collectives at latency x log2(ranks) each (8 a step). Nothing overlaps (the implementation
 waits at each exchange). Efficiency = one rank's compute / (ranks x that step time).
 The last two columns are the same model with the two per-patch collectives replaced by
@@ -33,7 +36,7 @@ import math
 import numpy as np
 
 P = 4                 # cells per patch edge
-NODE_BYTES = 8 * (P + 1) ** 3
+OFFSETS = [(dx, dy, dz) for dz in (-1, 0, 1) for dy in (-1, 0, 1) for dx in (-1, 0, 1)]
 FIELDS_PER_STEP = 7 + 3  # MUSL: P2G (mass, momentum, force), remap (momentum)
 COLLECTIVES = 8          # counts, partials, outside, 2 health mins, signal, (dt max), gather-free
 BAR_R, BAR_L = 3.8, 25.4
@@ -80,42 +83,63 @@ def partition(counts, ranks):
     return first, owner
 
 
+def span_nodes(code):
+    """Nodes of a patch buffer ((P + 1)^3, trilinear) inside the node spans of the
+    neighbours whose OFFSETS index has its bit set in code: neighbour d's span is local
+    d P .. d P + P per axis."""
+    mark = np.zeros((P + 1,) * 3, dtype=bool)
+    for i, d in enumerate(OFFSETS):
+        if code >> i & 1:
+            lo = [max(0, e * P) for e in d]
+            hi = [min(P, e * P + P) for e in d]
+            mark[lo[2]:hi[2] + 1, lo[1]:hi[1] + 1, lo[0]:hi[0] + 1] = True
+    return int(mark.sum())
+
+
 def per_rank_sends(counts, npd, owner, ranks):
-    """Per rank: buffers sent (patch, neighbouring rank pairs) and neighbouring ranks."""
+    """Per rank: buffer nodes sent, (patch, neighbouring rank) pairs and neighbouring ranks."""
     nz, ny, nx = npd[2], npd[1], npd[0]
     own = owner.reshape(nz, ny, nx)
     filled = (counts > 0).reshape(nz, ny, nx)
-    pairs = np.zeros(ranks, dtype=np.int64)
-    nbr = [set() for _ in range(ranks)]
-    seen = set()
     zz, yy, xx = np.nonzero(filled)
-    for dz in (-1, 0, 1):
-        for dy in (-1, 0, 1):
-            for dx in (-1, 0, 1):
-                z2, y2, x2 = zz + dz, yy + dy, xx + dx
-                ok = (z2 >= 0) & (z2 < nz) & (y2 >= 0) & (y2 < ny) & (x2 >= 0) & (x2 < nx)
-                a = own[zz[ok], yy[ok], xx[ok]]
-                b = own[z2[ok], y2[ok], x2[ok]]
-                q = (zz[ok] * ny + yy[ok]) * nx + xx[ok]
-                for qi, ai, bi in zip(q[a != b], a[a != b], b[a != b]):
-                    if (qi, bi) not in seen:
-                        seen.add((qi, bi))
-                        pairs[ai] += 1
-                        nbr[ai].add(int(bi))
-    return pairs, [len(s) for s in nbr]
+    pq, pa, pb = [], [], []  # the (patch, sending rank, receiving rank) pairs
+    for dx, dy, dz in OFFSETS:
+        z2, y2, x2 = zz + dz, yy + dy, xx + dx
+        ok = (z2 >= 0) & (z2 < nz) & (y2 >= 0) & (y2 < ny) & (x2 >= 0) & (x2 < nx)
+        a = own[zz[ok], yy[ok], xx[ok]]
+        b = own[z2[ok], y2[ok], x2[ok]]
+        q = (zz[ok] * ny + yy[ok]) * nx + xx[ok]
+        pq.append(q[a != b]), pa.append(a[a != b]), pb.append(b[a != b])
+    key = np.unique(np.stack([np.concatenate(pq), np.concatenate(pb), np.concatenate(pa)]), axis=1)
+    q, b, a = key
+    # Which of q's 27 neighbours (itself included) rank b owns: one bit each.
+    qz, qy, qx = q // (nx * ny), (q // nx) % ny, q % nx
+    code = np.zeros(len(q), dtype=np.int64)
+    for i, (dx, dy, dz) in enumerate(OFFSETS):
+        z2, y2, x2 = qz + dz, qy + dy, qx + dx
+        ok = (z2 >= 0) & (z2 < nz) & (y2 >= 0) & (y2 < ny) & (x2 >= 0) & (x2 < nx)
+        o = np.full(len(q), -1)
+        o[ok] = own[z2[ok], y2[ok], x2[ok]]
+        code |= (o == b).astype(np.int64) << i
+    codes, inverse = np.unique(code, return_inverse=True)
+    nodes = np.array([span_nodes(int(c)) for c in codes])[inverse]
+    sent = np.bincount(a, weights=nodes, minlength=ranks)
+    nbrs = [len(set(b[a == u].tolist())) for u in range(ranks)]
+    return sent, np.bincount(a, minlength=ranks), nbrs
 
 
 def model(counts, npd, ranks, ns_pp, lat, bw):
     npatch = len(counts)
     first, owner = partition(counts, ranks)
     mine = np.array([counts[first[u]:first[u + 1]].sum() for u in range(ranks)])
-    pairs, nbrs = per_rank_sends(counts, npd, owner, ranks)
-    halo = pairs * NODE_BYTES * FIELDS_PER_STEP
-    cols = np.array([first[u + 1] - first[u] for u in range(ranks)])
+    nodes, pairs, nbrs = per_rank_sends(counts, npd, owner, ranks)
+    halo = nodes * 8 * FIELDS_PER_STEP
+    filled = counts > 0
+    cols = np.array([np.count_nonzero(filled[first[u]:first[u + 1]]) + (u == ranks - 1) for u in range(ranks)])
     sent = halo + (npatch + 1) * 4 + cols * 48
     compute = mine.max() * ns_pp * 1e-9
     latency = (2 * max(nbrs) * 2) * lat + COLLECTIVES * lat * math.log2(ranks)
-    comm = latency + (2 * halo.max() + npatch * 52) / bw
+    comm = latency + (2 * halo.max() + npatch * 4 + cols.sum() * 48) / bw
     # Neighbour-only counts (4 bytes per halo patch) and grouped partials (48 bytes per group).
     comm_scalable = latency + (2 * halo.max() + pairs.max() * 4 + (npatch // 4096 + 1) * 48) / bw
     serial = counts.sum() * ns_pp * 1e-9
