@@ -114,6 +114,7 @@ void scatter_mass_gradient(StepContext* c) {
   const int P = c->patch_cells, Q = P + 1 + 2 * c->patch_halo;
   const int pn = patch_nodes(c);
   const CellDecoder dec(c);
+  const StencilOffsets in_buffer(Q, Q);
   for_filled_patches(c, [&](int q, const int q3[3], double* buf) {
     zero_fields(buf, pn, 4, 3);
     for (int idx = c->patch_start[q]; idx < c->patch_start[q + 1]; ++idx) {
@@ -127,8 +128,8 @@ void scatter_mass_gradient(StepContext* c) {
       if (c->shape != 0) {
         GimpStencil st;
         gimp_stencil(c, dec, p, st);
-        const int base = gimp_patch_corner(c, q3, st);
-        for (int k = 0; k < 27; ++k) add(buf + size_t(base + stencil_offset(k, Q, Q)) * kNodeFields, st.G + 3 * k);
+        double* corner = buf + size_t(gimp_patch_corner(c, q3, st)) * kNodeFields;
+        for (int k = 0; k < 27; ++k) add(corner + size_t(in_buffer.of[k]) * kNodeFields, st.G + 3 * k);
       } else {
         double N[8], G[24];
         shape_linear(c->lx + 3 * p, c->inv_h, N, G);
