@@ -262,12 +262,14 @@ void Simulation::set_grid(const double origin[3], double h, const int deck_nc[3]
   grid.patch_part.assign(size_t(model.particles.np), 0);
   bind();
   lists_binned_ = false;  // the new grid's lists are empty until bin_particles or a step
+  reference_bin_holds_ = false;
 }
 
 void Simulation::bin_particles() {
   stages_.fn[ST_BIN](&ctx);
   if (model.contact) stages_.fn[ST_BIN](&ctx2);
   lists_binned_ = true;
+  reference_bin_holds_ = model.tl && !ranks;
   stats = patch_stats(grid, ctx.patch_start);
   // The patch buffers for these lists now, with the set-up, rather than in the first step:
   // their zero-filling and first touch (1.5 MB on taylor_coarse, 22 us a step averaged over
@@ -287,6 +289,7 @@ void Simulation::particles_changed() {
   // The per-particle scratch keeps its rows (the ranks may have binned them already, moving
   // them with the particles: StepContext::prebinned).
   const size_t np = size_t(model.particles.np);
+  reference_bin_holds_ = false;
   lx_.resize(3 * np, 0.0);
   cell_.resize(np, -1);
   grid.patch_part.resize(np, 0);
@@ -376,6 +379,10 @@ void Simulation::run_stage(int s) {
 
 void Simulation::bin_stage() {
   StepContext* c = &ctx;
+  // TLmp bins the reference positions (StepContext::xbin): with the grid and the particles
+  // those of the last bin, its cells, local coordinates, lists and slots are this step's,
+  // bit for bit (one process: ranks bin in their migration).
+  if (reference_bin_holds_) return;
   // The adaptive window: a scheduled regrid before binning; a regrid and a second binning
   // when a particle inside the deck's box has left the window, so that the window never
   // freezes a particle the box would not have frozen.
@@ -406,6 +413,7 @@ void Simulation::bin_stage() {
     }
   }
   stats = patch_stats(grid, c->patch_start);
+  reference_bin_holds_ = model.tl && !ranks;
   if (ranks) ranks->add_ghost_slots(*this);  // also the patch statistics of every rank's particles
   if (scheduled || escaped > 0) note_regrid(escaped);
   ensure_patch_buffers();

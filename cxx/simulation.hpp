@@ -127,6 +127,9 @@ class Simulation {
   std::vector<char> body_ie_warned_;
   bool kinetic_warned_ = false;
   bool lists_binned_ = false;  // the patch lists come from a bin of the current grid
+  // TLmp: the bin of the reference positions, which never move, still holds (the same grid
+  // and the same particles since it ran), so the bin stage has nothing to redo.
+  bool reference_bin_holds_ = false;
   // The current version's dt from the particle velocities (Model::dt_per_step).
   double velocity_time_step();
 };
