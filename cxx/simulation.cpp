@@ -266,6 +266,7 @@ void Simulation::set_grid(const double origin[3], double h, const int deck_nc[3]
 }
 
 void Simulation::bin_particles() {
+  ctx.sg_cached = ctx2.sg_cached = 0;
   stages_.fn[ST_BIN](&ctx);
   if (model.contact) stages_.fn[ST_BIN](&ctx2);
   lists_binned_ = true;
@@ -319,7 +320,6 @@ void Simulation::step() {
     ctx2.dt_int = c->dt_int;
     ctx2.time = c->time;
   }
-  ctx.sg_cached = ctx2.sg_cached = 0;  // the particles are binned again below
   // The scheme's row of the step table (step_order.c), walked as the Fortran driver does.
   int order[MPM3D_MAX_STEP_STAGES];
   const int nstage = mpm3d_step_order(c->scheme, order);
@@ -382,7 +382,8 @@ void Simulation::bin_stage() {
   // TLmp bins the reference positions (StepContext::xbin): with the grid and the particles
   // those of the last bin, its cells, local coordinates, lists and slots are this step's,
   // bit for bit (one process: ranks bin in their migration).
-  if (reference_bin_holds_) return;
+  if (reference_bin_holds_) return;  // and so do the sgmp weights cached from it
+  ctx.sg_cached = ctx2.sg_cached = 0;  // the particles are binned again below
   // The adaptive window: a scheduled regrid before binning; a regrid and a second binning
   // when a particle inside the deck's box has left the window, so that the window never
   // freezes a particle the box would not have frozen.

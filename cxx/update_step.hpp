@@ -103,10 +103,11 @@ struct StepContext {
   // contact component) are already those of the particles' positions (the ranks binned
   // them to decide which particles move): the bin stage then only builds the lists.
   int prebinned;
-  // C++ kernels' scratch (sgmp): nonzero once this step's C++ P2G has written sg_w and
-  // sg_cell, the weights of the particles' binned places, which the step's later scatters
-  // and the stress stage reuse (2: with sg_reach, for the scatters of several threads).
-  // The driver clears it before every step; the Fortran stages leave it alone.
+  // C++ kernels' scratch (sgmp): nonzero once a C++ scatter or stress stage has written
+  // sg_w and sg_cell, the weights of the particles' binned places, which the later stages
+  // reuse until the next bin (2: with sg_reach, for the scatters of several threads).
+  // The driver clears it whenever it bins (every step; TLmp once); the Fortran stages leave
+  // it alone.
   int sg_cached;
 };
 

@@ -86,7 +86,7 @@ module mpm3d_stage_common
     type(c_ptr) :: exchange_data = c_null_ptr
     type(c_ptr) :: order = c_null_ptr
     integer(c_int) :: prebinned = 0
-    ! The C++ kernels' scratch (not used here): sgmp's weights written this step.
+    ! The C++ kernels' scratch (not used here): sgmp's weights written since the last bin.
     integer(c_int) :: sg_cached = 0
   end type step_context
 
