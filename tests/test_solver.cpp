@@ -39,6 +39,11 @@ double max_abs(const std::vector<double>& v) {
   return m;
 }
 
+// The same values bit for bit.
+bool same_bits(const std::vector<double>& x, const std::vector<double>& y) {
+  return x.size() == y.size() && std::memcmp(x.data(), y.data(), x.size() * sizeof(double)) == 0;
+}
+
 // The exactness arguments below assume every node a particle touches carries more mass
 // than the small-mass cut-off (1e-5 * mean density * h^3), since lighter nodes are
 // skipped (as in the original) and then the shape functions no longer sum to one. The
@@ -262,16 +267,13 @@ TEST(Solver, TwoDeckLayoutsGiveBitIdenticalStates) {
   const auto& B = sb.model.particles;
   ASSERT_EQ(A.np, 128);
   ASSERT_EQ(B.np, 128);
-  auto same = [](const std::vector<double>& x, const std::vector<double>& y) {
-    return x.size() == y.size() && std::memcmp(x.data(), y.data(), x.size() * sizeof(double)) == 0;
-  };
-  EXPECT_TRUE(same(A.x, B.x));
-  EXPECT_TRUE(same(A.v, B.v));
-  EXPECT_TRUE(same(A.sig, B.sig));
-  EXPECT_TRUE(same(A.vol, B.vol));
-  EXPECT_TRUE(same(A.mass, B.mass));
-  EXPECT_TRUE(same(A.epeff, B.epeff));
-  EXPECT_TRUE(same(A.ie, B.ie));
+  EXPECT_TRUE(same_bits(A.x, B.x));
+  EXPECT_TRUE(same_bits(A.v, B.v));
+  EXPECT_TRUE(same_bits(A.sig, B.sig));
+  EXPECT_TRUE(same_bits(A.vol, B.vol));
+  EXPECT_TRUE(same_bits(A.mass, B.mass));
+  EXPECT_TRUE(same_bits(A.epeff, B.epeff));
+  EXPECT_TRUE(same_bits(A.ie, B.ie));
   EXPECT_TRUE(A.mat == B.mat);
   EXPECT_TRUE(A.body == B.body);
   // The comparison is not vacuous: the wall impact made the plastic block yield and
@@ -300,16 +302,13 @@ TEST(Solver, TotalLagrangianBinsItsReferencePositionsOnce) {
     EXPECT_GT(every.stage_seconds[ST_BIN], 0.0);
     const auto& A = once.model.particles;
     const auto& B = every.model.particles;
-    auto same = [](const std::vector<double>& x, const std::vector<double>& y) {
-      return x.size() == y.size() && std::memcmp(x.data(), y.data(), x.size() * sizeof(double)) == 0;
-    };
-    EXPECT_TRUE(same(A.x, B.x));
-    EXPECT_TRUE(same(A.v, B.v));
-    EXPECT_TRUE(same(A.sig, B.sig));
-    EXPECT_TRUE(same(A.pk1, B.pk1));
-    EXPECT_TRUE(same(A.defgrad, B.defgrad));
-    EXPECT_TRUE(same(A.vol, B.vol));
-    EXPECT_TRUE(same(A.ie, B.ie));
+    EXPECT_TRUE(same_bits(A.x, B.x));
+    EXPECT_TRUE(same_bits(A.v, B.v));
+    EXPECT_TRUE(same_bits(A.sig, B.sig));
+    EXPECT_TRUE(same_bits(A.pk1, B.pk1));
+    EXPECT_TRUE(same_bits(A.defgrad, B.defgrad));
+    EXPECT_TRUE(same_bits(A.vol, B.vol));
+    EXPECT_TRUE(same_bits(A.ie, B.ie));
     EXPECT_GT(max_abs(A.v), 0.0);  // the beam moves: the comparison is not vacuous
   }
 }
