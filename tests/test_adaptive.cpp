@@ -22,6 +22,7 @@
 #include "patch_loops.hpp"
 
 using testutil::RunResult;
+using testutil::same_bits;
 using testutil::TempDir;
 
 namespace {
@@ -29,11 +30,6 @@ namespace {
 const std::string kExe = MPM3D_EXE;
 const std::string kDecks = MPM3D_TEST_DECKS;
 const std::string kInputs = std::string(MPM3D_TEST_DECKS) + "/../../inputs";
-
-template <class T>
-bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
-}
 
 // Window rules after every step: inside the deck's box, boundary-condition faces at the
 // box, lower end on the deck's patch lattice, and every particle inside the box inside it.

@@ -10,8 +10,11 @@
 #include "data_in.hpp"
 #include "mpm3d.hpp"
 #include "stage_common.hpp"
+#include "test_util.hpp"
 
 namespace {
+
+using testutil::same_bits;
 
 // A deck of one or two blocks (dp = 0.5, h = 1) in an 8 x 8 x 8 box, no fixed faces.
 // Block 1: elastic, density 1, 4 x 4 x 4 particles from `origin`; block 2 (J2 plastic,
@@ -37,11 +40,6 @@ double max_abs(const std::vector<double>& v) {
   double m = 0;
   for (double x : v) m = std::max(m, std::fabs(x));
   return m;
-}
-
-// The same values bit for bit.
-bool same_bits(const std::vector<double>& x, const std::vector<double>& y) {
-  return x.size() == y.size() && std::memcmp(x.data(), y.data(), x.size() * sizeof(double)) == 0;
 }
 
 // The exactness arguments below assume every node a particle touches carries more mass

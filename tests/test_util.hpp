@@ -1,11 +1,12 @@
 // Helpers shared by the test programs: temporary directories, running the mpm3d program,
-// reading files back and a minimal JSON reader for the summary file.
+// reading files back, a minimal JSON reader for the summary file, bitwise comparison.
 #pragma once
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cctype>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -18,6 +19,12 @@
 namespace testutil {
 
 namespace fs = std::filesystem;
+
+// The same values bit for bit (memcmp: -0.0 differs from 0.0, a NaN equals its own bits).
+template <class T>
+bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
 
 // A fresh directory under the system temporary directory, removed on destruction.
 class TempDir {
