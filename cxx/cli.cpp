@@ -60,6 +60,8 @@ const char* kUsage =
     "  --kernel cxx|fortran       take every step stage from one language\n"
     "  --kernels STAGE=LANG,...   take single stages from a language (see --list-stages)\n"
     "  --list-stages      print the stage names, one per line\n"
+    "  --no-rest-skip     sgmp: compute the patches at rest too (the same results, slower;\n"
+    "                     see docs/PERFORMANCE.md)\n"
     "  --strict-energy    stop (exit 3) at the first energy warning: a body's internal energy\n"
     "                     below -0.1% of the initial total energy plus the external work, or\n"
     "                     the kinetic energy above that total by more than 0.1%\n"
@@ -75,7 +77,7 @@ struct Options {
   long regrid_every = -1;  // -1: the deck's
   std::string particle_order = "blocks";
   std::string time_step;  // "", "book" or "current"
-  bool no_output = false, quiet = false, hdf5 = false, patch_given = false, strict_energy = false;
+  bool no_output = false, quiet = false, hdf5 = false, patch_given = false, strict_energy = false, no_rest_skip = false;
 };
 
 // SIGINT/SIGTERM: the time loop finishes the current step, writes a checkpoint and exits
@@ -172,6 +174,8 @@ Options parse_args(int argc, char** argv, bool& exit_now) {
       for (const char* n : kStageNames) std::cout << n << "\n";
       exit_now = true;
       return o;
+    } else if (a == "--no-rest-skip") {
+      o.no_rest_skip = true;
     } else if (a == "--strict-energy") {
       o.strict_energy = true;
     } else if (a == "--quiet" || a == "-q") {
@@ -300,6 +304,7 @@ int run_main(int argc, char** argv, Ranks* ranks) {
     Simulation sim(std::move(model), patch_cells,
                    opt.particle_order == "deck" ? ParticleOrder::deck : ParticleOrder::blocks);
     sim.strict_energy = opt.strict_energy;
+    sim.skip_rest = !opt.no_rest_skip;
     if (!root) opt.quiet = true;  // the root reports for every rank
     {
       StageTable t = cxx_stages();
@@ -522,7 +527,8 @@ int run_main(int argc, char** argv, Ranks* ranks) {
          << ", " << sim.grid.nc[1] << ", " << sim.grid.nc[2] << "],\n  \"patches\": " << sim.stats.patches
          << ",\n  \"patches_empty\": " << sim.stats.empty << ",\n  \"patch_max_particles\": " << sim.stats.max
          << ",\n  \"patch_mean_particles\": " << json_number(sim.stats.mean)
-         << ",\n  \"patch_imbalance\": " << json_number(sim.stats.imbalance) << ",\n  \"stage_seconds\": {";
+         << ",\n  \"patch_imbalance\": " << json_number(sim.stats.imbalance)
+         << ",\n  \"rest_particle_steps\": " << sim.rest_particle_steps << ",\n  \"stage_seconds\": {";
       for (int st = 0; st < ST_COUNT; ++st)
         js << (st ? ", " : "") << "\"" << kStageNames[st] << "\": " << json_number(sim.stage_seconds[st]);
       js << "},\n  \"warnings\": [";

@@ -37,14 +37,16 @@ inline void team_position(int& t, int& T) {
 }
 
 // Patches [lo, hi) of thread t of T: the first patch whose list starts at or after the
-// thread's equal share of the binned particles, up to the next thread's.
+// thread's equal share of the binned particles, up to the next thread's (with patches at
+// rest, of the work: StepContext::patch_work).
 inline void thread_patches(const StepContext* c, int t, int T, int& lo, int& hi) {
   const int n = c->npatch;
-  const int64_t total = c->patch_start[n];
+  const int* start = c->patch_work ? c->patch_work : c->patch_start;
+  const int64_t total = start[n];
   auto first = [&](int u) -> int {
     if (u >= T) return n;
     const int target = int(total * u / T);
-    return int(std::lower_bound(c->patch_start, c->patch_start + n, target) - c->patch_start);
+    return int(std::lower_bound(start, start + n, target) - start);
   };
   lo = first(t);
   hi = first(t + 1);
@@ -61,6 +63,9 @@ inline void for_patches(const StepContext* c, F&& f) {
     for (int q = lo; q < hi; ++q) f(q);
   }
 }
+
+// Patch q is at rest this step (StepContext::sg_rest): no stage touches it.
+inline bool patch_at_rest(const StepContext* c, int q) { return c->sg_rest && c->sg_rest[q]; }
 
 // f(first, count) for every chunk of kListChunk entries of the patch lists (the last one
 // shorter); the static schedule gives each thread one contiguous run of chunks.

@@ -3,6 +3,8 @@
 // checks.
 #include "simulation.hpp"
 
+#include "constitution.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -19,6 +21,34 @@
 
 namespace mpm3d {
 namespace {
+
+// Patches at rest (sgmp): how far, in cells, the data of one step reaches. A particle's
+// update reads the cell centres of its auxiliary cell (one cell either side), which read
+// their corner nodes (one more), which gather the centres next to them (one more), which
+// the particles of their own and the neighbouring cells scatter to (one more): 3 cells from
+// the particles' start-of-step state to a G2P. MUSL's remap and stress go round once more
+// from the updated velocities (6 cells), and USF's G2P reads the forces of the stresses it
+// updated first (8). So a patch whose every patch within 8 cells holds only particles that
+// are still and at rest computes this step exactly what it computed in the step before.
+constexpr int kRestReachCells = 8;
+// The work of a particle of a patch at rest (binning, the scatter weights, the energy sums)
+// against one that is computed, for the threads' shares (thread_patches): about 1 to 8 on
+// SGDeto1k (docs/PERFORMANCE.md).
+constexpr int kMovingWork = 8;
+
+// Particle p, as it stands, would be left as it is by a step whose grid values near it are
+// all zero: its last G2P and stress update changed no bit of it (sg_still bits 0 and 1),
+// its velocity and stress are zero (either sign) and, an explosive, it is unlit at time t.
+inline bool particle_quiet(const StepContext* c, const unsigned char* still, int p, double t) {
+  if (still[p] != 3) return false;
+  const double* v = c->v + 3 * p;
+  if (v[0] != 0.0 || v[1] != 0.0 || v[2] != 0.0) return false;
+  const double* s = c->sig + 6 * size_t(p);
+  for (int k = 0; k < 6; ++k)
+    if (s[k] != 0.0) return false;
+  const MaterialParams& mp = c->mats[c->mat[p]];
+  return !(c->tlight && mp.type == MAT_HIEX) || burn_fraction(mp, c->tlight[p], t) == 0.0;
+}
 
 }  // namespace
 
@@ -172,6 +202,7 @@ void Simulation::bind() {
   c.sg_cell = model.sg ? sg_cell_.data() : nullptr;
   c.sg_reach = model.sg ? sg_reach_.data() : nullptr;
   c.sg = model.sg ? 1 : 0;
+  forget_rest();  // new arrays: nothing is known still
   bind_grid();  // before the contact copy: ctx2 starts as a copy of ctx
   if (model.contact) {
     // Two contexts over the same particles: each bins, scatters and updates the particles
@@ -266,6 +297,7 @@ void Simulation::set_grid(const double origin[3], double h, const int deck_nc[3]
 }
 
 void Simulation::bin_particles() {
+  forget_rest();  // the particles may have been replaced (a restart)
   ctx.sg_cached = ctx2.sg_cached = 0;
   stages_.fn[ST_BIN](&ctx);
   if (model.contact) stages_.fn[ST_BIN](&ctx2);
@@ -324,11 +356,16 @@ void Simulation::step() {
   int order[MPM3D_MAX_STEP_STAGES];
   const int nstage = mpm3d_step_order(c->scheme, order);
   if (nstage < 0) throw std::logic_error("unknown update scheme " + std::to_string(c->scheme));
+  c->sg_rest = nullptr;  // the bin stage shares the patches by their particles
+  c->patch_work = nullptr;
   for (int k = 0; k < nstage; ++k) {
     const int s = order[k];
     if (mpm3d_stage_needs_contact(s) && !contact) continue;
     if (s == ST_BIN) {
       bin_stage();
+      const auto t0 = std::chrono::steady_clock::now();
+      mark_rest();  // counted with the bin stage, as the quiet check at the step's end
+      stage_seconds[ST_BIN] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       continue;
     }
     run_stage(s);
@@ -336,6 +373,11 @@ void Simulation::step() {
       for (int a = 0; a < 3; ++a) contact_force[a] = c->result[5 + a];
       contact_nodes = c->ncontact;
     }
+  }
+  if (rest_on_) {  // over this step's lists, for the next step
+    const auto t0 = std::chrono::steady_clock::now();
+    quiet_patches(quiet_before_);
+    stage_seconds[ST_BIN] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
   outside = c->noutside + (contact ? ctx2.noutside : 0);
   if (ranks) outside = int(ranks->sum(outside));
@@ -365,6 +407,88 @@ double Simulation::velocity_time_step() {
   double dt = std::numeric_limits<double>::infinity();
   for (const MaterialParams& mp : model.mats) dt = std::min(dt, model.dcell / (mp.wave_speed + vmax));
   return dt * model.dtscale;
+}
+
+bool Simulation::rest_possible() const {
+  // Grid values at rest are zero momenta and forces only without gravity, loads and
+  // damping; one process, one grid, one current position per particle; and the still bits
+  // are written by the C++ G2P and stress stages, whose skipping the other stages share.
+  if (!skip_rest || !model.sg || model.tl || model.contact || ranks) return false;
+  if (model.has_gravity || model.has_loads || model.damping > 0.0 || model.dynamic_relaxation) return false;
+  const StageTable cxx = cxx_stages();
+  for (int s : {ST_BIN, ST_P2G, ST_FORCES, ST_INTEGRATE, ST_G2P, ST_STRESS})
+    if (stages_.fn[s] != cxx.fn[s]) return false;
+  return true;
+}
+
+void Simulation::forget_rest() {
+  still_.assign(model.sg ? size_t(model.particles.np) : 0, 0);
+  quiet_before_.clear();
+  ctx.sg_still = nullptr;
+  ctx.sg_rest = nullptr;
+  ctx.patch_work = nullptr;
+  rest_on_ = false;
+}
+
+void Simulation::quiet_patches(std::vector<unsigned char>& quiet) const {
+  const StepContext* c = &ctx;
+  const int npatch = c->npatch;
+  quiet.assign(size_t(npatch), 0);
+  const unsigned char* still = still_.data();
+  unsigned char* out = quiet.data();
+  const double t = c->time;
+#pragma omp parallel for schedule(static)
+  for (int q = 0; q < npatch; ++q) {
+    bool all = true;
+    for (int e = c->patch_start[q]; all && e < c->patch_start[q + 1]; ++e)
+      all = particle_quiet(c, still, c->patch_part[e], t);
+    out[q] = all ? 1 : 0;
+  }
+}
+
+void Simulation::mark_rest() {
+  StepContext* c = &ctx;
+  c->sg_still = nullptr;
+  c->sg_rest = nullptr;
+  c->patch_work = nullptr;
+  const bool on = rest_possible();
+  if (on != rest_on_) {
+    forget_rest();
+    rest_on_ = on;
+  }
+  if (!on) return;
+  const int npatch = c->npatch;
+  quiet_patches(quiet_);
+  // Quiet now over this step's lists and at the end of the step before over its lists: a
+  // particle that moved out of a patch's reach in that step was still listed there.
+  if (quiet_before_.size() != size_t(npatch)) quiet_before_.assign(size_t(npatch), 0);
+  for (int q = 0; q < npatch; ++q) quiet_[size_t(q)] = quiet_[size_t(q)] & quiet_before_[size_t(q)];
+  // At rest: every patch within kRestReachCells quiet, one axis at a time.
+  const int r = (kRestReachCells + c->patch_cells - 1) / c->patch_cells;
+  rest_ = quiet_;
+  ring_.assign(size_t(npatch), 0);
+  long stride = 1;
+  for (int a = 0; a < 3; ++a) {
+    const int len = c->npd[a];
+    for (int q = 0; q < npatch; ++q) {
+      const int i = int((q / stride) % len);
+      const int lo = i - r < 0 ? 0 : i - r, hi = i + r >= len ? len - 1 : i + r;
+      unsigned char all = 1;
+      for (int j = lo; j <= hi && all; ++j) all = rest_[size_t(q + (j - i) * stride)];
+      ring_[size_t(q)] = all;
+    }
+    rest_.swap(ring_);
+    stride *= len;
+  }
+  patch_work_.assign(size_t(npatch) + 1, 0);
+  for (int q = 0; q < npatch; ++q) {
+    const int n = c->patch_start[q + 1] - c->patch_start[q];
+    if (rest_[size_t(q)]) rest_particle_steps += n;
+    patch_work_[size_t(q) + 1] = patch_work_[size_t(q)] + n * (rest_[size_t(q)] ? 1 : kMovingWork);
+  }
+  c->sg_still = still_.data();
+  c->sg_rest = rest_.data();
+  c->patch_work = patch_work_.data();
 }
 
 void Simulation::run_stage(int s) {

@@ -275,6 +275,7 @@ extern "C" void mpm3d_cxx_integrate(StepContext* c) {
   double* mom = c->gmom;
   const double* f = c->gforce;
   for_patches(c, [&](int q) {
+    if (patch_at_rest(c, q)) return;  // p = 0 + 0 dt there
     const OwnedNodes o = owned_nodes(c, q);
     if (!o.active) return;
     // One node row as one run of 3 (hi - lo) values, which vectorises.

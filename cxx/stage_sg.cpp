@@ -22,6 +22,7 @@
 // fortran_ref/stage_sg.f90, the same operations in the same order.
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -40,7 +41,7 @@ template <class F>
 void for_active_cells(const StepContext* c, F&& f) {
   const int P = c->patch_cells;
   for_patches(c, [&](int q) {
-    if (!owned_nodes(c, q).active) return;
+    if (patch_at_rest(c, q) || !owned_nodes(c, q).active) return;
     int q3[3], lo[3], hi[3];
     patch_coords(c, q, q3);
     for (int a = 0; a < 3; ++a) {
@@ -80,6 +81,22 @@ inline void patch_centres(const StepContext* c, int q, int q3[3], int lo[3], int
   }
 }
 
+// Patch q and its neighbours are at rest: the scatters visit no entry of q (their centres
+// are not added to) and the stress stage skips q.
+inline bool rest_around(const StepContext* c, int q) {
+  if (!patch_at_rest(c, q)) return false;
+  int q3[3];
+  patch_coords(c, q, q3);
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int x = q3[0] + dx, y = q3[1] + dy, z = q3[2] + dz;
+        if (x < 0 || y < 0 || z < 0 || x >= c->npd[0] || y >= c->npd[1] || z >= c->npd[2]) continue;
+        if (!patch_at_rest(c, x + c->npd[0] * (y + c->npd[1] * z))) return false;
+      }
+  return true;
+}
+
 // Every patch-list entry's weights and centres (the P2G rule) into c->sg_w, sg_cell; with
 // kReach also which neighbour patches its corners fall in, into c->sg_reach (the scatters
 // of several threads).
@@ -87,6 +104,7 @@ template <bool kReach>
 void cache_weights(const StepContext* c) {
   const CellDecoder dec(c);
   for_patches(c, [&](int q) {
+    if (rest_around(c, q)) return;  // no stage reads these entries' weights
     int q3[3], lo[3], hi[3];
     patch_centres(c, q, q3, lo, hi);
     for (int e = c->patch_start[q]; e < c->patch_start[q + 1]; ++e) {
@@ -123,6 +141,7 @@ struct CornerPatches {
 // Fields first..first+count-1 of the centres of patches [lo, hi) set to zero.
 void zero_centres(const StepContext* c, int lo, int hi, int first, int count) {
   for (int q = lo; q < hi; ++q) {
+    if (patch_at_rest(c, q)) continue;  // its centres keep their sums
     int q3[3], clo[3], chi[3];
     patch_centres(c, q, q3, clo, chi);
     for (int k = clo[2]; k < chi[2]; ++k)
@@ -137,7 +156,8 @@ void zero_centres(const StepContext* c, int lo, int hi, int first, int count) {
 // Fields first..first+count-1 of this thread's centres set to zero (no other thread adds
 // to them), then f(p, cell[8], w[8], mask) for every particle that reaches them, mask bit
 // k set where its corner k is one of them: each centre's contributions in the canonical
-// order when f adds corners k = 0..7 (cache_weights<true> first).
+// order when f adds corners k = 0..7 (cache_weights<true> first). The centres of patches
+// at rest are neither zeroed nor added to.
 template <class F>
 void for_contributions_in_order(const StepContext* c, int first_field, int nfield, F&& f) {
   static const CornerPatches corners;
@@ -163,7 +183,7 @@ void for_contributions_in_order(const StepContext* c, int first_field, int nfiel
             const int x = r3[0] + dx, y = r3[1] + dy, z = r3[2] + dz;
             if (x < 0 || y < 0 || z < 0 || x >= c->npd[0] || y >= c->npd[1] || z >= c->npd[2]) continue;
             const int n = x + c->npd[0] * (y + c->npd[1] * z);
-            if (n >= lo && n < hi) mine |= 1u << ((dx + 1) + 3 * (dy + 1) + 9 * (dz + 1));
+            if (n >= lo && n < hi && !patch_at_rest(c, n)) mine |= 1u << ((dx + 1) + 3 * (dy + 1) + 9 * (dz + 1));
           }
       if (mine == 0) continue;
       const bool own = (mine >> 13 & 1u) != 0;  // r itself is this thread's
@@ -194,8 +214,9 @@ void scatter_in_order(StepContext* c, int first_field, int nfield, F&& add) {
 #ifdef _OPENMP
   threads = omp_get_max_threads();
 #endif
-  sg_ensure_weights(c, threads > 1);
-  if (threads > 1) {
+  const bool masked = threads > 1 || c->sg_rest;  // one thread's pass skips no centre
+  sg_ensure_weights(c, masked);
+  if (masked) {
     for_contributions_in_order(c, first_field, nfield, add);
     return;
   }
@@ -271,6 +292,7 @@ template <int what, bool pk1>
 void gather_to_nodes(StepContext* c) {
   const double cutoff = c->mass_cutoff, gs = 0.25 * c->inv_h;
   for_patches(c, [&](int q) {
+    if (patch_at_rest(c, q)) return;
     const OwnedNodes o = owned_nodes(c, q);
     if (!o.active) return;
     for (int k = o.lo[2]; k < o.hi[2]; ++k)
@@ -384,9 +406,7 @@ void sg_g2p(StepContext* c, bool remap) {
   });
   // Particles: each its own update.
   const CellDecoder dec(c);
-#pragma omp parallel for schedule(static)
-  for (int p = 0; p < c->np; ++p) {
-    if (c->cell[p] < 0) continue;
+  auto update = [&](int p) {
     int node[8];
     double w[8];
     sg_weights(c, dec, p, true, node, w);
@@ -401,6 +421,26 @@ void sg_g2p(StepContext* c, bool remap) {
       uz += w[k] * a[AUX_V + 2];
     }
     advance_particle(c, p, ax, ay, az, ux, uy, uz);
+  };
+  if (c->sg_rest) {
+    // The patches not at rest, each particle's still bit 1 set when x and v kept every bit.
+    for_patches(c, [&](int q) {
+      if (patch_at_rest(c, q)) return;
+      for (int e = c->patch_start[q]; e < c->patch_start[q + 1]; ++e) {
+        const int p = c->patch_part[e];
+        double before[6];
+        std::memcpy(before, c->x + 3 * size_t(p), sizeof(double) * 3);
+        std::memcpy(before + 3, c->v + 3 * size_t(p), sizeof(double) * 3);
+        update(p);
+        const bool same = std::memcmp(before, c->x + 3 * size_t(p), sizeof(double) * 3) == 0 &&
+                          std::memcmp(before + 3, c->v + 3 * size_t(p), sizeof(double) * 3) == 0;
+        c->sg_still[p] = static_cast<unsigned char>((c->sg_still[p] & 1u) | (same ? 2u : 0u));
+      }
+    });
+  } else {
+#pragma omp parallel for schedule(static)
+    for (int p = 0; p < c->np; ++p)
+      if (c->cell[p] >= 0) update(p);
   }
   if (!remap) return;
   // MUSL: the new particle momenta to the cell centres, then the nodes (no mass cut-off,

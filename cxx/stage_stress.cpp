@@ -79,6 +79,15 @@ void stress_run(StepContext* c, const CellDecoder& dec, const StressBlockArgs& a
       stress_block(mp, b, args);
     else
       for (int i = 0; i < n; ++i) stress_block_lane(mp, b, i, args);
+    if (c->sg_still) {
+      // Still bit 0: the update changed no bit of the stress state (and an explosive is
+      // unlit, so that the next step's burn fraction is the same zero).
+      const bool unlit_or_inert = mp.type != MAT_HIEX;
+      for (int i = 0; i < n; ++i) {
+        const bool same = stress_state_same(c, part[i], i, b) && (unlit_or_inert || b.burn[i] == 0.0);
+        c->sg_still[part[i]] = static_cast<unsigned char>((c->sg_still[part[i]] & 2u) | (same ? 1u : 0u));
+      }
+    }
     for (int i = 0; i < n; ++i) stress_block_store(c, part[i], i, b);
     n = 0;
   };
@@ -119,6 +128,14 @@ void stress_sg(StepContext* c) {
   auto gradient = [&](const CellDecoder&, int e, int, double* L) {
     sg_velocity_gradient(c, c->sg_cell + 8 * size_t(e), c->sg_w + 8 * size_t(e), L);
   };
+  if (c->sg_rest) {  // the patches not at rest, shared by their work
+    for_patches(c, [&](int q) {
+      if (patch_at_rest(c, q)) return;
+      const int first = c->patch_start[q];
+      stress_run(c, dec, args, c->patch_part, first, c->patch_start[q + 1] - first, gradient);
+    });
+    return;
+  }
   for_list_chunks(c, [&](int first, int count) { stress_run(c, dec, args, c->patch_part, first, count, gradient); });
 }
 
@@ -130,6 +147,7 @@ double* node_velocities(StepContext* c) {
   const double cutoff = c->mass_cutoff;
   double* gvel = c->gforce;
   for_patches(c, [&](int q) {
+    if (patch_at_rest(c, q)) return;
     const OwnedNodes o = owned_nodes(c, q);
     if (!o.active) return;
     for_owned_nodes(c, o, [&](int n) {

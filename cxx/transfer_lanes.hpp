@@ -13,6 +13,7 @@
 // the baseline instruction set, transfer_lanes_avx2.cpp for AVX2 (the *_avx2 functions
 // declared at the end); each unit has its own copies (internal linkage).
 #pragma once
+#include <cstring>
 #include "constitution.hpp"
 #include "constitution_lanes.hpp"
 #include "lanes.hpp"
@@ -240,6 +241,20 @@ inline void stress_block_load(const StepContext* c, const MaterialParams& mp, in
     for (int r = 0; r < 9; ++r) b.H[r][i] = c->defgrad[9 * size_t(p) + size_t(r)];
   if (c->pk1)
     for (int r = 0; r < 9; ++r) b.pk1[r][i] = c->pk1[9 * size_t(p) + size_t(r)];
+}
+
+// The stress state of lane i of b is that of particle p, bit for bit.
+inline bool stress_state_same(const StepContext* c, int p, int i, const StressBlock& b) {
+  auto same = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+  bool s = same(c->vol[p], b.vol[i]) && same(c->epeff[p], b.epeff[i]) && same(c->ie[p], b.ie[i]);
+  for (int k = 0; k < 6; ++k) s = s && same(c->sig[6 * p + k], b.sig[k][i]);
+  if (c->temp) s = s && same(c->temp[p], b.temp[i]);
+  if (c->qv) s = s && same(c->qv[p], b.qv[i]);
+  if (c->defgrad)
+    for (int r = 0; r < 9; ++r) s = s && same(c->defgrad[9 * size_t(p) + size_t(r)], b.H[r][i]);
+  if (c->pk1)
+    for (int r = 0; r < 9; ++r) s = s && same(c->pk1[9 * size_t(p) + size_t(r)], b.pk1[r][i]);
+  return s;
 }
 
 inline void stress_block_store(StepContext* c, int p, int i, const StressBlock& b) {

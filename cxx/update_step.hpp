@@ -109,6 +109,17 @@ struct StepContext {
   // The driver clears it whenever it bins (every step; TLmp once); the Fortran stages leave
   // it alone.
   int sg_cached;
+  // sgmp, C++ kernels only: patches at rest (null when the driver does not look for them;
+  // docs/ARCHITECTURE.md "Patches at rest"). sg_still (np): bit 0 set by the stress stage
+  // when its update left the particle's stress state bit for bit as it was (unburnt
+  // explosive: burn fraction 0), bit 1 by G2P when it left x and v so. sg_rest (npatch): 1
+  // where every particle within the reach of one step's data flow is still and at rest:
+  // every stage skips the patch, whose values stay those of the step before, the same bits.
+  // patch_work (npatch + 1): prefix sums of the patches' work, by which thread_patches
+  // shares them (null: the particle counts, patch_start).
+  unsigned char* sg_still;
+  const unsigned char* sg_rest;
+  const int* patch_work;
 };
 
 typedef void (*StageFn)(StepContext*);

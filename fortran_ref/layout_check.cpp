@@ -11,13 +11,13 @@
 // noutside is the last int before the pointer tlight: the padding before tlight would hide
 // one int missing from the ints there, so its own offset is checked.
 
-extern "C" void mpm3d_f_context_layout(size_t out[24]);
+extern "C" void mpm3d_f_context_layout(size_t out[25]);
 extern "C" void mpm3d_f_step_constants(int out[14]);
 
 int main() {
-  size_t f[24];
+  size_t f[25];
   mpm3d_f_context_layout(f);
-  const size_t c[24] = {sizeof(StepContext),
+  const size_t c[25] = {sizeof(StepContext),
                        offsetof(StepContext, result),
                        offsetof(StepContext, np),
                        offsetof(StepContext, fix),
@@ -40,17 +40,18 @@ int main() {
                        offsetof(StepContext, exchange),
                        offsetof(StepContext, order),
                        offsetof(StepContext, prebinned),
-                       offsetof(StepContext, sg_cached)};
-  const char* what[24] = {"sizeof(StepContext)", "offsetof(result)", "offsetof(np)", "offsetof(fix)",
+                       offsetof(StepContext, sg_cached),
+                       offsetof(StepContext, patch_work)};
+  const char* what[25] = {"sizeof(StepContext)", "offsetof(result)", "offsetof(np)", "offsetof(fix)",
                          "offsetof(noutside)", "sizeof(MaterialParams)", "offsetof(eos_e0)",
                          "offsetof(eos_type)", "offsetof(bulk_q2)", "offsetof(dp_tension)", "offsetof(cell_off)",
                          "offsetof(psize)", "offsetof(ncontact)",
                          "offsetof(defgrad)", "offsetof(uvf)", "offsetof(damping)", "offsetof(tl)",
                          "offsetof(fix_layers)", "offsetof(aux)", "offsetof(sg)",
                          "offsetof(exchange)", "offsetof(order)", "offsetof(prebinned)",
-                         "offsetof(sg_cached)"};
+                         "offsetof(sg_cached)", "offsetof(patch_work)"};
   int bad = 0;
-  for (int i = 0; i < 24; ++i) {
+  for (int i = 0; i < 25; ++i) {
     const bool ok = c[i] == f[i];
     std::printf("%-24s C %4zu  Fortran %4zu%s\n", what[i], c[i], f[i], ok ? "" : "  MISMATCH");
     if (!ok) bad = 1;

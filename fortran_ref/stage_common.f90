@@ -88,6 +88,8 @@ module mpm3d_stage_common
     integer(c_int) :: prebinned = 0
     ! The C++ kernels' scratch (not used here): sgmp's weights written since the last bin.
     integer(c_int) :: sg_cached = 0
+    ! The C++ kernels' scratch (not used here): sgmp's patches at rest and the work shares.
+    type(c_ptr) :: sg_still = c_null_ptr, sg_rest = c_null_ptr, patch_work = c_null_ptr
   end type step_context
 
   ! step_context%exchange's kinds (cxx/update_step.hpp ExchangeKind).
@@ -246,7 +248,7 @@ contains
   ! Layout of step_context and material_params as this compiler sees them (for the
   ! layout test against the C structs): sizes and a few offsets, in bytes.
   subroutine mpm3d_f_context_layout(out) bind(C, name='mpm3d_f_context_layout')
-    integer(c_size_t), intent(out) :: out(24)
+    integer(c_size_t), intent(out) :: out(25)
     type(step_context), target :: c
     type(material_params), target :: m(2)
     out(1) = c_sizeof(c)
@@ -273,6 +275,7 @@ contains
     out(22) = transfer(c_loc(c%order), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
     out(23) = transfer(c_loc(c%prebinned), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
     out(24) = transfer(c_loc(c%sg_cached), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
+    out(25) = transfer(c_loc(c%patch_work), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
   end subroutine mpm3d_f_context_layout
 
 end module mpm3d_stage_common
