@@ -406,7 +406,7 @@ void sg_g2p(StepContext* c, bool remap) {
   });
   // Particles: each its own update.
   const CellDecoder dec(c);
-  auto update = [&](int p) {
+  auto update = [&](int p) __attribute__((always_inline)) {  // inlined in both loops below
     int node[8];
     double w[8];
     sg_weights(c, dec, p, true, node, w);

@@ -2,6 +2,7 @@
 """mpm3d against the current MPM3D-F90 itself, side by side, on its public decks.
 
 usage: tools/current_speed.py BUILD_DIR ORIGINAL_EXE [--threads 2[,4,...]] [--rounds 3] [--steps 1000]
+                              [--decks NAME[,NAME...]]
 
 ORIGINAL_EXE is the current public program built on this machine (it is not part of the
 repository: build it from github.com/xzhang66/MPM3D-F90 at commit 4a6275f for this
@@ -67,12 +68,16 @@ def main():
     ap.add_argument("--threads", default="2", help="thread counts, comma separated")
     ap.add_argument("--rounds", type=int, default=3)
     ap.add_argument("--steps", type=int, default=1000)
+    ap.add_argument("--decks", default="", help="only the decks whose names contain one of these, comma separated")
     a = ap.parse_args()
+    wanted = [w for w in a.decks.split(",") if w]
     threads = [int(t) for t in a.threads.split(",")]
     mpm3d = os.path.join(os.path.abspath(a.build), "cxx", "mpm3d")
     original = os.path.abspath(a.original)
     print("%-38s %7s %10s %10s %8s" % ("deck", "threads", "orig ns", "mpm3d ns", "ratio"))
     for name in sorted(f[:-4] for f in os.listdir(DECKS) if f.endswith(".mpm")):
+        if wanted and not any(w in name for w in wanted):
+            continue
         with open(os.path.join(REFS, name, "EnergyPlot.dat")) as f:
             times = [float(l.split()[0]) for l in f if l.strip()]
         end = times[min(a.steps, len(times)) - 1]
