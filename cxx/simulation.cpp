@@ -364,8 +364,8 @@ void Simulation::step() {
     if (s == ST_BIN) {
       bin_stage();
       const auto t0 = std::chrono::steady_clock::now();
-      mark_rest();  // counted with the bin stage, as the quiet check at the step's end
-      stage_seconds[ST_BIN] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      mark_rest();  // when on, counted with the bin stage, as the quiet check at the step's end
+      if (rest_on_) stage_seconds[ST_BIN] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       continue;
     }
     run_stage(s);
