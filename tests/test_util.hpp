@@ -23,7 +23,8 @@ namespace fs = std::filesystem;
 // The same values bit for bit (memcmp: -0.0 differs from 0.0, a NaN equals its own bits).
 template <class T>
 bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+  // An empty vector's data() may be null, which memcmp must not get even for 0 bytes.
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 
 // A fresh directory under the system temporary directory, removed on destruction.
