@@ -363,9 +363,12 @@ void Simulation::step() {
     if (mpm3d_stage_needs_contact(s) && !contact) continue;
     if (s == ST_BIN) {
       bin_stage();
-      const auto t0 = std::chrono::steady_clock::now();
-      mark_rest();  // when on, counted with the bin stage, as the quiet check at the step's end
-      if (rest_on_) stage_seconds[ST_BIN] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      const bool rest = rest_possible();
+      if (rest != rest_on_) {  // switched on or off: nothing is known still
+        forget_rest();
+        rest_on_ = rest;
+      }
+      if (rest) timed(ST_BIN, [&] { mark_rest(); });  // with the bin stage, as the quiet check below
       continue;
     }
     run_stage(s);
@@ -374,11 +377,7 @@ void Simulation::step() {
       contact_nodes = c->ncontact;
     }
   }
-  if (rest_on_) {  // over this step's lists, for the next step
-    const auto t0 = std::chrono::steady_clock::now();
-    quiet_patches(quiet_before_);
-    stage_seconds[ST_BIN] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  }
+  if (rest_on_) timed(ST_BIN, [&] { quiet_patches(quiet_before_); });  // this step's lists, for the next
   outside = c->noutside + (contact ? ctx2.noutside : 0);
   if (ranks) outside = int(ranks->sum(outside));
   kinetic = c->result[0];
@@ -448,15 +447,6 @@ void Simulation::quiet_patches(std::vector<unsigned char>& quiet) const {
 
 void Simulation::mark_rest() {
   StepContext* c = &ctx;
-  c->sg_still = nullptr;
-  c->sg_rest = nullptr;
-  c->patch_work = nullptr;
-  const bool on = rest_possible();
-  if (on != rest_on_) {
-    forget_rest();
-    rest_on_ = on;
-  }
-  if (!on) return;
   const int npatch = c->npatch;
   quiet_patches(quiet_);
   // Quiet now over this step's lists and at the end of the step before over its lists: a
@@ -492,13 +482,8 @@ void Simulation::mark_rest() {
 }
 
 void Simulation::run_stage(int s) {
-  auto run1 = [&](StepContext* x) {
-    const auto t0 = std::chrono::steady_clock::now();
-    stages_.fn[s](x);
-    stage_seconds[s] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  };
-  run1(&ctx);
-  if (model.contact && mpm3d_stage_per_component(s)) run1(&ctx2);
+  timed(s, [&] { stages_.fn[s](&ctx); });
+  if (model.contact && mpm3d_stage_per_component(s)) timed(s, [&] { stages_.fn[s](&ctx2); });
 }
 
 void Simulation::bin_stage() {
@@ -512,15 +497,9 @@ void Simulation::bin_stage() {
   // when a particle inside the deck's box has left the window, so that the window never
   // freezes a particle the box would not have frozen.
   const bool scheduled = regrid_every > 0 && steps > 0 && steps % regrid_every == 0;
-  if (scheduled) {
-    const auto t0 = std::chrono::steady_clock::now();
-    regrid(0);
-    stage_seconds[ST_BIN] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  }
+  if (scheduled) timed(ST_BIN, [&] { regrid(0); });
   auto migrate = [&]() {  // the ranks' binning and migration: part of the bin stage's time
-    const auto t0 = std::chrono::steady_clock::now();
-    ranks->migrate(*this);
-    stage_seconds[ST_BIN] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    timed(ST_BIN, [&] { ranks->migrate(*this); });
   };
   if (ranks) migrate();
   run_stage(ST_BIN);
@@ -530,9 +509,7 @@ void Simulation::bin_stage() {
     if (c->noutside > 0) escaped = count_escaped(grid, c->x, c->cell, c->np);
     if (ranks) escaped = int(ranks->sum(escaped));
     if (escaped > 0) {
-      const auto t0 = std::chrono::steady_clock::now();
-      regrid(escaped);
-      stage_seconds[ST_BIN] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      timed(ST_BIN, [&] { regrid(escaped); });
       if (ranks) migrate();  // the new window's patches, drawn over the ranks again
       run_stage(ST_BIN);
     }

@@ -2,6 +2,7 @@
 // the model one step at a time with a table of stage kernels (set-up, step, regrid,
 // measure, health and energy checks); HealthError and the bounds of the health check.
 #pragma once
+#include <chrono>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -115,6 +116,13 @@ class Simulation {
   // Stage s of the table (stages_), timed, on component 1's context and, with contact and
   // when the stage runs per component, on component 2's.
   void run_stage(int s);
+  // f(), its wall time added to stage s's.
+  template <class F>
+  void timed(int s, F&& f) {
+    const auto t0 = std::chrono::steady_clock::now();
+    f();
+    stage_seconds[s] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
   // The bin stage with the adaptive window around it (regrids), then the patch buffers.
   void bin_stage();
   void regrid(int escaped);
@@ -144,7 +152,7 @@ class Simulation {
   bool rest_on_ = false;       // rest_possible() held in the last step
   bool rest_possible() const;  // the deck and the stage table allow skipping patches at rest
   void quiet_patches(std::vector<unsigned char>& quiet) const;
-  void mark_rest();    // after the bin stage: sg_rest, patch_work for this step
+  void mark_rest();    // after the bin stage, when possible: sg_rest, patch_work for this step
   void forget_rest();  // the particles or the grid changed: nothing is known still
 };
 

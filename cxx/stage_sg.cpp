@@ -81,10 +81,10 @@ inline void patch_centres(const StepContext* c, int q, int q3[3], int lo[3], int
   }
 }
 
-// Patch q and its neighbours are at rest: the scatters visit no entry of q (their centres
-// are not added to) and the stress stage skips q.
-inline bool rest_around(const StepContext* c, int q) {
-  if (!patch_at_rest(c, q)) return false;
+// f(n, k) for patch q and each patch n next to it, k = (dx + 1) + 3 (dy + 1) + 9 (dz + 1)
+// its place among the 27 (13: q itself).
+template <class F>
+inline void for_patches_around(const StepContext* c, int q, F&& f) {
   int q3[3];
   patch_coords(c, q, q3);
   for (int dz = -1; dz <= 1; ++dz)
@@ -92,9 +92,17 @@ inline bool rest_around(const StepContext* c, int q) {
       for (int dx = -1; dx <= 1; ++dx) {
         const int x = q3[0] + dx, y = q3[1] + dy, z = q3[2] + dz;
         if (x < 0 || y < 0 || z < 0 || x >= c->npd[0] || y >= c->npd[1] || z >= c->npd[2]) continue;
-        if (!patch_at_rest(c, x + c->npd[0] * (y + c->npd[1] * z))) return false;
+        f(x + c->npd[0] * (y + c->npd[1] * z), (dx + 1) + 3 * (dy + 1) + 9 * (dz + 1));
       }
-  return true;
+}
+
+// Patch q and its neighbours are at rest: the scatters visit no entry of q (their centres
+// are not added to) and the stress stage skips q.
+inline bool rest_around(const StepContext* c, int q) {
+  if (!patch_at_rest(c, q)) return false;
+  bool all = true;
+  for_patches_around(c, q, [&](int n, int) { all = all && patch_at_rest(c, n); });
+  return all;
 }
 
 // Every patch-list entry's weights and centres (the P2G rule) into c->sg_w, sg_cell; with
@@ -174,17 +182,10 @@ void for_contributions_in_order(const StepContext* c, int first_field, int nfiel
     const int last = hi + layer < c->npatch ? hi + layer : c->npatch;
     for (int r = lo < hi ? first : last; r < last; ++r) {
       if (c->patch_start[r] == c->patch_start[r + 1]) continue;
-      int r3[3];
-      patch_coords(c, r, r3);
-      uint32_t mine = 0;  // bit n: neighbour n of r is one of this thread's patches
-      for (int dz = -1; dz <= 1; ++dz)
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx) {
-            const int x = r3[0] + dx, y = r3[1] + dy, z = r3[2] + dz;
-            if (x < 0 || y < 0 || z < 0 || x >= c->npd[0] || y >= c->npd[1] || z >= c->npd[2]) continue;
-            const int n = x + c->npd[0] * (y + c->npd[1] * z);
-            if (n >= lo && n < hi && !patch_at_rest(c, n)) mine |= 1u << ((dx + 1) + 3 * (dy + 1) + 9 * (dz + 1));
-          }
+      uint32_t mine = 0;  // bit k: neighbour k of r is one of this thread's patches
+      for_patches_around(c, r, [&](int n, int k) {
+        if (n >= lo && n < hi && !patch_at_rest(c, n)) mine |= 1u << k;
+      });
       if (mine == 0) continue;
       const bool own = (mine >> 13 & 1u) != 0;  // r itself is this thread's
       for (int e = c->patch_start[r]; e < c->patch_start[r + 1]; ++e) {
