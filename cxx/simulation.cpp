@@ -194,7 +194,7 @@ void Simulation::bind() {
   if (model.sg) aux_.assign(size_t(kAuxFields) * size_t(grid.nc[0]) * size_t(grid.nc[1]) * size_t(grid.nc[2]), 0.0);
   c.aux = model.sg ? aux_.data() : nullptr;
   if (model.sg) {
-    sg_w_.assign(8 * size_t(P.np), 0.0);
+    sg_w_.assign(size_t(kSgWeights) * size_t(P.np), 0.0);
     sg_cell_.assign(8 * size_t(P.np), 0);
     sg_reach_.assign(size_t(P.np), 0);
   }

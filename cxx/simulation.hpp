@@ -105,7 +105,7 @@ class Simulation {
   std::vector<double> partials_;  // the energy stage's columns (kReduceFields, npatch + 1)
   std::vector<int> cell_, pscratch_;
   std::vector<double> aux_;  // sgmp: the cell centres' fields (kAuxFields per cell)
-  std::vector<double> sg_w_;  // sgmp: the scatters' weights per patch-list entry (8 each)
+  std::vector<double> sg_w_;  // sgmp: the weights per patch-list entry (P2G's 8, G2P's 8)
   std::vector<int> sg_cell_;  // sgmp: and their centres (8 each)
   std::vector<unsigned char> sg_reach_;  // sgmp: and the neighbour patches they reach
   std::vector<double> gravity_;

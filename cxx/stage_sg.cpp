@@ -105,7 +105,7 @@ inline bool rest_around(const StepContext* c, int q) {
   return all;
 }
 
-// Every patch-list entry's weights and centres (the P2G rule) into c->sg_w, sg_cell; with
+// Every patch-list entry's weights (both rules) and centres into c->sg_w, sg_cell; with
 // kReach also which neighbour patches its corners fall in, into c->sg_reach (the scatters
 // of several threads).
 template <bool kReach>
@@ -117,7 +117,7 @@ void cache_weights(const StepContext* c) {
     patch_centres(c, q, q3, lo, hi);
     for (int e = c->patch_start[q]; e < c->patch_start[q + 1]; ++e) {
       int r[6];  // the corners' cells per axis: lo[3], hi[3]
-      sg_corner_weights(c, dec, c->patch_part[e], false, r, r + 3, c->sg_w + 8 * size_t(e));
+      sg_corner_weights(c, dec, c->patch_part[e], r, r + 3, sg_p2g_weights(c, e), sg_g2p_weights(c, e));
       for (int k = 0; k < 8; ++k) c->sg_cell[8 * size_t(e) + k] = sg_corner_cell(c, r, r + 3, k);
       if (!kReach) continue;
       unsigned reach = 0;
@@ -146,6 +146,16 @@ struct CornerPatches {
   }
 };
 
+// Bit k set where the weight of corner k is not zero. A zero weight's terms are +-0 (of
+// finite values), and a sum started at +0.0 is never -0.0 (x + y is -0.0 only for two
+// -0.0), so adding them changes no bit: the scatters skip them. A one-cell axis with held
+// faces (the current decks' thin models) has a zero weight on one side, half the corners.
+inline unsigned nonzero_corners(const double w[8]) {
+  unsigned m = 0;
+  for (int k = 0; k < 8; ++k) m |= (w[k] != 0.0 ? 1u : 0u) << k;
+  return m;
+}
+
 // Fields first..first+count-1 of the centres of patches [lo, hi) set to zero.
 void zero_centres(const StepContext* c, int lo, int hi, int first, int count) {
   for (int q = lo; q < hi; ++q) {
@@ -163,9 +173,10 @@ void zero_centres(const StepContext* c, int lo, int hi, int first, int count) {
 
 // Fields first..first+count-1 of this thread's centres set to zero (no other thread adds
 // to them), then f(p, cell[8], w[8], mask) for every particle that reaches them, mask bit
-// k set where its corner k is one of them: each centre's contributions in the canonical
-// order when f adds corners k = 0..7 (cache_weights<true> first). The centres of patches
-// at rest are neither zeroed nor added to.
+// k set where its corner k is one of them and its weight is not zero (nonzero_corners):
+// each centre's contributions in the canonical order when f adds corners k = 0..7
+// (cache_weights<true> first). The centres of patches at rest are neither zeroed nor
+// added to.
 template <class F>
 void for_contributions_in_order(const StepContext* c, int first_field, int nfield, F&& f) {
   static const CornerPatches corners;
@@ -199,16 +210,16 @@ void for_contributions_in_order(const StepContext* c, int first_field, int nfiel
           if (mask == 0) continue;
         }
         double w[8];  // a local copy: the centres' sums cannot alias it
-        for (int k = 0; k < 8; ++k) w[k] = c->sg_w[8 * size_t(e) + k];
-        f(c->patch_part[e], c->sg_cell + 8 * size_t(e), w, mask);
+        for (int k = 0; k < 8; ++k) w[k] = sg_p2g_weights(c, e)[k];
+        f(c->patch_part[e], c->sg_cell + 8 * size_t(e), w, mask & nonzero_corners(w));
       }
     }
   }
 }
 
 // Fields first..first+count-1 of every centre set to zero, then add(p, cell[8], w[8], mask)
-// in the canonical order of every centre's sum: one pass on one thread, the owners'
-// passes on more.
+// (mask: the corners of nonzero weight) in the canonical order of every centre's sum: one
+// pass on one thread, the owners' passes on more.
 template <class F>
 void scatter_in_order(StepContext* c, int first_field, int nfield, F&& add) {
   int threads = 1;
@@ -225,8 +236,8 @@ void scatter_in_order(StepContext* c, int first_field, int nfield, F&& add) {
   const int total = c->patch_start[c->npatch];
   for (int e = 0; e < total; ++e) {
     double w[8];  // a local copy: the centres' sums cannot alias it
-    for (int k = 0; k < 8; ++k) w[k] = c->sg_w[8 * size_t(e) + k];
-    add(c->patch_part[e], c->sg_cell + 8 * size_t(e), w, 0xFFu);
+    for (int k = 0; k < 8; ++k) w[k] = sg_p2g_weights(c, e)[k];
+    add(c->patch_part[e], c->sg_cell + 8 * size_t(e), w, nonzero_corners(w));
   }
 }
 
@@ -243,7 +254,8 @@ void scatter_fields(StepContext* c) {
   scatter_in_order(c, kMassMom ? AUX_M : AUX_FB, (kMassMom ? 4 : 0) + (kForces ? 12 : 0), [&](int p, const int* cell, const double* w, unsigned mask) {
     const double mp = c->mass[p];
     const double* vp = c->v + 3 * p;
-    const double mv[4] = {1.0, vp[0], vp[1], vp[2]};  // m w (1, v): the mass and momentum
+    const double vx = vp[0], vy = vp[1], vz = vp[2];  // (an array built here and read in
+                                                      // vector lanes stalls the loads)
     double vs[kNs > 0 ? kNs : 1], fb[3] = {0, 0, 0};
     if (kForces) {
       if (kNs == 9) {
@@ -254,14 +266,16 @@ void scatter_fields(StepContext* c) {
       }
       if (with_body) particle_body_force(c, p, fb);
     }
-    for (int k = 0; k < 8; ++k) {
-      if (!(mask >> k & 1u)) continue;
+    for (unsigned left = mask; left != 0; left &= left - 1) {  // corners in ascending order
+      const int k = __builtin_ctz(left);
       double* a = aux_cell(c, cell[k]);
       const double wk = w[k];
       if (kMassMom) {
-        const double mn = mp * wk;
-#pragma omp simd
-        for (int d = 0; d < 4; ++d) a[AUX_M + d] += mn * mv[d];
+        const double mn = mp * wk;  // the mass and momentum m w (1, v)
+        a[AUX_M] += mn;
+        a[AUX_P + 0] += mn * vx;
+        a[AUX_P + 1] += mn * vy;
+        a[AUX_P + 2] += mn * vz;
       }
       if (kForces) {
         if (with_body)
@@ -405,15 +419,14 @@ void sg_g2p(StepContext* c, bool remap) {
       a[AUX_A + d] = acc[d];
     }
   });
-  // Particles: each its own update.
-  const CellDecoder dec(c);
-  auto update = [&](int p) __attribute__((always_inline)) {  // inlined in both loops below
-    int node[8];
-    double w[8];
-    sg_weights(c, dec, p, true, node, w);
+  // Particles: each its own update, with its entry's weights of this step.
+  sg_ensure_weights(c, false);
+  auto update = [&](int e) __attribute__((always_inline)) {  // inlined in both loops below
+    const int* cell = c->sg_cell + 8 * size_t(e);
+    const double* w = sg_g2p_weights(c, e);
     double ax = 0.0, ay = 0.0, az = 0.0, ux = 0.0, uy = 0.0, uz = 0.0;
     for (int k = 0; k < 8; ++k) {
-      const double* a = aux_cell(c, node[k]);
+      const double* a = aux_cell(c, cell[k]);
       ax += w[k] * a[AUX_A + 0];
       ay += w[k] * a[AUX_A + 1];
       az += w[k] * a[AUX_A + 2];
@@ -421,7 +434,7 @@ void sg_g2p(StepContext* c, bool remap) {
       uy += w[k] * a[AUX_V + 1];
       uz += w[k] * a[AUX_V + 2];
     }
-    advance_particle(c, p, ax, ay, az, ux, uy, uz);
+    advance_particle(c, c->patch_part[e], ax, ay, az, ux, uy, uz);
   };
   if (c->sg_rest) {
     // The patches not at rest, each particle's still bit 1 set when x and v kept every bit.
@@ -432,16 +445,16 @@ void sg_g2p(StepContext* c, bool remap) {
         double before[6];
         std::memcpy(before, c->x + 3 * size_t(p), sizeof(double) * 3);
         std::memcpy(before + 3, c->v + 3 * size_t(p), sizeof(double) * 3);
-        update(p);
+        update(e);
         const bool same = std::memcmp(before, c->x + 3 * size_t(p), sizeof(double) * 3) == 0 &&
                           std::memcmp(before + 3, c->v + 3 * size_t(p), sizeof(double) * 3) == 0;
         c->sg_still[p] = static_cast<unsigned char>((c->sg_still[p] & 1u) | (same ? 2u : 0u));
       }
     });
   } else {
-#pragma omp parallel for schedule(static)
-    for (int p = 0; p < c->np; ++p)
-      if (c->cell[p] >= 0) update(p);
+    for_list_chunks(c, [&](int first, int count) {
+      for (int e = first; e < first + count; ++e) update(e);
+    });
   }
   if (!remap) return;
   // MUSL: the new particle momenta to the cell centres, then the nodes (no mass cut-off,
@@ -449,8 +462,8 @@ void sg_g2p(StepContext* c, bool remap) {
   scatter_in_order(c, AUX_RP, 3, [&](int p, const int* cell, const double* w, unsigned mask) {
     const double mp = c->mass[p];
     const double* vp = c->v + 3 * p;
-    for (int k = 0; k < 8; ++k) {
-      if (!(mask >> k & 1u)) continue;
+    for (unsigned left = mask; left != 0; left &= left - 1) {  // corners in ascending order
+      const int k = __builtin_ctz(left);
       double* a = aux_cell(c, cell[k]);
       const double mn = mp * w[k];
       a[AUX_RP + 0] += mn * vp[0];

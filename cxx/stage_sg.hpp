@@ -22,31 +22,40 @@ enum : int {
   AUX_L = 25,   // stress: velocity gradient L[3a+b] = dv_a/dx_b (9; TLmp: dv_a/dX_b)
 };
 
-// The weights w of particle p's eight auxiliary nodes, corner k = a + 2 b + 4 c of its
-// auxiliary cell, and the cells of its corners per axis (lower lo[a], upper hi[a]); g2p:
-// the G2P rule on held axes.
-__attribute__((always_inline)) inline void sg_corner_weights(const StepContext* c, const CellDecoder& dec, int p, bool g2p, int lo[3], int hi[3],
-                              double w[8]) {
+// An entry's weights in StepContext::sg_w (kSgWeights each): the P2G rule's eight, then
+// the G2P rule's (sg_corner_weights).
+inline double* sg_p2g_weights(const StepContext* c, int e) { return c->sg_w + size_t(kSgWeights) * size_t(e); }
+inline double* sg_g2p_weights(const StepContext* c, int e) { return sg_p2g_weights(c, e) + 8; }
+
+// The weights of particle p's eight auxiliary nodes, corner k = a + 2 b + 4 c of its
+// auxiliary cell, under the P2G rule (w) and the G2P rule (wg, which differs on held axes
+// alone), and the cells of its corners per axis (lower lo[a], upper hi[a]).
+__attribute__((always_inline)) inline void sg_corner_weights(const StepContext* c, const CellDecoder& dec, int p, int lo[3], int hi[3],
+                              double w[8], double wg[8]) {
   int ci[3];
   dec(c->cell[p], ci[0], ci[1], ci[2]);
   const double* lx = c->lx + 3 * p;
-  double w0[3], w1[3];
+  double w0[3], w1[3], g0[3], g1[3];
+  bool any_held = false;
   for (int a = 0; a < 3; ++a) {
     const double s = lx[a];
     const int al = s < 0.5 ? ci[a] - 1 : ci[a];  // lower centre of the auxiliary cell
     const int near = al + 1;                      // nearest grid node
-    double X = s < 0.5 ? 2.0 * s : 2.0 * (s - 1.0);
+    const double X = s < 0.5 ? 2.0 * s : 2.0 * (s - 1.0);
     const bool held = (c->fix[2 * a] != 0 && near <= 1) || (c->fix[2 * a + 1] != 0 && near >= c->nn[a] - 2);
     if (held) {
-      if (g2p) {
-        const double xn = 2.0 * s - 1.0;
-        X = xn < 0.0 ? 1.0 + 2.0 * xn : 2.0 * xn - 1.0;
-      } else {
-        X = X > 0.0 ? 1.0 : (X < 0.0 ? -1.0 : 0.0);
-      }
+      const double Xp = X > 0.0 ? 1.0 : (X < 0.0 ? -1.0 : 0.0);
+      const double xn = 2.0 * s - 1.0;
+      const double Xg = xn < 0.0 ? 1.0 + 2.0 * xn : 2.0 * xn - 1.0;
+      w0[a] = 0.5 * (1.0 - Xp);
+      w1[a] = 0.5 * (1.0 + Xp);
+      g0[a] = 0.5 * (1.0 - Xg);
+      g1[a] = 0.5 * (1.0 + Xg);
+      any_held = true;
+    } else {
+      w0[a] = g0[a] = 0.5 * (1.0 - X);
+      w1[a] = g1[a] = 0.5 * (1.0 + X);
     }
-    w0[a] = 0.5 * (1.0 - X);
-    w1[a] = 0.5 * (1.0 + X);
     const int last = c->nc[a] - 1;
     lo[a] = al < 0 ? 0 : (al > last ? last : al);
     hi[a] = al + 1 > last ? last : al + 1;
@@ -55,19 +64,20 @@ __attribute__((always_inline)) inline void sg_corner_weights(const StepContext* 
     const int bx = k & 1, by = (k >> 1) & 1, bz = (k >> 2) & 1;
     w[k] = ((bx ? w1[0] : w0[0]) * (by ? w1[1] : w0[1])) * (bz ? w1[2] : w0[2]);
   }
+  if (!any_held) {
+    for (int k = 0; k < 8; ++k) wg[k] = w[k];
+    return;
+  }
+  for (int k = 0; k < 8; ++k) {
+    const int bx = k & 1, by = (k >> 1) & 1, bz = (k >> 2) & 1;
+    wg[k] = ((bx ? g1[0] : g0[0]) * (by ? g1[1] : g0[1])) * (bz ? g1[2] : g0[2]);
+  }
 }
 
 // Cell index of corner k of an auxiliary cell with corner cells lo, hi per axis.
 __attribute__((always_inline)) inline int sg_corner_cell(const StepContext* c, const int lo[3], const int hi[3], int k) {
   const int i = (k & 1) ? hi[0] : lo[0], j = ((k >> 1) & 1) ? hi[1] : lo[1], l = ((k >> 2) & 1) ? hi[2] : lo[2];
   return i + c->nc[0] * (j + c->nc[1] * l);
-}
-
-// The eight auxiliary nodes (cell indices idx) and weights w of particle p.
-__attribute__((always_inline)) inline void sg_weights(const StepContext* c, const CellDecoder& dec, int p, bool g2p, int idx[8], double w[8]) {
-  int lo[3], hi[3];
-  sg_corner_weights(c, dec, p, g2p, lo, hi, w);
-  for (int k = 0; k < 8; ++k) idx[k] = sg_corner_cell(c, lo, hi, k);
 }
 
 inline double* aux_cell(const StepContext* c, int cell) { return c->aux + size_t(cell) * kAuxFields; }
@@ -78,6 +88,7 @@ inline void sg_velocity_gradient(const StepContext* c, const int cell[8], const 
   double l[9] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};  // local: the loads cannot alias it
   for (int k = 0; k < 8; ++k) {
     const double wk = w[k];
+    if (wk == 0.0) continue;  // +-0 terms: the sums keep their bits (nonzero_corners, stage_sg.cpp)
     const double* a = aux_cell(c, cell[k]) + AUX_L;
 #pragma omp simd
     for (int r = 0; r < 9; ++r) l[r] += wk * a[r];

@@ -126,7 +126,7 @@ void stress_sg(StepContext* c) {
   const CellDecoder dec(c);
   const StressBlockArgs args = stress_args(c);
   auto gradient = [&](const CellDecoder&, int e, int, double* L) {
-    sg_velocity_gradient(c, c->sg_cell + 8 * size_t(e), c->sg_w + 8 * size_t(e), L);
+    sg_velocity_gradient(c, c->sg_cell + 8 * size_t(e), sg_p2g_weights(c, e), L);
   };
   if (c->sg_rest) {  // the patches not at rest, shared by their work
     for_patches(c, [&](int q) {

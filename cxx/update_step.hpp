@@ -82,8 +82,9 @@ struct StepContext {
   // Stage-internal scratch of the C++ kernels (the Fortran mirror, step_context in
   // fortran_ref/stage_common.f90, holds them as untouched pointers).
   int *pscratch;       // (np) patch of each particle during binning
-  // sgmp: each patch-list entry's auxiliary weights (8) and centres (8), written by the
-  // step's first scatter and read by the later ones (stage_sg.cpp); else null.
+  // sgmp: each patch-list entry's auxiliary weights (kSgWeights: the P2G rule's 8, the
+  // G2P rule's 8) and centres (8), written by the step's first C++ sgmp stage and read by
+  // the later ones (stage_sg.cpp); else null.
   double *sg_w;
   int *sg_cell;             // (np, 8) the centres of the entry's corners
   unsigned char *sg_reach;  // bits 2a, 2a+1: a corner lies in the patch below, above on axis a
@@ -103,7 +104,7 @@ struct StepContext {
   // contact component) are already those of the particles' positions (the ranks binned
   // them to decide which particles move): the bin stage then only builds the lists.
   int prebinned;
-  // C++ kernels' scratch (sgmp): nonzero once a C++ scatter or stress stage has written
+  // C++ kernels' scratch (sgmp): nonzero once a C++ scatter, G2P or stress stage has written
   // sg_w and sg_cell, the weights of the particles' binned places, which the later stages
   // reuse until the next bin (2: with sg_reach, for the scatters of several threads).
   // The driver clears it whenever it bins (every step; TLmp once); the Fortran stages leave
@@ -153,6 +154,7 @@ namespace mpm3d {
 
 extern const char* const kStageNames[ST_COUNT];
 constexpr int kAuxFields = 34;  // doubles per cell in StepContext::aux (sgmp)
+constexpr int kSgWeights = 16;  // doubles per patch-list entry in StepContext::sg_w (sgmp)
 // Fields of the energy stage's columns: kinetic, internal energy, momentum (3), sum |f.v|.
 constexpr int kReduceFields = 6;
 // StepContext::exchange's kind: what the stage is about to assemble or fold.
