@@ -146,16 +146,6 @@ struct CornerPatches {
   }
 };
 
-// Bit k set where the weight of corner k is not zero. A zero weight's terms are +-0 (of
-// finite values), and a sum started at +0.0 is never -0.0 (x + y is -0.0 only for two
-// -0.0), so adding them changes no bit: the scatters skip them. A one-cell axis with held
-// faces (the current decks' thin models) has a zero weight on one side, half the corners.
-inline unsigned nonzero_corners(const double w[8]) {
-  unsigned m = 0;
-  for (int k = 0; k < 8; ++k) m |= (w[k] != 0.0 ? 1u : 0u) << k;
-  return m;
-}
-
 // Fields first..first+count-1 of the centres of patches [lo, hi) set to zero.
 void zero_centres(const StepContext* c, int lo, int hi, int first, int count) {
   for (int q = lo; q < hi; ++q) {

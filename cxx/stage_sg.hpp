@@ -3,6 +3,9 @@
 // and the stress stage. Internal linkage, like patch_index.hpp.
 #pragma once
 #include <cstddef>
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
 
 #include "patch_index.hpp"
 #include "update_step.hpp"
@@ -82,13 +85,30 @@ __attribute__((always_inline)) inline int sg_corner_cell(const StepContext* c, c
 
 inline double* aux_cell(const StepContext* c, int cell) { return c->aux + size_t(cell) * kAuxFields; }
 
+// Bit k set where the weight of corner k is not zero (in vector compares where the
+// compiler targets SSE2: the same test). A zero weight's terms are +-0 (of finite
+// values), and a sum started at +0.0 is never -0.0 (x + y is -0.0 only for two -0.0), so
+// adding them changes no bit: the scatters and the velocity gradient skip them. A
+// one-cell axis with held faces (the current decks' thin models) has a zero weight on one
+// side, half the corners.
+inline unsigned nonzero_corners(const double w[8]) {
+  unsigned m = 0;
+#ifdef __SSE2__
+  const __m128d zero = _mm_setzero_pd();
+  for (int k = 0; k < 8; k += 2) m |= unsigned(_mm_movemask_pd(_mm_cmpneq_pd(_mm_loadu_pd(w + k), zero))) << k;
+#else
+  for (int k = 0; k < 8; ++k) m |= (w[k] != 0.0 ? 1u : 0u) << k;
+#endif
+  return m;
+}
+
 // The velocity gradient of a particle from the cells' (sg_cell_gradients), with its
 // weights w on the centres cell[8].
 inline void sg_velocity_gradient(const StepContext* c, const int cell[8], const double w[8], double L[9]) {
   double l[9] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};  // local: the loads cannot alias it
-  for (int k = 0; k < 8; ++k) {
+  for (unsigned left = nonzero_corners(w); left != 0; left &= left - 1) {  // corners in ascending order
+    const int k = __builtin_ctz(left);
     const double wk = w[k];
-    if (wk == 0.0) continue;  // +-0 terms: the sums keep their bits (nonzero_corners, stage_sg.cpp)
     const double* a = aux_cell(c, cell[k]) + AUX_L;
 #pragma omp simd
     for (int r = 0; r < 9; ++r) l[r] += wk * a[r];
