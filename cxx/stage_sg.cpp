@@ -161,6 +161,15 @@ void zero_centres(const StepContext* c, int lo, int hi, int first, int count) {
   }
 }
 
+// f(p, cell[8], w[8], mask & the corners of nonzero weight) for patch-list entry e, with a
+// local copy of its P2G weights: the centres' sums cannot alias it.
+template <class F>
+__attribute__((always_inline)) inline void visit_entry(const StepContext* c, int e, unsigned mask, F& f) {
+  double w[8];
+  for (int k = 0; k < 8; ++k) w[k] = sg_p2g_weights(c, e)[k];
+  f(c->patch_part[e], c->sg_cell + 8 * size_t(e), w, mask & nonzero_corners(w));
+}
+
 // Fields first..first+count-1 of this thread's centres set to zero (no other thread adds
 // to them), then f(p, cell[8], w[8], mask) for every particle that reaches them, mask bit
 // k set where its corner k is one of them and its weight is not zero (nonzero_corners):
@@ -199,9 +208,7 @@ void for_contributions_in_order(const StepContext* c, int first_field, int nfiel
           for (int k = 0; k < 8; ++k) mask |= (mine >> corners.of[reach][k] & 1u) << k;
           if (mask == 0) continue;
         }
-        double w[8];  // a local copy: the centres' sums cannot alias it
-        for (int k = 0; k < 8; ++k) w[k] = sg_p2g_weights(c, e)[k];
-        f(c->patch_part[e], c->sg_cell + 8 * size_t(e), w, mask & nonzero_corners(w));
+        visit_entry(c, e, mask, f);
       }
     }
   }
@@ -224,11 +231,7 @@ void scatter_in_order(StepContext* c, int first_field, int nfield, F&& add) {
   }
   zero_centres(c, 0, c->npatch, first_field, nfield);
   const int total = c->patch_start[c->npatch];
-  for (int e = 0; e < total; ++e) {
-    double w[8];  // a local copy: the centres' sums cannot alias it
-    for (int k = 0; k < 8; ++k) w[k] = sg_p2g_weights(c, e)[k];
-    add(c->patch_part[e], c->sg_cell + 8 * size_t(e), w, nonzero_corners(w));
-  }
+  for (int e = 0; e < total; ++e) visit_entry(c, e, 0xFFu, add);
 }
 
 // The particles' scatter to the cell centres: mass and momentum, and/or body force and
