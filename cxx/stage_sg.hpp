@@ -63,18 +63,19 @@ __attribute__((always_inline)) inline void sg_corner_weights(const StepContext* 
     lo[a] = al < 0 ? 0 : (al > last ? last : al);
     hi[a] = al + 1 > last ? last : al + 1;
   }
-  for (int k = 0; k < 8; ++k) {
-    const int bx = k & 1, by = (k >> 1) & 1, bz = (k >> 2) & 1;
-    w[k] = ((bx ? w1[0] : w0[0]) * (by ? w1[1] : w0[1])) * (bz ? w1[2] : w0[2]);
-  }
+  // Corner k's weight: the product (x * y) * z of its lower (f0) or upper (f1) factors.
+  auto products = [](const double f0[3], const double f1[3], double out[8]) __attribute__((always_inline)) {
+    for (int k = 0; k < 8; ++k) {
+      const int bx = k & 1, by = (k >> 1) & 1, bz = (k >> 2) & 1;
+      out[k] = ((bx ? f1[0] : f0[0]) * (by ? f1[1] : f0[1])) * (bz ? f1[2] : f0[2]);
+    }
+  };
+  products(w0, w1, w);
   if (!any_held) {
     for (int k = 0; k < 8; ++k) wg[k] = w[k];
     return;
   }
-  for (int k = 0; k < 8; ++k) {
-    const int bx = k & 1, by = (k >> 1) & 1, bz = (k >> 2) & 1;
-    wg[k] = ((bx ? g1[0] : g0[0]) * (by ? g1[1] : g0[1])) * (bz ? g1[2] : g0[2]);
-  }
+  products(g0, g1, wg);
 }
 
 // Cell index of corner k of an auxiliary cell with corner cells lo, hi per axis.
