@@ -155,14 +155,18 @@ void DeckReader::finish(int line) {
     for (int a = 0; a < 3; ++a)
       if (std::floor((m_.box_hi[a] - m_.box_lo[a]) / m_.dcell + 0.5) < 2.0)
         fail(bimp_line_, "'bimp' needs at least two cells along each axis");
-  // GIMP particle half-size lp: half the spacing of bloc/sphe/cyli particles, half the
-  // cube root of the volume of poin particles; at most h/2 (the 27-node stencil).
+  // GIMP particle half-size lp. Current-version decks: a quarter cell for every particle,
+  // as the current program, whose GIMP weights are written for particles half a cell wide
+  // whatever their volume. Book decks: half the spacing of bloc/sphe/cyli particles, half
+  // the cube root of the volume of poin particles; at most h/2 (the 27-node stencil).
   if (m_.gimp) {
     P.psize.assign(size_t(P.np), 0.0);
     bool clamped = false;
     for (const Body& b : m_.bodies)
       for (int p = b.first; p < b.first + b.count; ++p) {
-        double lp = b.spacing > 0.0 ? 0.5 * b.spacing : 0.5 * std::pow(P.vol[p], 1.0 / 3.0);
+        double lp = m_.current_version ? 0.25 * m_.dcell
+                    : b.spacing > 0.0  ? 0.5 * b.spacing
+                                       : 0.5 * std::pow(P.vol[p], 1.0 / 3.0);
         if (lp > 0.5 * m_.dcell) {
           lp = 0.5 * m_.dcell;
           clamped = true;

@@ -170,15 +170,19 @@ contains
         if (fl < 2.0_dp) call ts%fail(m%bimp_line, "'bimp' needs at least two cells along each axis")
       end do
     end if
-    ! GIMP particle half-size lp: half the spacing of bloc/sphe/cyli particles, half the cube
-    ! root of the volume of poin particles; at most h/2 (the 27-node stencil).
+    ! GIMP particle half-size lp. Current-version decks: a quarter cell for every particle,
+    ! as the current program, whose GIMP weights are written for particles half a cell wide
+    ! whatever their volume. Book decks: half the spacing of bloc/sphe/cyli particles, half
+    ! the cube root of the volume of poin particles; at most h/2 (the 27-node stencil).
     if (m%gimp) then
       allocate(m%particles%psize(m%particles%np))
       m%particles%psize = 0.0_dp
       clamped = .false.
       do i = 1, m%nbodies
         do p = m%bodies(i)%first + 1, m%bodies(i)%first + m%bodies(i)%count
-          if (m%bodies(i)%spacing > 0.0_dp) then
+          if (m%current_version) then
+            lp = 0.25_dp * m%dcell
+          else if (m%bodies(i)%spacing > 0.0_dp) then
             lp = 0.5_dp * m%bodies(i)%spacing
           else
             lp = 0.5_dp * (m%particles%vol(p) ** (1.0_dp / 3.0_dp))

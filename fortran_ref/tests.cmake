@@ -96,6 +96,9 @@ if(TARGET mpm3d AND TARGET mpm3d_ref)
   # B-spline MPM (bimp, two fixed node layers): our coarse Cook membrane and the public one.
   fref_deck(cook_membrane_bimp ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/cook_membrane_bimp.mpm)
   fref_deck(current_cook_bimp ${_fref_shared}/current/Cook_membrane_BSMPM5776p_Cookmo_Bimp.mpm)
+  # GIMP on a current-version deck (particles a quarter cell in half-size, whatever their
+  # volume, as the current program): our coarse Cook membrane of poin particles.
+  fref_deck(cook_membrane_gimp ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/cook_membrane_gimp.mpm)
   # Smoothed-gradient MPM (sgmp): our Cook membrane (MUSL), USF blocks under gravity, the
   # public Cook membrane and the one-dimensional detonation.
   fref_deck(cook_membrane_sgmp ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/cook_membrane_sgmp.mpm)

@@ -343,6 +343,29 @@ TEST(DataIn, BsplineDeckSetsShapeAndTwoFixedLayers) {
   EXPECT_EQ(lin.fix_layers(), 1);
 }
 
+// GIMP's particle half-size: a current-version deck (neoh) gives every particle a quarter
+// cell, as the current program does whatever the particles' size; a book deck takes half
+// the block's spacing (here 0.4 in cells of 1) or half the cube root of a poin volume.
+TEST(DataIn, GimpParticleSizeFollowsTheDecksVersion) {
+  auto gimp_deck = [](const std::string& mate) {
+    return "mpm3d *** gimp size\nnbmp 13\nnbbo 2\nnmat 1\n"
+           "spx 0 4\nspy 0 4\nspz 0 4\ndcel 1.0\ndtsc 0.5\nendt 1.0\ngimp\n"
+           "mate\n" + mate + "\n"
+           "part bloc 1 1 2.0 0.4 1.0 1.5 2.0 2 3 2\n"
+           "part poin 1 1\n13 1 0.128 2.5 2.5 2.5\n"
+           "endi\n";
+  };
+  const mpm3d::Model cur = mpm3d::read_deck_text(gimp_deck("1 neoh 2.0 200.0 0.25"), "c.mpm");
+  ASSERT_TRUE(cur.current_version);
+  ASSERT_EQ(cur.particles.psize.size(), 13u);
+  for (int p = 0; p < 13; ++p) EXPECT_EQ(cur.particles.psize[p], 0.25) << p;
+  const mpm3d::Model book = mpm3d::read_deck_text(gimp_deck("1 elas 2.0 200.0 0.25"), "k.mpm");
+  ASSERT_FALSE(book.current_version);
+  ASSERT_EQ(book.particles.psize.size(), 13u);
+  for (int p = 0; p < 12; ++p) EXPECT_DOUBLE_EQ(book.particles.psize[p], 0.2) << p;
+  EXPECT_DOUBLE_EQ(book.particles.psize[12], 0.5 * std::cbrt(0.128 / 2.0));  // 0.2
+}
+
 // The current version's null is a viscous fluid: density, bulk modulus, viscosity (wave
 // speed sqrt(K / rho)); with the weakly compressible EOS (seos type 4, c0 only). A book
 // deck's null keeps its card (density, wave speed).

@@ -41,6 +41,8 @@ mpm3d_thread_test(current_free_soft_beam ${CMAKE_SOURCE_DIR}/../shared/decks/cur
 # B-spline MPM (bimp) with the current version's two fixed node layers.
 mpm3d_thread_test(cook_membrane_bimp ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/cook_membrane_bimp.mpm 400)
 mpm3d_thread_test(current_cook_bimp ${CMAKE_SOURCE_DIR}/../shared/decks/current/Cook_membrane_BSMPM5776p_Cookmo_Bimp.mpm 200)
+# GIMP on a current-version deck (the current program's quarter-cell particle half-size).
+mpm3d_thread_test(cook_membrane_gimp ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/cook_membrane_gimp.mpm 150)
 # Smoothed-gradient MPM (sgmp): MUSL and USF.
 mpm3d_thread_test(cook_membrane_sgmp ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/cook_membrane_sgmp.mpm 400)
 mpm3d_thread_test(sg_usf_blocks ${CMAKE_CURRENT_SOURCE_DIR}/decks/sg_usf_blocks.mpm 170)
