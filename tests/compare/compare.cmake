@@ -1,0 +1,95 @@
+# mpm3d-compare (tools/mpm3d_compare.py, copied to the build tree's cxx/mpm3d-compare beside
+# mpm3d) against a stand-in original, fake_original.py: the real mpm3d, one column optionally
+# scaled (MPM3D_FAKE_SCALE), or a rejected deck (MPM3D_FAKE_REJECT). The deck, 336 particles
+# with two particle curves, runs in a fraction of a second. expect.py checks exit status and
+# output together.
+find_package(Python3 COMPONENTS Interpreter)
+if(Python3_Interpreter_FOUND)
+  set(_cmp_dir ${CMAKE_CURRENT_SOURCE_DIR}/compare)
+  set(_cmp_out ${CMAKE_CURRENT_BINARY_DIR}/compare)
+  set(_cmp_deck ${CMAKE_CURRENT_SOURCE_DIR}/decks/sg_usf_blocks.mpm)
+  set(_cmp_exe ${CMAKE_BINARY_DIR}/cxx/mpm3d-compare)
+
+  # --plot needs matplotlib: the interpreter found above, else the system's python3.
+  find_program(MPM3D_SYSTEM_PYTHON3 python3 PATHS /usr/bin NO_DEFAULT_PATH)
+  set(_cmp_plot_python ${Python3_EXECUTABLE})
+  foreach(_py IN ITEMS ${Python3_EXECUTABLE} ${MPM3D_SYSTEM_PYTHON3})
+    execute_process(COMMAND ${_py} -c "import matplotlib" RESULT_VARIABLE _rc
+                    OUTPUT_QUIET ERROR_QUIET)
+    if(_rc EQUAL 0)
+      set(_cmp_plot_python ${_py})
+      break()
+    endif()
+  endforeach()
+
+  # compare_test(NAME [DIRECT] [ENV VAR=VALUE] [PYTHON EXE] OPTIONS... EXPECT...): compare.NAME
+  # runs mpm3d-compare OPTIONS under expect.py EXPECT, with the stand-in's variables set; by
+  # PYTHON (default: the one found), or DIRECT as the installed command (its #! line).
+  function(compare_test name)
+    cmake_parse_arguments(PARSE_ARGV 1 T "DIRECT" "PYTHON;ENV" "EXPECT;OPTIONS")
+    if(NOT T_PYTHON)
+      set(T_PYTHON ${Python3_EXECUTABLE})
+    endif()
+    set(_run ${T_PYTHON} ${_cmp_exe})
+    if(T_DIRECT)
+      set(_run ${_cmp_exe})
+    endif()
+    set(_env MPM3D_FAKE_MPM3D=$<TARGET_FILE:mpm3d>)
+    if(T_ENV)
+      list(APPEND _env ${T_ENV})
+    endif()
+    add_test(NAME compare.${name}
+             COMMAND ${CMAKE_COMMAND} -E env ${_env}
+                     ${T_PYTHON} ${_cmp_dir}/expect.py ${T_EXPECT} --
+                     ${_run} --threads 1 ${T_OPTIONS})
+    set_tests_properties(compare.${name} PROPERTIES TIMEOUT 60 SKIP_RETURN_CODE 77)
+  endfunction()
+
+  set(_orig --original ${_cmp_dir}/fake_original.py)
+  # (a) The same results: every column 0.000 %, exit 0 (mpm3d found beside the script, as
+  # every test but mpm3d_rejects finds it).
+  compare_test(same DIRECT OPTIONS ${_orig} ${_cmp_deck}
+    EXPECT --rc 0 --stdout "total +0\\.000 +0\\.000 +ok" --stdout "kinetic +0\\.000 +0\\.000 +ok"
+           --stdout "disz1 +0\\.000 +0\\.000 +ok" --stdout "disx300 +0\\.000 +0\\.000 +ok"
+           --stdout "ns per particle-step +[0-9]+\\.[0-9] +[0-9]+\\.[0-9]"
+           --stdout "all compared columns within 1 %" --not-stdout "FAIL")
+  # (b) The original's kinetic energy 5 % larger: 0.05/1.05 of its largest value, exit 1.
+  compare_test(perturbed ENV MPM3D_FAKE_SCALE=kinetic:1.05 OPTIONS ${_orig} ${_cmp_deck}
+    EXPECT --rc 1 --stdout "EnergyPlot.dat +kinetic +4\\.7[56][0-9] +[0-9.]+ +FAIL"
+           --stdout "internal +0\\.000 +0\\.000 +ok" --stdout "beyond 1 %: kinetic$")
+  compare_test(tolerance ENV MPM3D_FAKE_SCALE=kinetic:1.05 OPTIONS --tolerance 5 ${_orig} ${_cmp_deck}
+    EXPECT --rc 0 --stdout "kinetic +4\\.7[56][0-9] +[0-9.]+ +ok"
+           --stdout "all compared columns within 5 %")
+  # A curve column, matched by its name: 0.1/0.9 of the original's largest.
+  compare_test(curve ENV MPM3D_FAKE_SCALE=disx300:0.9 OPTIONS ${_orig} ${_cmp_deck}
+    EXPECT --rc 1 --stdout "sg_usf_blocks_curv.dat +disx300 +11\\.11[0-9] +[0-9.]+ +FAIL"
+           --stdout "disz1 +0\\.000 +0\\.000 +ok" --stdout "beyond 1 %: disx300$")
+  # (c) No such original program.
+  compare_test(missing_original OPTIONS --original ${_cmp_out}/no_such_program ${_cmp_deck}
+    EXPECT --rc 2 --stderr "^mpm3d-compare: the original program .*no_such_program: no such file")
+  # (d) Decks rejected: by the original (exit 1 after writing its files; 'stop': exit 0
+  # without them), by mpm3d.
+  compare_test(rejected_deck ENV MPM3D_FAKE_REJECT=original OPTIONS ${_orig} ${_cmp_deck}
+    EXPECT --rc 2
+           --stderr "^mpm3d-compare: sg_usf_blocks.mpm: the original rejected the deck \\(exit status 1\\)"
+           --stderr "fake original: deck sg_usf_blocks.mpm rejected")
+  compare_test(rejected_deck_stop ENV MPM3D_FAKE_REJECT=stop OPTIONS ${_orig} ${_cmp_deck}
+    EXPECT --rc 2
+           --stderr "^mpm3d-compare: sg_usf_blocks.mpm: the original rejected the deck \\(no EnergyPlot.dat written\\)")
+  compare_test(mpm3d_rejects ENV MPM3D_FAKE_REJECT=mpm3d
+    OPTIONS ${_orig} --mpm3d ${_cmp_dir}/fake_original.py ${_cmp_deck}
+    EXPECT --rc 2 --stderr "^mpm3d-compare: sg_usf_blocks.mpm: mpm3d rejected the deck \\(exit status 1\\)"
+           --stderr "fake mpm3d rejects the deck")
+  # (e) No such deck: exit 2, and the decks after it still compared.
+  compare_test(missing_deck OPTIONS ${_orig} ${_cmp_out}/no_such_deck.mpm ${_cmp_deck}
+    EXPECT --rc 2 --stderr "^mpm3d-compare: .*no_such_deck.mpm: no such deck"
+           --stdout "== sg_usf_blocks.mpm")
+  # (f) --plot writes a PNG (skipped where no python3 here imports matplotlib).
+  compare_test(plot PYTHON ${_cmp_plot_python} OPTIONS --plot ${_cmp_out}/plot ${_orig} ${_cmp_deck}
+    EXPECT --rc 0 --needs matplotlib --clean ${_cmp_out}/plot --file ${_cmp_out}/plot/sg_usf_blocks.png)
+  # --keep leaves both runs' files.
+  compare_test(keep OPTIONS --keep ${_cmp_out}/keep ${_orig} ${_cmp_deck}
+    EXPECT --rc 0 --clean ${_cmp_out}/keep
+           --file ${_cmp_out}/keep/sg_usf_blocks/original/EnergyPlot.dat
+           --file ${_cmp_out}/keep/sg_usf_blocks/mpm3d/sg_usf_blocks_curv.dat)
+endif()

@@ -1,0 +1,529 @@
+#!/usr/bin/env python3
+"""mpm3d-compare: run decks through the original MPM3D-F90 and through mpm3d, and compare.
+
+Installed as `mpm3d-compare` beside `mpm3d`. Plain Python 3 (no numpy), so that it runs with
+whatever python3 the user has; matplotlib is imported only for --plot.
+"""
+import argparse
+import bisect
+import importlib.util
+import json
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+EXIT_OK, EXIT_DIFFER, EXIT_BAD = 0, 1, 2
+ENERGY_FILE = "EnergyPlot.dat"
+ENERGY_COLUMNS = ["Time", "total", "kinetic", "internal"]
+LOG_NAME = "run.log"  # both output streams of each program, in its run directory
+SUMMARY_NAME = "summary.json"
+TAIL_LINES = 10
+
+DESCRIPTION = """\
+Run each DECK through the original MPM3D-F90 program and through mpm3d, each in a fresh
+directory, and compare what both write: every column of EnergyPlot.dat (total, kinetic,
+internal energy) and of NAME_curv.dat (curve columns matched by name, else by position),
+interpolated linearly on the original's times where both runs cover them.
+
+For each column: the largest |mpm3d - original| over the run and the difference at the
+last compared time, both in % of the column's largest magnitude in the original's run,
+and whether both are within --tolerance. Particle fields: when the deck asks for the
+TecPlot animation (tecp), both programs write NAME_anim.dat, and the original's last frame
+is compared with mpm3d's frame at the same time (columns by name, particles in deck
+order). For decks without tecp no particle fields are compared (neither the ParaView .vtu
+series nor mpm3d's HDF5 files are read). Columns only one program writes are listed,
+marked, and not compared.
+
+Also printed: both wall times, mpm3d's ns per particle-step (its --summary) and the
+original's 'Time per particle cycle' (its output or NAME.out).
+
+Exit status: 0 every compared column within tolerance; 1 some column beyond it;
+2 bad input (a program missing or not executable, a missing deck, a deck either
+program rejects)."""
+
+
+class BadInput(Exception):
+    """A program or deck we cannot compare with; the message names it (exit status 2)."""
+
+
+# ---------------------------------------------------------------------------- reading files
+
+FORTRAN_BIG_EXPONENT = re.compile(r"^([+-]?(?:\d+\.?\d*|\.\d+))([+-]\d{3,})$")
+
+
+def parse_number(token):
+    """A number as Fortran prints it. E12.4 drops the 'E' when the exponent has three
+    digits (0.1234-100), and an overflowing field is all stars: that one reads as NaN."""
+    try:
+        return float(token)
+    except ValueError:
+        m = FORTRAN_BIG_EXPONENT.match(token)
+        return float(m.group(1) + "e" + m.group(2)) if m else float("nan")
+
+
+def is_header(tokens):
+    """A header line starts with a word ('Time engk1 ...'); NaN and Infinity are data."""
+    word = tokens[0]
+    return word[0].isalpha() and word.lower() not in ("nan", "inf", "infinity")
+
+
+def read_table(path):
+    """(column names or None, rows) of a whitespace-separated file with an optional
+    header line. Rows with another column count (a torn last line) are left out."""
+    names, rows = None, []
+    with open(path, errors="replace") as f:
+        for line in f:
+            tokens = line.split()
+            if not tokens:
+                continue
+            if names is None and not rows and is_header(tokens):
+                names = tokens
+                continue
+            if rows and len(tokens) != len(rows[0]):
+                continue
+            rows.append([parse_number(t) for t in tokens])
+    return names, rows
+
+
+def collapse_ties(rows):
+    """One row per printed time, the mean of the rows that share it. Both programs print
+    the time with 4 digits (E12.4), so a long run prints many steps under one time;
+    means give a function of time that both files can be interpolated on."""
+    out, i = [], 0
+    while i < len(rows):
+        j = i
+        while j < len(rows) and rows[j][0] == rows[i][0]:
+            j += 1
+        group = rows[i:j]
+        out.append([sum(col) / len(group) for col in zip(*group)])
+        i = j
+    return out
+
+
+def read_series(path, default_names=None):
+    """(names, times, {name: values}) of a time-history file; columns without a header
+    name are called col1, col2, ... by position."""
+    names, rows = read_table(path)
+    width = len(rows[0]) if rows else len(names or default_names or [])
+    names = list(names or default_names or [])
+    names = (names + ["col%d" % k for k in range(len(names), width)])[:width]
+    rows = collapse_ties(rows)
+    columns = {name: [r[k] for r in rows] for k, name in enumerate(names)}
+    return names, [r[0] for r in rows], columns
+
+
+def curve_file(run_dir, stem):
+    """NAME_curv.dat, NAME being the deck's name without extension; failing that the one
+    *_curv.dat in the directory (both programs derive NAME from the deck's file name)."""
+    path = os.path.join(run_dir, stem + "_curv.dat")
+    if os.path.isfile(path):
+        return path
+    found = [f for f in os.listdir(run_dir) if f.endswith("_curv.dat")]
+    return os.path.join(run_dir, found[0]) if len(found) == 1 else None
+
+
+def has_data(path):
+    """Whether a time-history file exists and holds at least one row."""
+    return os.path.isfile(path) and bool(read_table(path)[1])
+
+
+# ---------------------------------------------------------------------------- comparing
+
+class Row:
+    """One line of the table: what was compared, the two differences (in %) and the verdict."""
+
+    def __init__(self, file, column, max_diff=None, final_diff=None, note=""):
+        self.file, self.column, self.note = file, column, note
+        self.max_diff, self.final_diff = max_diff, final_diff
+
+    def failed(self, tolerance):
+        """Beyond tolerance; columns not compared (note set) do not fail."""
+        if self.max_diff is None:
+            return False
+        return not (self.max_diff <= tolerance and (self.final_diff or 0.0) <= tolerance)
+
+
+def match_columns(orig_names, our_names):
+    """(label, original name, our name or None) per original column after the time: by
+    name where both name it, else the column at the same position unless that one is
+    named by the original too (then it belongs to that name, not to this column)."""
+    ours = set(our_names)
+    taken = set(orig_names)
+    pairs = []
+    for k, name in enumerate(orig_names[1:], start=1):
+        if name in ours:
+            pairs.append((name, name, name))
+        elif k < len(our_names) and our_names[k] not in taken:
+            pairs.append(("%s/%s" % (name, our_names[k]), name, our_names[k]))
+        else:
+            pairs.append((name, name, None))
+    return pairs
+
+
+def interpolate(times, values, t):
+    """Linear interpolation of values(times) at t, times ascending and t within them."""
+    k = bisect.bisect_left(times, t)
+    if k < len(times) and times[k] == t:
+        return values[k]
+    t0, t1, v0, v1 = times[k - 1], times[k], values[k - 1], values[k]
+    return v0 + (v1 - v0) * (t - t0) / (t1 - t0)
+
+
+def relative(diff, scale):
+    """diff in % of scale; NaN (a run that blew up) counts as infinitely different."""
+    if diff != diff:
+        return math.inf
+    return 100.0 * diff / scale if scale > 0 else (0.0 if diff == 0 else math.inf)
+
+
+def largest(diffs):
+    """The largest of the differences, NaN if any is NaN (max() would depend on order)."""
+    return math.nan if any(d != d for d in diffs) else max(diffs, default=0.0)
+
+
+def compare_column(t_orig, y_orig, t_ours, y_ours):
+    """(largest, final) |ours - original| in % of the original's largest magnitude, on
+    the original's times inside both runs' time ranges; None without an overlap. Where
+    the original's column is zero throughout, mpm3d's largest magnitude is the scale."""
+    lo, hi = max(t_orig[0], t_ours[0]), min(t_orig[-1], t_ours[-1])
+    at = [k for k, t in enumerate(t_orig) if lo <= t <= hi]
+    if not at:
+        return None
+    ours = [interpolate(t_ours, y_ours, t_orig[k]) for k in at]
+    diffs = [abs(o - y_orig[k]) for o, k in zip(ours, at)]
+    scale = max((abs(v) for v in y_orig if math.isfinite(v)), default=0.0)
+    if scale == 0.0:
+        scale = max((abs(v) for v in ours if math.isfinite(v)), default=0.0)
+    return relative(largest(diffs), scale), relative(diffs[-1], scale)
+
+
+def compare_file(label, orig_path, our_path, default_names=None):
+    """Table rows for one time-history file, plus (names, series) of both for the plot."""
+    o_names, o_t, o_cols = read_series(orig_path, default_names)
+    if not o_t:
+        return [Row(label, "-", note="no data in the original's file")], []
+    if not our_path or not has_data(our_path):
+        return [Row(label, "-", note="not written by mpm3d")], []
+    c_names, c_t, c_cols = read_series(our_path, default_names)
+    rows, plots = [], []
+    for shown, o_name, c_name in match_columns(o_names, c_names):
+        if c_name is None:
+            rows.append(Row(label, shown, note="not in mpm3d's file"))
+            continue
+        result = compare_column(o_t, o_cols[o_name], c_t, c_cols[c_name])
+        if result is None:
+            rows.append(Row(label, shown, note="no common time range"))
+        else:
+            rows.append(Row(label, shown, *result))
+        plots.append((label, shown, o_t, o_cols[o_name], c_t, c_cols[c_name]))
+    return rows, plots
+
+
+# ------------------------------------------------------------------ particle fields (TecPlot)
+
+def zone_time(line):
+    """The time of a TecPlot zone line: the last number inside T="..." (the original
+    writes T="time 0.140E-01", mpm3d T="1.400059E-02")."""
+    m = re.search(r'T\s*=\s*"([^"]*)"', line)
+    words = m.group(1).split() if m else []
+    return parse_number(words[-1]) if words else math.nan
+
+
+def scan_anim(path):
+    """(variable names, [(zone time, byte offset of its first particle line)])."""
+    names, zones, offset = [], [], 0
+    with open(path, "rb") as f:
+        for raw in f:
+            offset += len(raw)
+            line = raw.decode(errors="replace")
+            if line.startswith("VARIABLES"):
+                names = [n.strip() for n in re.findall(r'"([^"]*)"', line)]
+            elif line.startswith("ZONE"):
+                zones.append((zone_time(line), offset))
+    return names, zones
+
+
+def read_zone(path, offset):
+    """The particle rows of the zone whose lines start at offset."""
+    rows = []
+    with open(path, "rb") as f:
+        f.seek(offset)
+        for raw in f:
+            tokens = raw.decode(errors="replace").split()
+            if not tokens or tokens[0].startswith("ZONE"):
+                break
+            rows.append([parse_number(t) for t in tokens])
+    return rows
+
+
+def compare_particles(stem, orig_dir, our_dir):
+    """Rows comparing the original's last animation frame with mpm3d's frame at the same
+    time; [] when the original wrote no TecPlot animation."""
+    name = stem + "_anim.dat"
+    orig_path, our_path = os.path.join(orig_dir, name), os.path.join(our_dir, name)
+    if not os.path.isfile(orig_path):
+        return []
+    if not os.path.isfile(our_path):
+        return [Row(name, "-", note="not written by mpm3d")]
+    o_names, o_zones = scan_anim(orig_path)
+    c_names, c_zones = scan_anim(our_path)
+    if not o_zones or not c_zones:
+        return [Row(name, "-", note="no frames to compare")]
+    t, o_off = o_zones[-1]
+    c_t, c_off = min(c_zones, key=lambda z: abs(z[0] - t))
+    # The original prints a frame's time with 3 digits (E10.3).
+    if not abs(c_t - t) <= 0.01 * abs(t):
+        return [Row(name, "-", note="mpm3d wrote no frame at t=%.3e" % t)]
+    label = "%s t=%.3e" % (name, t)
+    o_rows, c_rows = read_zone(orig_path, o_off), read_zone(our_path, c_off)
+    if len(o_rows) != len(c_rows):
+        return [Row(label, "-", note="%d particles in the original's frame, %d in mpm3d's"
+                    % (len(o_rows), len(c_rows)))]
+    rows = []
+    for shown, o_name, c_name in match_columns(["-"] + o_names, ["-"] + c_names):
+        if c_name is None:
+            rows.append(Row(label, shown, note="not in mpm3d's file"))
+            continue
+        i, j = o_names.index(o_name), c_names.index(c_name)
+        o_vals = [r[i] if i < len(r) else math.nan for r in o_rows]
+        c_vals = [r[j] if j < len(r) else math.nan for r in c_rows]
+        scale = max((abs(v) for v in o_vals if math.isfinite(v)), default=0.0)
+        diff = largest([abs(a - b) for a, b in zip(o_vals, c_vals)])
+        rows.append(Row(label, shown, relative(diff, scale), None))
+    return rows
+
+
+# ---------------------------------------------------------------------------- running
+
+def resolve_program(path, what):
+    """The absolute path of an executable given as a path or a name on PATH (both runs
+    change directory, so a relative path must be made absolute first)."""
+    found = shutil.which(path) if os.sep not in path else path
+    if not found or not os.path.isfile(found):
+        raise BadInput("%s %s: no such file" % (what, path))
+    if not os.access(found, os.X_OK):
+        raise BadInput("%s %s: not executable" % (what, path))
+    return os.path.abspath(found)
+
+
+def default_mpm3d():
+    """The mpm3d beside this script (installed in one bin/, or both in the build tree's
+    cxx/), following a link to the script too; else mpm3d on PATH."""
+    for here in (os.path.abspath(__file__), os.path.realpath(__file__)):
+        beside = os.path.join(os.path.dirname(here), "mpm3d")
+        if os.path.isfile(beside) and os.access(beside, os.X_OK):
+            return beside
+    return shutil.which("mpm3d") or "mpm3d"
+
+
+def run(argv, cwd):
+    """Run with empty stdin and both output streams to cwd/run.log (a long run prints
+    more than is worth holding in memory); (exit status, wall seconds)."""
+    with open(os.path.join(cwd, LOG_NAME), "wb") as log:
+        start = time.perf_counter()
+        try:
+            proc = subprocess.run(argv, cwd=cwd, input=b"", stdout=log, stderr=subprocess.STDOUT)
+        except OSError as e:
+            raise BadInput("cannot run %s: %s" % (argv[0], e.strerror))
+        return proc.returncode, time.perf_counter() - start
+
+
+def log_tail(run_dir, n=TAIL_LINES):
+    """The last n non-empty lines a program printed, indented for stderr."""
+    with open(os.path.join(run_dir, LOG_NAME), errors="replace") as f:
+        lines = [l.rstrip() for l in f if l.strip()]
+    return "\n".join("    " + l for l in lines[-n:])
+
+
+def original_ns(run_dir, stem):
+    """The original's own 'Time per particle cycle: X nanoseconds', from its output or
+    NAME.out; None when absent (older versions do not print it)."""
+    pattern = re.compile(r"Time per particle cycle:\s*([-+0-9.EeDd]+)")
+    for name in (LOG_NAME, stem + ".out"):
+        path = os.path.join(run_dir, name)
+        if os.path.isfile(path):
+            with open(path, errors="replace") as f:
+                found = pattern.findall(f.read())
+            if found:
+                return parse_number(found[-1].replace("D", "E").replace("d", "e"))
+    return None
+
+
+def run_original(exe, deck_name, run_dir):
+    """Run the original as `exe deck.mpm`; (wall s, its ns per particle cycle). A deck it
+    rejects: a non-zero exit, or no EnergyPlot.dat rows (its 'stop' exits with 0)."""
+    rc, wall = run([exe, deck_name], run_dir)
+    if rc != 0 or not has_data(os.path.join(run_dir, ENERGY_FILE)):
+        why = "exit status %d" % rc if rc != 0 else "no %s written" % ENERGY_FILE
+        raise BadInput("%s: the original rejected the deck (%s); its last lines:\n%s"
+                       % (deck_name, why, log_tail(run_dir)))
+    return wall, original_ns(run_dir, os.path.splitext(deck_name)[0])
+
+
+def run_mpm3d(exe, deck_name, run_dir, threads):
+    """Run mpm3d with its outputs in run_dir; (wall s, its ns per particle-step)."""
+    summary = os.path.join(run_dir, SUMMARY_NAME)
+    argv = [exe, "--threads", str(threads), "--quiet", "--out-dir", run_dir,
+            "--summary", summary, deck_name]
+    rc, wall = run(argv, run_dir)
+    if rc != 0 or not has_data(os.path.join(run_dir, ENERGY_FILE)):
+        why = "exit status %d" % rc if rc != 0 else "no %s written" % ENERGY_FILE
+        raise BadInput("%s: mpm3d rejected the deck (%s):\n%s"
+                       % (deck_name, why, log_tail(run_dir, 3)))
+    try:
+        with open(summary) as f:
+            return wall, json.load(f).get("ns_per_particle_step")
+    except (OSError, ValueError):
+        return wall, None
+
+
+# ---------------------------------------------------------------------------- reporting
+
+def fmt(value, spec):
+    """A figure, or '-' where there is none."""
+    return "-" if value is None else spec % value
+
+
+def print_table(deck, rows, tolerance, timing):
+    """The per-deck table: one line per column, then the two programs' speeds."""
+    header = ("file", "column", "max diff %", "final diff %", "result")
+    lines = []
+    for r in rows:
+        verdict = r.note or ("FAIL" if r.failed(tolerance) else "ok")
+        lines.append((r.file, r.column, fmt(r.max_diff, "%.3f"), fmt(r.final_diff, "%.3f"),
+                      verdict))
+    w = [max(len(str(x[k])) for x in lines + [header]) for k in range(4)]
+    print("== %s (tolerance %g %%)" % (deck, tolerance))
+    for x in [header] + lines:
+        print("  %-*s  %-*s  %*s  %*s  %s" % (w[0], x[0], w[1], x[1], w[2], x[2], w[3], x[3],
+                                              x[4]))
+    (o_wall, o_ns), (c_wall, c_ns) = timing
+    print("  %-24s %12s %12s" % ("", "original", "mpm3d"))
+    print("  %-24s %12.2f %12.2f" % ("wall time (s)", o_wall, c_wall))
+    print("  %-24s %12s %12s" % ("ns per particle-step", fmt(o_ns, "%.1f"), fmt(c_ns, "%.1f")))
+    failed = [r.column for r in rows if r.failed(tolerance)]
+    print("  %s\n" % ("beyond %g %%: %s" % (tolerance, ", ".join(failed)) if failed
+                      else "all compared columns within %g %%" % tolerance))
+    sys.stdout.flush()
+    return failed
+
+
+def plot_deck(path, deck, plots):
+    """One PNG: a panel per compared column, both programs against time."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    ncol = min(3, max(1, len(plots)))
+    nrow = max(1, (len(plots) + ncol - 1) // ncol)
+    fig, axes = plt.subplots(nrow, ncol, figsize=(4.5 * ncol, 3.2 * nrow), squeeze=False)
+    for ax, (label, column, o_t, o_y, c_t, c_y) in zip(axes.flat, plots):
+        ax.plot(o_t, o_y, label="original")
+        ax.plot(c_t, c_y, "--", label="mpm3d")
+        ax.set_title("%s: %s" % (label, column), fontsize=9)
+        ax.set_xlabel("time")
+        ax.legend(fontsize=7)
+    for ax in list(axes.flat)[len(plots):]:
+        ax.axis("off")
+    fig.suptitle(deck)
+    fig.tight_layout()
+    fig.savefig(path, dpi=90)
+    plt.close(fig)
+
+
+def keep_runs(keep_dir, stem, tmp):
+    """Move both run directories to keep_dir/stem/{original,mpm3d}, replacing earlier ones."""
+    target = os.path.join(keep_dir, stem)
+    os.makedirs(target, exist_ok=True)
+    for sub in ("original", "mpm3d"):
+        dest = os.path.join(target, sub)
+        if os.path.isdir(dest):
+            shutil.rmtree(dest)
+        shutil.move(os.path.join(tmp, sub), dest)
+
+
+# ---------------------------------------------------------------------------- one deck, all
+
+def compare_deck(deck, args, original, mpm3d):
+    """Run and compare one deck; EXIT_OK or EXIT_DIFFER (BadInput for a rejected deck)."""
+    if not os.path.isfile(deck):
+        raise BadInput("%s: no such deck" % deck)
+    deck_name = os.path.basename(deck)
+    stem = os.path.splitext(deck_name)[0]
+    tmp = tempfile.mkdtemp(prefix="mpm3d-compare-%s-" % stem)
+    try:
+        dirs = {}
+        for sub in ("original", "mpm3d"):
+            dirs[sub] = os.path.join(tmp, sub)
+            os.mkdir(dirs[sub])
+            shutil.copy(deck, os.path.join(dirs[sub], deck_name))
+        timing = (run_original(original, deck_name, dirs["original"]),
+                  run_mpm3d(mpm3d, deck_name, dirs["mpm3d"], args.threads))
+        rows, plots = compare_file(ENERGY_FILE, os.path.join(dirs["original"], ENERGY_FILE),
+                                   os.path.join(dirs["mpm3d"], ENERGY_FILE), ENERGY_COLUMNS)
+        orig_curves = curve_file(dirs["original"], stem)
+        if orig_curves:
+            more, more_plots = compare_file(os.path.basename(orig_curves), orig_curves,
+                                            curve_file(dirs["mpm3d"], stem))
+            rows, plots = rows + more, plots + more_plots
+        rows += compare_particles(stem, dirs["original"], dirs["mpm3d"])
+        failed = print_table(deck_name, rows, args.tolerance, timing)
+        if args.plot:
+            os.makedirs(args.plot, exist_ok=True)
+            plot_deck(os.path.join(args.plot, stem + ".png"), deck_name, plots)
+        return EXIT_DIFFER if failed else EXIT_OK
+    finally:
+        if args.keep:
+            keep_runs(args.keep, stem, tmp)
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+def parse_args(argv):
+    p = argparse.ArgumentParser(prog="mpm3d-compare", description=DESCRIPTION,
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--original", required=True, metavar="PATH",
+                   help="the original MPM3D-F90 program, run as 'PATH deck.mpm'")
+    p.add_argument("--mpm3d", metavar="PATH",
+                   help="mpm3d (default: the mpm3d beside this script, else on PATH)")
+    p.add_argument("--threads", type=int, default=os.cpu_count() or 1, metavar="N",
+                   help="mpm3d's OpenMP threads (default: all cores; the original is serial)")
+    p.add_argument("--tolerance", type=float, default=1.0, metavar="T",
+                   help="largest allowed difference, in %% of a column's largest "
+                        "magnitude (default 1)")
+    p.add_argument("--plot", metavar="DIR", help="write DIR/DECKNAME.png (needs matplotlib)")
+    p.add_argument("--keep", metavar="DIR",
+                   help="keep both runs in DIR/DECKNAME/{original,mpm3d} (replacing those)")
+    p.add_argument("decks", nargs="+", metavar="DECK")
+    args = p.parse_args(argv)
+    if args.threads < 1 or args.tolerance < 0:
+        p.error("--threads must be at least 1 and --tolerance not negative")
+    return args
+
+
+def main(argv=None):
+    args = parse_args(argv)
+    try:
+        original = resolve_program(args.original, "the original program")
+        mpm3d = resolve_program(args.mpm3d or default_mpm3d(), "mpm3d")
+        if args.plot and importlib.util.find_spec("matplotlib") is None:
+            raise BadInput("--plot needs matplotlib, which %s cannot import (run "
+                           "'PYTHON3 mpm3d-compare ...' with one that can)" % sys.executable)
+    except BadInput as e:
+        print("mpm3d-compare: %s" % e, file=sys.stderr)
+        return EXIT_BAD
+    status = EXIT_OK
+    for deck in args.decks:
+        try:
+            status = max(status, compare_deck(deck, args, original, mpm3d))
+        except BadInput as e:
+            print("mpm3d-compare: %s" % e, file=sys.stderr)
+            status = EXIT_BAD
+    return status
+
+
+if __name__ == "__main__":
+    sys.exit(main())
