@@ -233,6 +233,12 @@ def main():
     out[head_len - 1:head_len - 1] = \
         ["| deck | mpm3d | ns per particle-step | original ns | speed-up |", "|---|---|---|---|---|"] + \
         [f"| {r[0]} | {r[1]} | {r[2]} | {r[3]} | {r[4]} |" for r in summary_rows] + [""]
+    # Keep the side-by-side table of every public deck (tools/public_decks.py) in its place.
+    begin, end = "<!-- PUBLIC_DECKS begin -->", "<!-- PUBLIC_DECKS end -->"
+    if os.path.exists(a.out):
+        old = open(a.out).read()
+        if begin in old and end in old:
+            out[1:1] = ["", begin + old.split(begin, 1)[1].split(end, 1)[0] + end]
     with open(a.out, "w") as f:
         f.write("\n".join(out))
     print(f"current_decks: wrote {a.out}")
