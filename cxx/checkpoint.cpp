@@ -198,6 +198,13 @@ int checkpoint_patch_cells(const std::string& path) {
   return pc;
 }
 
+bool checkpoint_has_particle_array(const std::string& path, const char* name) {
+  const H5ErrorSilencer quiet;
+  Id f{open_checked(path), H5Fclose};
+  Id g{H5Gopen2(f.id, "/particles", H5P_DEFAULT), H5Gclose};
+  return g.id >= 0 && H5Lexists(g.id, name, H5P_DEFAULT) > 0;
+}
+
 void read_checkpoint(const std::string& path, Simulation& sim, OutputSchedule& out) {
   const H5ErrorSilencer quiet;
   Id f{open_checked(path), H5Fclose};

@@ -39,4 +39,8 @@ void read_checkpoint(const std::string& path, Simulation& sim, OutputSchedule& o
 // The patch size stored in a checkpoint (to build the Simulation before restoring it).
 int checkpoint_patch_cells(const std::string& path);
 
+// Whether a checkpoint holds the particle array of that name (particle_fields), e.g. the
+// initial positions the driver keeps for the current version's frames.
+bool checkpoint_has_particle_array(const std::string& path, const char* name);
+
 }  // namespace mpm3d

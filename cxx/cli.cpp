@@ -54,6 +54,9 @@ const char* kUsage =
     "                     patch-sized blocks of cells, so each thread's patches hold a run of\n"
     "                     memory; deck: as read). Outputs are in deck order either way\n"
     "  --hdf5             write the animation as an HDF5 + XDMF series (name_anim.h5/.xdmf)\n"
+    "  --vtu-binary       write the ParaView files (deck keyword para: name_anim_<k>.vtu,\n"
+    "                     name_Grid.vtu) as appended raw binary instead of ASCII: the same\n"
+    "                     fields, exact values, a fraction of the size\n"
     "  --checkpoint F.h5  write a checkpoint when the run ends (and every N steps, below)\n"
     "  --checkpoint-every N   also write it every N steps (default file name_checkpoint.h5)\n"
     "  --restart F.h5     continue the run of the same deck from a checkpoint\n"
@@ -77,7 +80,7 @@ struct Options {
   long regrid_every = -1;  // -1: the deck's
   std::string particle_order = "blocks";
   std::string time_step;  // "", "book" or "current"
-  bool no_output = false, quiet = false, hdf5 = false, patch_given = false, strict_energy = false, no_rest_skip = false;
+  bool no_output = false, quiet = false, hdf5 = false, vtu_binary = false, patch_given = false, strict_energy = false, no_rest_skip = false;
 };
 
 // SIGINT/SIGTERM: the time loop finishes the current step, writes a checkpoint and exits
@@ -145,6 +148,8 @@ Options parse_args(int argc, char** argv, bool& exit_now) {
       o.state = value();
     } else if (a == "--hdf5") {
       o.hdf5 = true;
+    } else if (a == "--vtu-binary") {
+      o.vtu_binary = true;
     } else if (a == "--checkpoint") {
       o.checkpoint = value();
     } else if (a == "--checkpoint-every") {
@@ -314,6 +319,17 @@ int run_main(int argc, char** argv, Ranks* ranks) {
     }
     OutputSchedule resume;
     const bool restarted = !opt.restart.empty();
+    const bool series = opt.hdf5 || (sim.model.hdf5 && !opt.no_output);
+    {
+      // The current version's frames hold each particle's displacement (disx, disy, disz):
+      // its initial position is kept (and checkpointed) when the run writes frames; a
+      // restart keeps it when its checkpoint holds it.
+      Particles& P = sim.model.particles;
+      const bool frames = (sim.model.paraview && !opt.no_output) || series;
+      if (P.x0.empty() && sim.model.current_version &&
+          (restarted ? checkpoint_has_particle_array(opt.restart, "initial_position") : frames))
+        P.x0 = P.x;
+    }
     // Every rank reads the whole checkpoint (written by any number of ranks), then keeps
     // its share.
     if (restarted) read_checkpoint(opt.restart, sim, resume);
@@ -323,12 +339,11 @@ int run_main(int argc, char** argv, Ranks* ranks) {
     }
     const Model& m = sim.model;
     const double end_time = opt.end_time > 0.0 ? opt.end_time : m.endtime;
-    const bool series = opt.hdf5 || (m.hdf5 && !opt.no_output);
     // On several ranks the root writes every file: each frame from the particles gathered
     // on it, each step's curve values from the ranks holding the curves' particles.
     Output out;
     if (root && (!opt.no_output || series))
-      out.open(m, opt.out_dir, !opt.no_output, series, restarted ? &resume : nullptr);
+      out.open(m, opt.out_dir, !opt.no_output, series, restarted ? &resume : nullptr, opt.vtu_binary);
     const bool animates = Output::animates(m, !opt.no_output, series);
     const bool curves = !opt.no_output && !m.curves.empty();
     std::vector<int> curve_rows;

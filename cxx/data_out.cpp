@@ -67,7 +67,9 @@ double var_damg(const Model& m, int p) {
   return ef > 0.0 ? std::min(1.0, std::max(0.0, m.particles.epeff[p] / ef)) : 0.0;
 }
 double var_stsx(const Model& m, int p) { return m.particles.sig[6 * size_t(p)]; }
+// 0 where the initial positions are not held (a restart from a checkpoint without them).
 double displacement(const Model& m, int p, int a) {
+  if (m.particles.x0.empty()) return 0.0;
   return m.particles.x[3 * size_t(p) + size_t(a)] - m.particles.x0[3 * size_t(p) + size_t(a)];
 }
 double var_disx(const Model& m, int p) { return displacement(m, p, 0); }
@@ -210,7 +212,8 @@ FILE* OutputFiles::create(const std::string& name) const {
 Output::Output() = default;
 Output::~Output() { close(); }
 
-void Output::open(const Model& m, const std::string& dir, bool legacy, bool series, const OutputSchedule* resume) {
+void Output::open(const Model& m, const std::string& dir, bool legacy, bool series, const OutputSchedule* resume,
+                  bool vtu_binary) {
   const OutputFiles files(dir, resume);
   if (resume) frame_times_ = resume->frame_times;
   for (const auto& c : m.curves) spre_in_curves_ = spre_in_curves_ || c.var == "spre";
@@ -220,7 +223,7 @@ void Output::open(const Model& m, const std::string& dir, bool legacy, bool seri
     writers_.push_back(make_curve_writer(m, files));
     if (m.tecplot) writers_.push_back(make_tecplot_writer(m, files));
     if (m.contact) writers_.push_back(make_contact_writer(files));
-    if (m.paraview) writers_.push_back(make_vtu_writer(m, files, frame_times_));
+    if (m.paraview) writers_.push_back(make_vtu_writer(m, files, frame_times_, vtu_binary));
   }
   if (series) writers_.push_back(make_h5_series_writer(m, files, frame_times_));
 }

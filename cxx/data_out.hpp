@@ -59,8 +59,10 @@ class Output {
  public:
   Output();
   ~Output();
-  // legacy: the curves and the deck's animation formats; series: the HDF5 + XDMF series.
-  void open(const Model& m, const std::string& dir, bool legacy, bool series, const OutputSchedule* resume);
+  // legacy: the curves and the deck's animation formats; series: the HDF5 + XDMF series;
+  // vtu_binary: the ParaView files as appended raw binary (--vtu-binary) instead of ASCII.
+  void open(const Model& m, const std::string& dir, bool legacy, bool series, const OutputSchedule* resume,
+            bool vtu_binary = false);
   void log(const std::string& line);  // name.out
   void step(const Model& m, const StepRecord& s);
   void frame(const Model& m, double time, long step);  // one frame of every animation format

@@ -64,14 +64,21 @@ std::unique_ptr<OutputWriter> make_curve_writer(const Model& m, const OutputFile
 std::unique_ptr<OutputWriter> make_contact_writer(const OutputFiles& files);
 // TecPlot animation name_anim.dat (deck keyword 'tecp'): one POINT zone per frame.
 std::unique_ptr<OutputWriter> make_tecplot_writer(const Model& m, const OutputFiles& files);
-// ParaView animation (deck keyword 'para'): name_anim_<k>.vtu per frame, name_anim.pvd.
+// ParaView animation (deck keyword 'para'), as the original's files: name_anim_<k>.vtu per
+// frame (k from 1, frame 1 the initial state), name_anim.pvd listing them, and the
+// background grid name_Grid.vtu; the fields of frame_fields() (frame_fields.hpp). ASCII, or
+// appended raw binary when binary (--vtu-binary).
 std::unique_ptr<OutputWriter> make_vtu_writer(const Model& m, const OutputFiles& files,
-                                              const std::vector<double>& frame_times);
+                                              const std::vector<double>& frame_times, bool binary = false);
 // HDF5 + XDMF series (deck keyword 'hdf5', option --hdf5): name_anim.h5 holds one group
-// /frames/<k> per output time with attributes time and step, datasets position (np,3) and
-// one (np) dataset per outr variable; name_anim.xdmf (Xdmf 3, a temporal collection of
-// uniform Polyvertex grids) points at them, so ParaView opens the animation directly. The
-// .h5 file is opened, extended and closed at each frame, and the .xdmf rewritten
+// /frames/<k> (k from 0) per output time with attributes time and step, datasets position
+// (np,3) and one (np) dataset per field of frame_fields() (an outr variable that is one of
+// the original's fields under another name a hard link to that field's dataset), the
+// vertex connectivity /cells (np) and the deck's grid, /grid/points (nodes,3) and
+// /grid/cells (cells,8) hexahedra; name_anim.xdmf (Xdmf 3) is a temporal collection whose
+// every step is a spatial collection of two uniform grids, "particles" (Polyvertex, one
+// vertex per particle) and "grid" (Hexahedron), so ParaView opens the animation directly.
+// The .h5 file is opened, extended and closed at each frame, and the .xdmf rewritten
 // (temporary + rename). On a restart the frames of the checkpoint are kept and later ones
 // removed.
 std::unique_ptr<OutputWriter> make_h5_series_writer(const Model& m, const OutputFiles& files,

@@ -355,17 +355,41 @@ TEST_F(Cli, ResultsDoNotDependOnTheThreadCount) {
 }
 
 TEST_F(Cli, AnimationFilesWhenAsked) {
-  // tecp and para: name_anim.dat, name_anim_<k>.vtu and name_anim.pvd; outt 0.25 of
-  // endt 0.5 gives frames at t = 0, 0.25, 0.5.
+  // tecp and para: name_anim.dat, name_anim_<k>.vtu, name_anim.pvd and the grid
+  // name_Grid.vtu; outt 0.25 of endt 0.5 gives frames at t = 0, 0.25, 0.5, numbered from 1
+  // as the original's.
   std::string text = testutil::read_file(kDecks + "/small.mpm");
   text.insert(text.rfind("endi"), "tecp\npara\noutr seqv\n");
   const std::string d = deck_file("anim.mpm", text);
   const RunResult r = run({"--quiet", "--out-dir", out, d});
   ASSERT_EQ(r.code, 0) << r.err;
   for (const char* f : {"anim.out", "anim_curv.dat", "EnergyPlot.dat", "MomentumPlot.dat", "anim_anim.dat",
-                        "anim_anim.pvd", "anim_anim_0.vtu", "anim_anim_1.vtu", "anim_anim_2.vtu"})
+                        "anim_anim.pvd", "anim_anim_1.vtu", "anim_anim_2.vtu", "anim_anim_3.vtu", "anim_Grid.vtu"})
     EXPECT_TRUE(testutil::fs::exists(out + "/" + f)) << f;
-  EXPECT_FALSE(testutil::fs::exists(out + "/anim_anim_3.vtu"));
+  EXPECT_FALSE(testutil::fs::exists(out + "/anim_anim_0.vtu"));
+  EXPECT_FALSE(testutil::fs::exists(out + "/anim_anim_4.vtu"));
+  // The collection lists the three files at their times: frame 1 the initial state.
+  const std::string pvd = testutil::read_file(out + "/anim_anim.pvd");
+  EXPECT_NE(pvd.find("timestep=\"0\" part=\"0\" file=\"anim_anim_1.vtu\""), std::string::npos) << pvd;
+  const size_t f3 = pvd.find("file=\"anim_anim_3.vtu\"");
+  ASSERT_NE(f3, std::string::npos) << pvd;
+  const size_t ts = pvd.rfind("timestep=\"", f3) + 10;
+  const double t3 = std::stod(pvd.substr(ts, pvd.find('"', ts) - ts));
+  EXPECT_GE(t3, 0.5 - 1e-12);
+  EXPECT_LT(t3, 0.5 + 0.5 / std::sqrt(120.0));
+  // Frame 1: the book version's fields (small.mpm has no current-version keyword), the outr
+  // variable (seqv is one of them: written once); vz the initial velocities (body 1: 0.02).
+  const std::string vtu = testutil::read_file(out + "/anim_anim_1.vtu");
+  for (const char* n : {"seqv", "epeff", "pressure", "vx", "vy", "vz", "vol", "celsius_t", "damage"})
+    EXPECT_NE(vtu.find(std::string("Name=\"") + n + "\""), std::string::npos) << n;
+  EXPECT_EQ(vtu.find("Name=\"seqv\""), vtu.rfind("Name=\"seqv\""));
+  EXPECT_EQ(vtu.find("Name=\"disx\""), std::string::npos);  // current version only
+  const size_t vz = vtu.find("Name=\"vz\" format=\"ascii\">\n");
+  ASSERT_NE(vz, std::string::npos);
+  EXPECT_EQ(std::stod(vtu.substr(vtu.find('\n', vz) + 1, 20)), 0.02);
+  // The grid: small.mpm's box 8 x 4 x 4 in cells of 1: 9 * 5 * 5 nodes, 8 * 4 * 4 voxels.
+  const std::string grid = testutil::read_file(out + "/anim_Grid.vtu");
+  EXPECT_NE(grid.find("<Piece NumberOfPoints=\"225\" NumberOfCells=\"128\">"), std::string::npos) << grid.substr(0, 300);
   // One EnergyPlot line per step: steps = ceil(0.5 / dt) with dt = 0.5 / sqrt(120).
   const auto lines = testutil::split_lines(testutil::read_file(out + "/EnergyPlot.dat"));
   EXPECT_EQ(lines.size(), size_t(std::ceil(std::sqrt(120.0) - 1e-9)));
