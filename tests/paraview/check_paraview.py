@@ -13,6 +13,8 @@ usage: check_paraview.py MODE MPM3D DECK WORKDIR
   xdmf        the HDF5 + XDMF series (--hdf5) of the deck without outr variables: the
               particles and the background grid as the two blocks of every time
   grid        name_Grid.vtu: the deck's grid as voxels filling the box
+  deck_book, deck_current  a deck of inputs/ that writes its own series (para), run as it is
+              with --hdf5: the .pvd and the XDMF series, each with the version's fields
 Exit 77 (ctest: skipped) when pvbatch, xvfb-run or h5dump is missing."""
 import json
 import math
@@ -253,6 +255,22 @@ def main():
             fail("the cells' volumes sum to %r, the box's is %r" % (res["frames"][0]["volume"], vol))
         print("  the voxels fill the box: volume %g" % vol)
         check_picture(res)
+    elif mode in ("deck_book", "deck_current"):
+        current = mode == "deck_current"
+        run([exe, "--quiet", "--hdf5", "--out-dir", work, "--state", st, deck])
+        s = state(st)
+        base = os.path.splitext(os.path.basename(deck))[0]
+        names = CURRENT if current else BOOK
+        pvd = probe("pvd", os.path.join(work, base + "_anim.pvd"), work, "vz")
+        check_particles(pvd["frames"][-1]["blocks"]["all"], s, names, current, 1e-9, VTK_VERTEX)
+        check_picture(pvd)
+        xdmf = probe("xdmf", os.path.join(work, base + "_anim.xdmf"), work, "vz")
+        parts = [b for n, b in xdmf["frames"][-1]["blocks"].items() if n.startswith("particles")]
+        if len(parts) != 1:
+            fail("XDMF blocks %s: want one 'particles'" % list(xdmf["frames"][-1]["blocks"]))
+        check_particles(parts[0], s, names, current, 0.0, VTK_POLY_VERTEX)
+        check_times(xdmf["times"], pvd["times"], "the .pvd has")
+        check_picture(xdmf)
     else:
         fail("unknown mode " + mode)
     print("OK")

@@ -18,4 +18,13 @@ if(MPM3D_PV_PYTHON3)
     set_tests_properties(paraview.${mode} PROPERTIES LABELS paraview SKIP_RETURN_CODE 77 TIMEOUT 300
                          RESOURCE_LOCK mpm3d_xvfb)
   endforeach()
+  # The decks of inputs/ that write their own series (para), as they are.
+  foreach(deck soft_beam_tl soft_beam_sgtl)
+    add_test(NAME paraview.${deck}
+             COMMAND ${MPM3D_PV_PYTHON3} ${CMAKE_CURRENT_SOURCE_DIR}/paraview/check_paraview.py deck_current
+                     $<TARGET_FILE:mpm3d> ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/${deck}.mpm
+                     ${CMAKE_CURRENT_BINARY_DIR}/paraview_${deck})
+    set_tests_properties(paraview.${deck} PROPERTIES LABELS paraview SKIP_RETURN_CODE 77 TIMEOUT 300
+                         RESOURCE_LOCK mpm3d_xvfb)
+  endforeach()
 endif()
