@@ -128,6 +128,12 @@ NOTES.update({
         "agrees within 1.25 % (kinetic), 0.50 % (internal) and 0.05 % (total); the rest is the "
         "plates' viscosity, which the current program switches by its own rule (docs/DECK_FORMAT.md, "
         "the method table's note 2)."),
+    "Slopefail (current program)": (
+        "The current program on the book deck: its time step every step (8,792 steps against our "
+        "book-mode 16,870), its Drucker-Prager branches (the book deck's note) and its bulk viscosity "
+        "without the linear term for `dpm`. Our run made current (`smoo`), with `bulk 1.5 0` and the "
+        "original's branches (a test build), agrees within 0.70 % (kinetic) and 0.18 % (total and "
+        "internal)."),
     "TNT3D": (
         "Kinetic energy up to 3.9 % apart (internal 1.5 %): the original's burn fraction is a step "
         "(the whole pressure at the lighting time), ours a ramp over 1.5 cells; with a step burn "
