@@ -129,7 +129,7 @@ NOTES.update({
         "plates' viscosity, which the current program switches by its own rule (docs/DECK_FORMAT.md, "
         "the method table's note 2)."),
     "Slopefail (current program)": (
-        "The current program on the book deck: its time step every step (8,792 steps against our "
+        "The current program on the book deck: its time step every step (16,016 steps against our "
         "book-mode 16,870), its Drucker-Prager branches (the book deck's note) and its bulk viscosity "
         "without the linear term for `dpm`. Our run made current (`smoo`), with `bulk 1.5 0` and the "
         "original's branches (a test build), agrees within 0.70 % (kinetic) and 0.18 % (total and "
