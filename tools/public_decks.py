@@ -190,7 +190,11 @@ def run_original(exe, deck, work):
     return info
 
 
-def run_mpm3d(exe, deck, threads, work):
+def run_mpm3d(exe, deck, threads, work, reuse=False):
+    summary = os.path.join(work, "summary.json")
+    if reuse and os.path.exists(summary):
+        with open(summary) as f:
+            return dict(json.load(f), rc=0, wall=0.0)
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
     shutil.copy(deck, work)
@@ -283,6 +287,8 @@ def main():
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--only", default="", help="only the decks whose names contain one of these")
     ap.add_argument("--out", default=os.path.join(ROOT, "docs", "CURRENT_DECKS.md"))
+    ap.add_argument("--reuse", action="store_true",
+                    help="keep mpm3d's finished runs too (a rerun of the table with the same build)")
     ap.add_argument("--finished-only", action="store_true",
                     help="leave out the decks whose original run is not finished (start none)")
     a = ap.parse_args()
@@ -305,7 +311,7 @@ def main():
             continue
         exe = os.path.abspath(a.book if which == "book" else a.current)
         orig = run_original(exe, deck, os.path.join(base, "original"))
-        ours = run_mpm3d(mpm3d, deck, a.threads, os.path.join(base, "mpm3d"))
+        ours = run_mpm3d(mpm3d, deck, a.threads, os.path.join(base, "mpm3d"), a.reuse)
         r = {"name": name, "program": which}
         if ours["rc"] != 0 or orig["rc"] != 0:
             who = "mpm3d" if ours["rc"] != 0 else "the original"
