@@ -54,9 +54,8 @@ const char* kUsage =
     "                     patch-sized blocks of cells, so each thread's patches hold a run of\n"
     "                     memory; deck: as read). Outputs are in deck order either way\n"
     "  --hdf5             write the animation as an HDF5 + XDMF series (name_anim.h5/.xdmf)\n"
-    "  --vtu-binary       write the ParaView files (deck keyword para: name_anim_<k>.vtu,\n"
-    "                     name_Grid.vtu) as appended raw binary instead of ASCII: the same\n"
-    "                     fields, exact values, a fraction of the size\n"
+    "  --vtu-binary       the ParaView files (para: name_anim_<k>.vtu, name_Grid.vtu) as\n"
+    "                     appended raw binary instead of ASCII: the same fields, exact values\n"
     "  --checkpoint F.h5  write a checkpoint when the run ends (and every N steps, below)\n"
     "  --checkpoint-every N   also write it every N steps (default file name_checkpoint.h5)\n"
     "  --restart F.h5     continue the run of the same deck from a checkpoint\n"
@@ -321,9 +320,8 @@ int run_main(int argc, char** argv, Ranks* ranks) {
     const bool restarted = !opt.restart.empty();
     const bool series = opt.hdf5 || (sim.model.hdf5 && !opt.no_output);
     {
-      // The current version's frames hold each particle's displacement (disx, disy, disz):
-      // its initial position is kept (and checkpointed) when the run writes frames; a
-      // restart keeps it when its checkpoint holds it.
+      // The current version's frames hold displacements (disx..z): the initial positions are
+      // kept (and checkpointed) when the run writes frames, or when the checkpoint holds them.
       Particles& P = sim.model.particles;
       const bool frames = (sim.model.paraview && !opt.no_output) || series;
       if (P.x0.empty() && sim.model.current_version &&
