@@ -1,14 +1,14 @@
 // MPM3D (the original's main program): the simulation (simulation.hpp) and the command-line
 // driver run_main (cli.cpp), the one include for the program, the bindings and the tests.
 #pragma once
-#include "simulation.hpp"
+#include "solver/simulation.hpp"
 
 namespace mpm3d {
 
 // Command-line driver (used by main): returns the process exit code. ranks: the other
-// processes of a distributed run (cxx/ranks.hpp), or null.
+// processes of a distributed run (cxx/parallel/ranks.hpp), or null.
 int run_main(int argc, char** argv, Ranks* ranks = nullptr);
-// The program's entry with MPI (cxx/ranks_mpi.cpp, built with MPM3D_MPI): run_main on every
+// The program's entry with MPI (cxx/parallel/ranks_mpi.cpp, built with MPM3D_MPI): run_main on every
 // rank when started by mpirun, else run_main alone (MPI never initialised).
 int run_main_mpi(int argc, char** argv);
 

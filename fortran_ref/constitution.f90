@@ -1,6 +1,6 @@
 ! MaterialModel (Constitution): stress update of one particle, Jaumann rotation, EOS.
 ! Pure functions of their arguments (no module state). Every sum and product is written
-! in the same explicit order as cxx/constitution.cpp, so both give the same bits.
+! in the same explicit order as cxx/materials/constitution.cpp, so both give the same bits.
 module mpm3d_constitution
   use mpm3d_material
   implicit none
@@ -147,7 +147,7 @@ contains
   end function bulk_viscosity
 
   ! Drucker-Prager return of a trial stress (deviator s, mean stress sm, tension > 0):
-  ! the formulas of cxx/constitution.cpp (dp_return). Returns the equivalent plastic
+  ! the formulas of cxx/materials/constitution.cpp (dp_return). Returns the equivalent plastic
   ! strain increment.
   real(dp) function dp_return(m, s, sm, bk, g) result(deps)
     type(material_params), intent(in) :: m
@@ -412,7 +412,7 @@ contains
   end subroutine stress_update
 
   ! det(I + A) of a 3x3 increment A (row-major, 0-based), by the cofactors of the first row
-  ! (LaneUpdate::det_identity_plus, cxx/constitution_lanes.hpp).
+  ! (LaneUpdate::det_identity_plus, cxx/materials/constitution_lanes.hpp).
   pure real(dp) function det_identity_plus(a) result(d)
     real(dp), intent(in) :: a(0:8)
     real(dp) :: a0, a4, a8

@@ -1,4 +1,4 @@
-! DataIn: reads a legacy MPM3D deck into a model_t, as cxx/data_in.cpp: the types, the card loop
+! DataIn: reads a legacy MPM3D deck into a model_t, as cxx/input/data_in.cpp: the types, the card loop
 ! and its helpers; submodules data_in_cards.f90 (mate/seos/part/velo/load), data_in_finish.f90 (endi).
 module mpm3d_data_in
   use, intrinsic :: iso_fortran_env, only: int64, error_unit
@@ -71,7 +71,7 @@ module mpm3d_data_in
   public :: memory_budget, megabytes, i2s, warn, n_defined, need_counts, body_index, particle_index, &
             read_vec3
 
-  ! Memory limit of a deck (as cxx/data_in.hpp): estimated bytes per particle and per grid
+  ! Memory limit of a deck (as cxx/input/data_in.hpp): estimated bytes per particle and per grid
   ! node of a run, the hard limit of grid nodes; the budget is the machine's memory.
   real(dp), parameter :: BYTES_PER_PARTICLE = 256.0_dp, BYTES_PER_NODE = 160.0_dp
   real(dp), parameter :: MAX_NODES = 2.0e8_dp
@@ -169,7 +169,7 @@ contains
   end subroutine warn
 
   ! Whether a token after the title line is a keyword only the current MPM3D-F90 knows (as
-  ! kCurrentKeywords, cxx/data_in.cpp).
+  ! kCurrentKeywords, cxx/input/data_in.cpp).
   logical function has_current_keyword(ts) result(found)
     type(token_stream), intent(in) :: ts
     character(len=4), parameter :: KEYS(14) = [character(len=4) :: 'neoh', 'uvfp', 'vsin', 'qulo', &

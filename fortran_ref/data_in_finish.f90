@@ -1,4 +1,4 @@
-! The end of a deck ('endi'), as cxx/data_in_finish.cpp: the checks of the whole deck, then
+! The end of a deck ('endi'), as cxx/input/data_in_finish.cpp: the checks of the whole deck, then
 ! lighting times, initial energies and temperatures, GIMP sizes, dt, mass cut-off, base name.
 submodule (mpm3d_data_in) mpm3d_data_in_finish
   implicit none

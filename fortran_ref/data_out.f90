@@ -14,7 +14,7 @@ module mpm3d_data_out
   public :: write_state_h5
 
   ! Dataset creation properties without modification times (as H5Untimed in
-  ! cxx/h5_quiet.hpp): the same state gives the same bytes.
+  ! cxx/io/h5_quiet.hpp): the same state gives the same bytes.
   integer(hid_t) :: untimed_dataset
 
   interface

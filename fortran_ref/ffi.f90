@@ -1,4 +1,4 @@
-! FFI: free-format deck tokenizer (the original's FFI module), same rules as cxx/ffi.cpp:
+! FFI: free-format deck tokenizer (the original's FFI module), same rules as cxx/input/ffi.cpp:
 ! lines of at most 4096 characters, tabs are blanks, '!' starts a comment, tokens are
 ! separated by blanks and/or commas, keywords are recognised by their first four
 ! characters case-insensitively, numbers follow Fortran list-directed input (d exponents).
@@ -171,7 +171,7 @@ contains
         first = .false.
         k = e
       end do
-      if (j >= n) exit            ! no empty line after a final line end (as cxx/ffi.cpp)
+      if (j >= n) exit            ! no empty line after a final line end (as cxx/input/ffi.cpp)
       i = j + 1
     end do
   end subroutine ts_open
@@ -291,7 +291,7 @@ contains
 
   ! A Fortran list-directed real: [sign] mantissa (digits with at most one '.') and an
   ! optional exponent (e, E, d or D, optional sign, digits); false when the token is not a
-  ! complete finite number (the rules of parse_real in cxx/ffi.cpp).
+  ! complete finite number (the rules of parse_real in cxx/input/ffi.cpp).
   logical function parse_real(token, value) result(ok)
     character(len=*), intent(in) :: token
     real(dp), intent(out) :: value

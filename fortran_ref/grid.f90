@@ -11,7 +11,7 @@ module mpm3d_grid
   integer, parameter, public :: NODE_FIELDS = 7
 
   ! The grid is a window of the deck's box: cells off + 0 .. off + nc - 1 of the deck's lattice
-  ! (as cxx/grid.hpp); without the adaptive grid the window is the whole box.
+  ! (as cxx/core/grid.hpp); without the adaptive grid the window is the whole box.
   type, public :: grid_t
     real(dp) :: origin(3) = 0.0_dp     ! lower corner of the deck's box: the lattice origin
     real(dp) :: h = 0.0_dp             ! cubic cell size
@@ -118,7 +118,7 @@ contains
   end function grid_window_is_box
 
   ! The adaptive background grid's window for particles x(3,np), velocities v(3,np): the
-  ! operations of adaptive_window in cxx/grid.cpp (extent of the particles inside the box,
+  ! operations of adaptive_window in cxx/core/grid.cpp (extent of the particles inside the box,
   ! margin m = 1 + ceil(2 every |v|max dt / h) cells, lower end rounded down to a whole
   ! patch, clipped to the box, faces with a boundary condition kept at the box).
   subroutine grid_adaptive_window(g, x, v, np, every, dt, off, nc)
@@ -167,7 +167,7 @@ contains
   end subroutine grid_adaptive_window
 
   ! True when point xp lies in the deck's box; idx: its cell there (0-based per axis), the
-  ! floor of (x - origin) / h as cxx/grid.cpp takes it.
+  ! floor of (x - origin) / h as cxx/core/grid.cpp takes it.
   logical function deck_cell(g, xp, idx) result(inside)
     type(grid_t), intent(in) :: g
     real(dp), intent(in) :: xp(3)
@@ -204,7 +204,7 @@ contains
 
   ! Trilinear shape functions of the 8 nodes of a cell at local coordinates lx in [0,1)^3.
   ! Local node k = a + 2 b + 4 c (0-based) has offset (a, b, c) and is stored at k + 1.
-  ! Operation order as cxx/grid.hpp: N = (wx * wy) * wz, dN/dx = (gx * wy) * wz, ...
+  ! Operation order as cxx/core/grid.hpp: N = (wx * wy) * wz, dN/dx = (gx * wy) * wz, ...
   pure subroutine shape_linear(lx, inv_h, sn, sg)
     real(dp), intent(in) :: lx(3), inv_h
     real(dp), intent(out) :: sn(8), sg(3, 8)
@@ -230,7 +230,7 @@ contains
   end subroutine shape_linear
 
   ! uGIMP weights of the three nodes at offsets o, o+1, o+2 (o = -1 or 0) from the base node
-  ! of the particle's cell along one axis (cxx/grid.hpp gimp_1d, same operations): lx in
+  ! of the particle's cell along one axis (cxx/core/grid.hpp gimp_1d, same operations): lx in
   ! [0,1) the local coordinate, l = lp/h the particle half-size in cells, r = lx - (o + k).
   pure subroutine gimp_1d(lx, o, l, inv_h, w, g)
     real(dp), intent(in) :: lx, l, inv_h
@@ -268,7 +268,7 @@ contains
   end subroutine gimp_1d
 
   ! The current version's quadratic B-spline weights of the three nodes at offsets o, o+1,
-  ! o+2 from the base node of the particle's cell (cxx/grid.hpp bspline_1d, same
+  ! o+2 from the base node of the particle's cell (cxx/core/grid.hpp bspline_1d, same
   ! operations): (1-s)^2/2, 1/2 + s - s^2, s^2/2 on the nodes base-1, base, base+1, s in
   ! [0,1) the local coordinate; o = 0 in the grid's first cell drops the node base-1.
   pure subroutine bspline_1d(s, o, inv_h, w, g)
@@ -352,7 +352,7 @@ contains
     end do
   end subroutine shape_27
 
-  ! Stencil offset of one axis (cxx/grid.hpp gimp_offset): -1 in the lower half of the
+  ! Stencil offset of one axis (cxx/core/grid.hpp gimp_offset): -1 in the lower half of the
   ! cell, 0 in the upper half, shifted inwards at the ends of the grid (cell i of nc).
   pure integer function gimp_offset(lx, i, nc) result(o)
     real(dp), intent(in) :: lx

@@ -1,10 +1,10 @@
 // Checks that the Fortran bind(C) types step_context and material_params have the layout
-// of struct StepContext and struct MaterialParams (cxx/update_step.hpp, cxx/material.hpp),
+// of struct StepContext and struct MaterialParams (cxx/stages/update_step.hpp, cxx/materials/material.hpp),
 // and that the Fortran stage and scheme identifiers are those of cxx/step_order.h.
 #include <cstddef>
 #include <cstdio>
 
-#include "update_step.hpp"
+#include "stages/update_step.hpp"
 
 // The Fortran mirror covers the whole struct (the C++ kernels' scratch pointers as
 // placeholders), so that the Fortran stages reach the ranks' hooks at its end.

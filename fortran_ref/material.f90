@@ -1,5 +1,5 @@
 ! MaterialData: material and equation-of-state parameters (the original's MaterialData).
-! material_params mirrors struct MaterialParams of cxx/material.hpp field by field
+! material_params mirrors struct MaterialParams of cxx/materials/material.hpp field by field
 ! (bind(C)), so the kernels read the same table whichever language filled it.
 module mpm3d_material
   use, intrinsic :: iso_c_binding, only: c_double, c_int
@@ -37,7 +37,7 @@ module mpm3d_material
     real(c_double) :: eos_e0 = 0.0_dp      ! initial internal energy per unit initial volume
     integer(c_int) :: type = 0             ! MaterialType
     integer(c_int) :: eos_type = 0         ! EosType
-    ! Appended for hiex, null and dpm (as in cxx/material.hpp).
+    ! Appended for hiex, null and dpm (as in cxx/materials/material.hpp).
     real(c_double) :: det_vel = 0.0_dp     ! hiex: detonation velocity D
     real(c_double) :: burn_width = 0.0_dp  ! hiex: programmed-burn ramp width 1.5 h
     real(c_double) :: dp_qphi = 0.0_dp     ! dpm: q_phi

@@ -1,8 +1,8 @@
-! The material models, one entry each (as cxx/material_models.cpp): the deck keyword of
+! The material models, one entry each (as cxx/materials/material_models.cpp): the deck keyword of
 ! the 'mate' card, the type, what kind of solid or fluid it is, the card's parameters in
 ! deck order with the checks of their values, and the derived constants. The deck reader
 ! asks this module; the stress update of a type is in constitution.f90. Adding a model: a
-! MAT_ value (material.f90, and cxx/material.hpp), one row in MODELS and one case in
+! MAT_ value (material.f90, and cxx/materials/material.hpp), one row in MODELS and one case in
 ! read_material_card here, its stress update, and the same in C++.
 module mpm3d_material_models
   use mpm3d_material
@@ -153,7 +153,7 @@ contains
   end subroutine read_johnson_cook
 
   ! Fills the derived constants of m from the deck values (same operation order as
-  ! cxx/material.cpp); returns an error text or ''.
+  ! cxx/materials/material.cpp); returns an error text or ''.
   subroutine material_derive(m, err)
     type(material_params), intent(inout) :: m
     character(len=:), allocatable, intent(out) :: err

@@ -1,6 +1,6 @@
 ! MPM3D (the program): the Fortran reference driver. Reads a deck with its own reader
-! (mpm3d_data_in), runs the time loop of Simulation::step (cxx/simulation.cpp), walking
-! the same step table (cxx/step_order.c), with the Fortran stage kernels (stage_*.f90,
+! (mpm3d_data_in), runs the time loop of Simulation::step (cxx/solver/simulation.cpp), walking
+! the same step table (cxx/stages/step_order.c), with the Fortran stage kernels (stage_*.f90,
 ! called by identifier through mpm3d_update_step) and writes the HDF5 state file.
 !
 ! usage: mpm3d_ref [--steps N] [--end-time T] [--state F.h5] [--init-state F.h5]

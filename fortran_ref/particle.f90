@@ -108,7 +108,7 @@ contains
     end subroutine growi
   end subroutine particles_grow
 
-  ! The solver's storage order (as order_by_blocks in cxx/particle.cpp, so both languages
+  ! The solver's storage order (as order_by_blocks in cxx/core/particle.cpp, so both languages
   ! store the particles alike and their sums agree in bits): sorted by the block of
   ! block_cells**3 cells of the deck's lattice (origin lo, cell h, nc cells per axis) that
   ! holds each particle, blocks x fastest and z slowest, deck order within a block. The

@@ -1,4 +1,4 @@
-! Particle generators of the deck's 'part' cards (read by data_in.f90), as cxx/particle_gen.cpp:
+! Particle generators of the deck's 'part' cards (read by data_in.f90), as cxx/input/particle_gen.cpp:
 ! appending to the deck's arrays, the room checks against 'nbmp' and the lattice loops of
 ! bloc, sphe and cyli, with the arithmetic and the particle order of the C++.
 module mpm3d_particle_gen
@@ -86,7 +86,7 @@ contains
   ! 'part bloc': nb(1) x nb(2) x nb(3) particles at o + (i + 1/2) dp; x index outermost, z
   ! fastest (the book version). Counts in 1..100000 (checked by the reader).
   ! nr > 0 ('part blod', the current version): without the particles inside the hole of
-  ! radius nr dp around the axis through (hx, hy) along z (as cxx/particle_gen.cpp).
+  ! radius nr dp around the axis through (hx, hy) along z (as cxx/input/particle_gen.cpp).
   subroutine generate_block(ts, p, b, nbmp, c, o, nb, x_fastest, hx, hy, nr)
     type(token_stream), intent(in) :: ts
     type(particles_t), intent(inout) :: p

@@ -1,5 +1,5 @@
 ! stage_common: what the stage files share: step_context (the bind(C) mirror of struct
-! StepContext in cxx/update_step.hpp), the patch buffers, the GIMP stencil, the component
+! StepContext in cxx/stages/update_step.hpp), the patch buffers, the GIMP stencil, the component
 ! filter of contact and the box-face boundary conditions (index helpers: stage_index.inc).
 !
 ! Every floating-point operation of the stages happens in the same order as in the C++
@@ -76,7 +76,7 @@ module mpm3d_stage_common
     integer(c_int) :: sg = 0               ! 1: smoothed-gradient MPM (stage_sg.f90)
     ! The C++ kernels' scratch (not used here): pscratch, then sgmp's sg_w, sg_cell, sg_reach.
     type(c_ptr) :: pscratch = c_null_ptr, sg_w = c_null_ptr, sg_cell = c_null_ptr, sg_reach = c_null_ptr
-    ! Distributed runs (cxx/ranks.hpp; null with one rank): the ranks' hook, called between a
+    ! Distributed runs (cxx/parallel/ranks.hpp; null with one rank): the ranks' hook, called between a
     ! scatter into the patch buffers and their assembly, and before the energy and contact
     ! columns are folded (rank_exchange); the particles in one process's storage order
     ! (int (np), 0-based), in which the bin stage fills the lists and the energy stage sums
@@ -92,7 +92,7 @@ module mpm3d_stage_common
     type(c_ptr) :: sg_still = c_null_ptr, sg_rest = c_null_ptr, patch_work = c_null_ptr
   end type step_context
 
-  ! step_context%exchange's kinds (cxx/update_step.hpp ExchangeKind).
+  ! step_context%exchange's kinds (cxx/stages/update_step.hpp ExchangeKind).
   integer, parameter, public :: EXCHANGE_BUFFERS = 0, EXCHANGE_PARTIALS = 1, EXCHANGE_CONTACT = 2
   abstract interface
     subroutine exchange_hook(c, kind, first, count) bind(C)

@@ -1,4 +1,4 @@
-! stage_sg: the current MPM3D-F90's smoothed-gradient MPM (sgmp) as cxx/stage_sg.cpp, the
+! stage_sg: the current MPM3D-F90's smoothed-gradient MPM (sgmp) as cxx/stages/stage_sg.cpp, the
 ! same operations in the same order: the particles exchange with the cell centres (trilinear
 ! weights of the auxiliary cell around the nearest node), the cell centres with the corners
 ! of their cells (1/8 each; one-point gradients at the centre for forces and strain rates).

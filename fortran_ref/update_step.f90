@@ -1,6 +1,6 @@
 ! update_step: the stages of the Fortran reference by identifier: the identifiers (enum Stage
-! of cxx/step_order.h), run_stage, which calls a stage by identifier, and the interfaces of
-! the step table of cxx/step_order.c that mpm3d_ref walks; re-exports the bind(C) stages (one
+! of cxx/stages/step_order.h), run_stage, which calls a stage by identifier, and the interfaces of
+! the step table of cxx/stages/step_order.c that mpm3d_ref walks; re-exports the bind(C) stages (one
 ! stage_*.f90 file each) and step_context for mpm3d_ref and data_in.
 module mpm3d_update_step
   use, intrinsic :: iso_c_binding, only: c_int
@@ -21,13 +21,13 @@ module mpm3d_update_step
             mpm3d_f_stress, mpm3d_f_energy, mpm3d_f_contact, mpm3d_f_recontact
   public :: mpm3d_f_context_layout
 
-  ! Stage identifiers, the values of enum Stage in cxx/step_order.h (checked by fref_layout).
+  ! Stage identifiers, the values of enum Stage in cxx/stages/step_order.h (checked by fref_layout).
   integer, parameter, public :: ST_BIN = 0, ST_P2G = 1, ST_FORCES = 2, ST_INTEGRATE = 3, &
                                 ST_G2P = 4, ST_STRESS = 5, ST_ENERGY = 6, ST_CONTACT = 7, &
                                 ST_RECONTACT = 8, ST_COUNT = 9
   public :: run_stage, mpm3d_f_step_constants, mpm3d_step_order, mpm3d_stage_needs_contact, mpm3d_stage_per_component
 
-  ! The step table (cxx/step_order.h): the longest row, a scheme's row, which stages run
+  ! The step table (cxx/stages/step_order.h): the longest row, a scheme's row, which stages run
   ! only with contact and which run on each component's context.
   integer, parameter, public :: MPM3D_MAX_STEP_STAGES = 16
   interface
@@ -76,7 +76,7 @@ contains
     end select
   end subroutine run_stage
 
-  ! The identifiers this module and stage_common repeat from cxx/step_order.h, for the
+  ! The identifiers this module and stage_common repeat from cxx/stages/step_order.h, for the
   ! layout check: the stages in order, ST_COUNT, the schemes, the longest row.
   subroutine mpm3d_f_step_constants(out) bind(C, name='mpm3d_f_step_constants')
     integer(c_int), intent(out) :: out(14)

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The solver's storage order of the particles (--particle-order blocks, the default, or
-# deck; cxx/particle.hpp order_by_blocks) is internal:
+# deck; cxx/core/particle.hpp order_by_blocks) is internal:
 # 1. every output file lists the particles in deck order: a two_blocks variant with
 #    curves, TecPlot (with pt2d), ParaView, the HDF5 series and the state file gives the
 #    same bytes in both orders before the first step (the runs are a second apart, so a

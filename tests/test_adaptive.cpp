@@ -15,11 +15,11 @@
 #include <omp.h>
 #endif
 
-#include "data_in.hpp"
-#include "ffi.hpp"
+#include "input/data_in.hpp"
+#include "input/ffi.hpp"
 #include "mpm3d.hpp"
 #include "test_util.hpp"
-#include "patch_loops.hpp"
+#include "stages/patch_loops.hpp"
 
 using testutil::RunResult;
 using testutil::same_bits;

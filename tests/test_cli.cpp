@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "analysis.hpp"
-#include "data_in.hpp"
+#include "io/analysis.hpp"
+#include "input/data_in.hpp"
 #include "mpm3d.hpp"
 #include "test_util.hpp"
 

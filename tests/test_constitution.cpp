@@ -12,8 +12,8 @@
 
 #include <cmath>
 
-#include "constitution.hpp"
-#include "material.hpp"
+#include "materials/constitution.hpp"
+#include "materials/material.hpp"
 
 using mpm3d::StressState;
 

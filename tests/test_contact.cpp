@@ -9,8 +9,8 @@
 #include <sstream>
 #include <string>
 
-#include "data_in.hpp"
-#include "ffi.hpp"
+#include "input/data_in.hpp"
+#include "input/ffi.hpp"
 #include "mpm3d.hpp"
 
 namespace {

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <string>
 
-#include "data_in.hpp"
-#include "data_out.hpp"
+#include "input/data_in.hpp"
+#include "io/data_out.hpp"
 
 TEST(DataOut, FortranE12_4) {
   // E12.4: 12 characters, right-aligned, mantissa 0.dddd, signed two-digit exponent.

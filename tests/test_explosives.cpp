@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "constitution.hpp"
-#include "data_in.hpp"
-#include "data_out.hpp"
-#include "material.hpp"
+#include "materials/constitution.hpp"
+#include "input/data_in.hpp"
+#include "io/data_out.hpp"
+#include "materials/material.hpp"
 #include "mpm3d.hpp"
 
 using mpm3d::StressState;

@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "data_in.hpp"
-#include "ffi.hpp"
+#include "input/data_in.hpp"
+#include "input/ffi.hpp"
 
 using mpm3d::DeckError;
 using mpm3d::TokenStream;

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <string>
 
-#include "data_in.hpp"
+#include "input/data_in.hpp"
 #include "mpm3d.hpp"
 
 namespace {

@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "data_in.hpp"
-#include "ffi.hpp"
+#include "input/data_in.hpp"
+#include "input/ffi.hpp"
 
 namespace {
 

@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "analysis.hpp"
-#include "checkpoint.hpp"
-#include "data_in.hpp"
-#include "data_out.hpp"
+#include "io/analysis.hpp"
+#include "io/checkpoint.hpp"
+#include "input/data_in.hpp"
+#include "io/data_out.hpp"
 #include "mpm3d.hpp"
 #include "test_util.hpp"
 

@@ -8,7 +8,7 @@
 #include <random>
 #include <vector>
 
-#include "grid.hpp"
+#include "core/grid.hpp"
 
 namespace {
 

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "data_in.hpp"
+#include "input/data_in.hpp"
 #include "mpm3d.hpp"
-#include "stage_common.hpp"
+#include "stages/stage_common.hpp"
 #include "test_util.hpp"
 
 namespace {

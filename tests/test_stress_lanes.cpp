@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "constitution.hpp"
-#include "material.hpp"
+#include "materials/constitution.hpp"
+#include "materials/material.hpp"
 
 namespace {
 

@@ -8,8 +8,8 @@
 #include <filesystem>
 #include <string>
 
-#include "analysis.hpp"
-#include "data_in.hpp"
+#include "io/analysis.hpp"
+#include "input/data_in.hpp"
 #include "mpm3d.hpp"
 
 TEST(Taylor, LegacyDeckMatchesTheOriginalProgram) {

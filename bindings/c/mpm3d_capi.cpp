@@ -13,12 +13,12 @@
 #include <string>
 #include <vector>
 
-#include "checkpoint.hpp"
-#include "data_in.hpp"
-#include "data_out.hpp"
-#include "ffi.hpp"
+#include "io/checkpoint.hpp"
+#include "input/data_in.hpp"
+#include "io/data_out.hpp"
+#include "input/ffi.hpp"
 #include "mpm3d.hpp"
-#include "update_step.hpp"
+#include "stages/update_step.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>

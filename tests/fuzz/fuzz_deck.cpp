@@ -12,8 +12,8 @@
 #include <cstring>
 #include <string>
 
-#include "data_in.hpp"
-#include "ffi.hpp"
+#include "input/data_in.hpp"
+#include "input/ffi.hpp"
 #include "mpm3d.hpp"
 
 using namespace mpm3d;

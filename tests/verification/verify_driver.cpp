@@ -43,9 +43,9 @@
 #include <omp.h>
 #endif
 
-#include "analysis.hpp"
-#include "data_in.hpp"
-#include "ffi.hpp"
+#include "io/analysis.hpp"
+#include "input/data_in.hpp"
+#include "input/ffi.hpp"
 #include "mpm3d.hpp"
 
 using namespace mpm3d;

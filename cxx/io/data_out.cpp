@@ -1,0 +1,255 @@
+#include "io/data_out.hpp"
+
+#include <hdf5.h>
+
+#include "io/h5_write.hpp"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "io/checkpoint.hpp"
+#include "materials/constitution.hpp"
+
+namespace mpm3d {
+
+std::string fortran_e12_4(double v) {
+  char buf[64];
+  if (v == 0.0 || !std::isfinite(v)) {
+    if (!std::isfinite(v)) std::snprintf(buf, sizeof buf, "%12s", std::isnan(v) ? "NaN" : (v > 0 ? "Infinity" : "-Infinity"));
+    else std::snprintf(buf, sizeof buf, "  0.0000E+00");
+    return buf;
+  }
+  char e[32];
+  std::snprintf(e, sizeof e, "%.3E", std::fabs(v));  // d.dddE+xx
+  const int exponent = std::atoi(e + 6) + 1;
+  std::snprintf(buf, sizeof buf, "%s0.%c%c%c%cE%c%02d", v < 0 ? "-" : "", e[0], e[2], e[3], e[4],
+                exponent < 0 ? '-' : '+', std::abs(exponent));
+  std::string s = buf;
+  if (s.size() < 12) s.insert(0, 12 - s.size(), ' ');
+  return s;
+}
+
+namespace {
+
+double pressure(const double* s) { return -((s[0] + s[1]) + s[2]) / 3.0; }
+const MaterialParams& mat_of(const Model& m, int p) { return m.mats[size_t(m.particles.mat[p])]; }
+
+double var_seqv(const Model& m, int p) {
+  const double* s = &m.particles.sig[6 * size_t(p)];
+  const double pres = pressure(s);
+  const double d0 = s[0] + pres, d1 = s[1] + pres, d2 = s[2] + pres;
+  return std::sqrt(1.5 * ((d0 * d0 + d1 * d1 + d2 * d2) + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5])));
+}
+double var_epef(const Model& m, int p) { return m.particles.epeff[p]; }
+double var_mat(const Model& m, int p) { return double(m.particles.mat[p] + 1); }
+double var_pres(const Model& m, int p) { return pressure(&m.particles.sig[6 * size_t(p)]); }
+double var_volu(const Model& m, int p) { return m.particles.vol[p]; }
+double var_engk(const Model& m, int p) {
+  const double* v = &m.particles.v[3 * size_t(p)];
+  return 0.5 * m.particles.mass[p] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
+double var_engi(const Model& m, int p) { return m.particles.ie[p]; }
+double var_velx(const Model& m, int p) { return m.particles.v[3 * size_t(p)]; }
+double var_vely(const Model& m, int p) { return m.particles.v[3 * size_t(p) + 1]; }
+double var_velz(const Model& m, int p) { return m.particles.v[3 * size_t(p) + 2]; }
+double var_cels(const Model& m, int p) { return m.particles.temp.empty() ? 0.0 : m.particles.temp[p]; }
+double var_fail(const Model& m, int p) {
+  const double ef = mat_of(m, p).fail_strain;
+  return (ef > 0.0 && m.particles.epeff[p] >= ef) ? 1.0 : 0.0;
+}
+double var_damg(const Model& m, int p) {
+  const double ef = mat_of(m, p).fail_strain;
+  return ef > 0.0 ? std::min(1.0, std::max(0.0, m.particles.epeff[p] / ef)) : 0.0;
+}
+double var_stsx(const Model& m, int p) { return m.particles.sig[6 * size_t(p)]; }
+// 0 where the initial positions are not held (a restart from a checkpoint without them).
+double displacement(const Model& m, int p, int a) {
+  if (m.particles.x0.empty()) return 0.0;
+  return m.particles.x[3 * size_t(p) + size_t(a)] - m.particles.x0[3 * size_t(p) + size_t(a)];
+}
+double var_disx(const Model& m, int p) { return displacement(m, p, 0); }
+double var_disy(const Model& m, int p) { return displacement(m, p, 1); }
+double var_disz(const Model& m, int p) { return displacement(m, p, 2); }
+double var_spre(const Model& m, int p) { return m.spre.empty() ? 0.0 : m.spre[size_t(p)]; }
+double var_sspd(const Model& m, int p) {
+  const MaterialParams& mp = mat_of(m, p);
+  double k = mp.lambda + (2.0 / 3.0) * mp.shear;
+  if (mp.eos_type == EOS_MIE_GRUNEISEN) k = mp.rho0 * (mp.eos[0] * mp.eos[0]);
+  else if (mp.eos_type == EOS_LINEAR) k = mp.eos[1];
+  else if (mp.eos_type == EOS_WEAK) k = mp.rho0 * (mp.eos[0] * mp.eos[0]);
+  const double modulus = k + (4.0 / 3.0) * mp.shear;
+  const double rho = m.particles.density(p);
+  if (!(modulus > 0.0) || !(rho > 0.0)) return mp.wave_speed;
+  return std::sqrt(modulus / rho);
+}
+
+}  // namespace
+
+const std::vector<OutputVariable>& output_variables() {
+  static const std::vector<OutputVariable> vars = {
+      {"seqv", var_seqv}, {"epef", var_epef}, {"mat", var_mat},   {"pres", var_pres}, {"volu", var_volu},
+      {"engk", var_engk}, {"engi", var_engi}, {"velx", var_velx}, {"vely", var_vely}, {"velz", var_velz},
+      {"cels", var_cels}, {"fail", var_fail}, {"sspd", var_sspd}, {"damg", var_damg}, {"stsx", var_stsx},
+      {"disx", var_disx}, {"disy", var_disy}, {"disz", var_disz}, {"spre", var_spre}};
+  return vars;
+}
+
+ParticleVarFn output_variable(const std::string& name) {
+  for (const auto& v : output_variables())
+    if (name == v.name) return v.fn;
+  return nullptr;
+}
+
+double particle_variable(const Model& m, const std::string& var, int p) {
+  const ParticleVarFn f = output_variable(var);
+  return f ? f(m, p) : 0.0;
+}
+
+void held_curve_values(const Model& m, std::vector<int>& held, std::vector<double>& values) {
+  const Particles& P = m.particles;
+  const size_t nc = m.curves.size();
+  held.resize(nc, -1);
+  values.assign(nc, -INFINITY);
+  bool missing = false;
+  for (size_t c = 0; c < nc; ++c) {
+    const int p = held[c];
+    if (p >= 0 && p < P.np && P.deck_number(p) == m.curves[c].particle) values[c] = output_variable(m.curves[c].var)(m, p);
+    else missing = true;
+  }
+  if (!missing) return;
+  // One pass over the rows for the curves not where they were (few: a search per curve).
+  for (int p = 0; p < P.np; ++p) {
+    const int deck = P.deck_number(p);
+    for (size_t c = 0; c < nc; ++c) {
+      if (values[c] != -INFINITY || deck != m.curves[c].particle) continue;
+      held[c] = p;
+      values[c] = output_variable(m.curves[c].var)(m, p);
+    }
+  }
+}
+
+void write_state_h5(const std::string& path, const Model& m, double time, long step, double dt) {
+  const std::string tmp = path + ".tmp";
+  const H5ErrorSilencer quiet;  // our own messages instead; the caller's handler is restored
+  {
+    H5File f{H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5Untimed().file, H5P_DEFAULT)};
+    if (f.id < 0) throw std::runtime_error("cannot create the state file " + path);
+    hid_t g = H5Gcreate2(f.id, "/particles", H5P_DEFAULT, H5Untimed().group, H5P_DEFAULT);
+    if (g < 0) throw std::runtime_error("cannot create /particles in " + path);
+    const Particles& P = m.particles;
+    const hsize_t n = hsize_t(P.np);
+    const std::vector<int> at = stored_index(P);
+    std::vector<double> rho(P.np);
+    std::vector<int> mat(P.np), body(P.np);
+    for (int i = 0; i < P.np; ++i) {
+      const size_t p = size_t(at[size_t(i)]);
+      rho[size_t(i)] = P.mass[p] / P.vol[p];
+      mat[size_t(i)] = P.mat[p] + 1;
+      body[size_t(i)] = P.body[p] + 1;
+    }
+    try {
+      h5_write_dataset(g, "position", H5T_NATIVE_DOUBLE, deck_ordered(P.x, 3, at).data(), n, 3);
+      h5_write_dataset(g, "velocity", H5T_NATIVE_DOUBLE, deck_ordered(P.v, 3, at).data(), n, 3);
+      h5_write_dataset(g, "stress", H5T_NATIVE_DOUBLE, deck_ordered(P.sig, 6, at).data(), n, 6);
+      h5_write_dataset(g, "mass", H5T_NATIVE_DOUBLE, deck_ordered(P.mass, 1, at).data(), n, 0);
+      h5_write_dataset(g, "volume", H5T_NATIVE_DOUBLE, deck_ordered(P.vol, 1, at).data(), n, 0);
+      h5_write_dataset(g, "density", H5T_NATIVE_DOUBLE, rho.data(), n, 0);
+      h5_write_dataset(g, "epeff", H5T_NATIVE_DOUBLE, deck_ordered(P.epeff, 1, at).data(), n, 0);
+      h5_write_dataset(g, "internal_energy", H5T_NATIVE_DOUBLE, deck_ordered(P.ie, 1, at).data(), n, 0);
+      if (!P.temp.empty())
+        h5_write_dataset(g, "temperature", H5T_NATIVE_DOUBLE, deck_ordered(P.temp, 1, at).data(), n, 0);
+      h5_write_dataset(g, "material", H5T_NATIVE_INT, mat.data(), n, 0);
+      h5_write_dataset(g, "body", H5T_NATIVE_INT, body.data(), n, 0);
+      h5_write_attr(g, "time", H5T_NATIVE_DOUBLE, &time);
+      h5_write_attr(g, "step", H5T_NATIVE_LONG, &step);
+      h5_write_attr(g, "dt", H5T_NATIVE_DOUBLE, &dt);
+    } catch (...) {
+      H5Gclose(g);
+      std::remove(tmp.c_str());
+      throw;
+    }
+    H5Gclose(g);
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    std::remove(tmp.c_str());
+    throw std::runtime_error("cannot write the state file " + path);
+  }
+}
+
+// ---------------------------------------------------------------- the writers
+
+FILE* OutputFiles::create(const std::string& name, bool& appended) const {
+  const std::string p = path(name);
+  appended = false;
+  if (resume_) {
+    for (const auto& e : resume_->files) {
+      if (e.first != name) continue;
+      struct stat st;
+      const long long have = stat(p.c_str(), &st) == 0 ? (long long)st.st_size : -1;
+      if (have >= e.second && ::truncate(p.c_str(), off_t(e.second)) == 0) {
+        FILE* f = std::fopen(p.c_str(), "a");
+        if (!f) throw std::runtime_error("cannot write " + p);
+        appended = true;
+        return f;
+      }
+    }
+  }
+  return create(name);
+}
+
+FILE* OutputFiles::create(const std::string& name) const {
+  const std::string p = path(name);
+  FILE* f = std::fopen(p.c_str(), "w");
+  if (!f) throw std::runtime_error("cannot write " + p);
+  return f;
+}
+
+Output::Output() = default;
+Output::~Output() { close(); }
+
+void Output::open(const Model& m, const std::string& dir, bool legacy, bool series, const OutputSchedule* resume,
+                  bool vtu_binary) {
+  const OutputFiles files(dir, resume);
+  if (resume) frame_times_ = resume->frame_times;
+  for (const auto& c : m.curves) spre_in_curves_ = spre_in_curves_ || c.var == "spre";
+  for (const auto& v : m.anim_vars) spre_in_frames_ = spre_in_frames_ || v == "spre";
+  // The order of the writers is the order of the files in a checkpoint's record.
+  if (legacy) {
+    writers_.push_back(make_curve_writer(m, files));
+    if (m.tecplot) writers_.push_back(make_tecplot_writer(m, files));
+    if (m.contact) writers_.push_back(make_contact_writer(files));
+    if (m.paraview) writers_.push_back(make_vtu_writer(m, files, frame_times_, vtu_binary));
+  }
+  if (series) writers_.push_back(make_h5_series_writer(m, files, frame_times_));
+}
+
+void Output::log(const std::string& line) {
+  for (auto& w : writers_) w->log(line);
+}
+
+void Output::step(const Model& m, const StepRecord& s) {
+  if (spre_in_curves_ && !writers_.empty()) update_smoothed_pressure(m);
+  for (auto& w : writers_) w->step(m, s);
+}
+
+void Output::frame(const Model& m, double time, long step) {
+  const std::vector<int> at = stored_index(m.particles);
+  if (spre_in_frames_) update_smoothed_pressure(m);
+  for (auto& w : writers_) w->frame(m, at, time, step);
+  frame_times_.push_back(time);
+}
+
+void Output::save_state(OutputSchedule& o) {
+  o.frame_times = frame_times_;
+  o.files.clear();
+  for (auto& w : writers_) w->record_sizes(o.files);
+}
+
+void Output::close() { writers_.clear(); }
+
+}  // namespace mpm3d

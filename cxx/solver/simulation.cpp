@@ -1,0 +1,705 @@
+// The simulation (cxx/solver/simulation.hpp): set-up and binding of the step contexts, one step
+// through the stage table, the adaptive regrid, the energy measure, the health and energy
+// checks.
+#include "solver/simulation.hpp"
+
+#include "materials/constitution.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace mpm3d {
+namespace {
+
+// Patches at rest (sgmp): how far, in cells, the data of one step reaches. A particle's
+// update reads the cell centres of its auxiliary cell (one cell either side), which read
+// their corner nodes (one more), which gather the centres next to them (one more), which
+// the particles of their own and the neighbouring cells scatter to (one more): 3 cells from
+// the particles' start-of-step state to a G2P. MUSL's remap and stress go round once more
+// from the updated velocities (6 cells), and USF's G2P reads the forces of the stresses it
+// updated first (8). So a patch whose every patch within 8 cells holds only particles that
+// are still and at rest computes this step exactly what it computed in the step before.
+constexpr int kRestReachCells = 8;
+// The work of a particle of a patch at rest (binning, the scatter weights, the energy sums)
+// against one that is computed, for the threads' shares (thread_patches): about 1 to 8 on
+// SGDeto1k (docs/PERFORMANCE.md).
+constexpr int kMovingWork = 8;
+
+// Particle p, as it stands, would be left as it is by a step whose grid values near it are
+// all zero: its last G2P and stress update changed no bit of it (sg_still bits 0 and 1),
+// its velocity and stress are zero (either sign) and, an explosive, it is unlit at time t.
+inline bool particle_quiet(const StepContext* c, const unsigned char* still, int p, double t) {
+  if (still[p] != 3) return false;
+  const double* v = c->v + 3 * p;
+  if (v[0] != 0.0 || v[1] != 0.0 || v[2] != 0.0) return false;
+  const double* s = c->sig + 6 * size_t(p);
+  for (int k = 0; k < 6; ++k)
+    if (s[k] != 0.0) return false;
+  const MaterialParams& mp = c->mats[c->mat[p]];
+  return !(c->tlight && mp.type == MAT_HIEX) || burn_fraction(mp, c->tlight[p], t) == 0.0;
+}
+
+}  // namespace
+
+Simulation::Simulation(Model m, int patch_cells, ParticleOrder order) : model(std::move(m)), stages_(cxx_stages()) {
+  if (patch_cells < 1) throw std::invalid_argument("patch size must be at least one cell");
+  // A GIMP stencil reaches one node beyond its patch's cells; the node loops find every
+  // node a patch's particles touch among its own and its neighbours' nodes only when a
+  // patch is at least two cells wide.
+  if ((model.shape() != 0 || model.sg) && patch_cells < 2)
+    throw std::invalid_argument(std::string(model.gimp ? "GIMP" : model.sg ? "sgmp" : "B-spline") +
+                                " needs patches of at least two cells");
+  double hi[3];
+  for (int a = 0; a < 3; ++a) hi[a] = model.box_hi[a];
+  // 27-node stencils and sgmp's cell centres reach one node beyond a patch's cells.
+  const int halo = (model.shape() != 0 || model.sg) ? 1 : 0;
+  grid.define(model.box_lo, hi, model.dcell, patch_cells, halo);
+  for (int f = 0; f < 6; ++f) grid.fix[f] = model.fix[f];
+  grid.mass_cutoff = model.mass_cutoff;
+  const size_t np = size_t(model.particles.np);
+  if (order == ParticleOrder::blocks) {
+    order_by_blocks(model.particles, model.box_lo, model.dcell, grid.deck_nc, patch_cells);
+  } else {
+    model.particles.id.resize(np);  // deck order, recorded too (the checkpoint stores it)
+    for (size_t p = 0; p < np; ++p) model.particles.id[p] = int32_t(p);
+  }
+  regrid_every = model.regrid_every;
+  if (model.contact && regrid_every > 0) {
+    // The two contact grids share one node numbering; the adaptive window is not applied.
+    regrid_every = 0;
+    model.warnings.push_back("adaptive grid ignored: 'cont' (multi-velocity contact) keeps the deck's box");
+  }
+  // The first window (the whole box without the adaptive grid); the node arrays are
+  // allocated at the window's size only.
+  int off[3] = {0, 0, 0}, nc[3] = {grid.deck_nc[0], grid.deck_nc[1], grid.deck_nc[2]};
+  if (regrid_every > 0)
+    adaptive_window(grid, model.particles.x.data(), model.particles.v.data(), model.particles.np, regrid_every,
+                    model.dt, off, nc);
+  grid.set_window(off, nc);
+  lx_.assign(3 * np, 0.0);
+  cell_.assign(np, -1);
+  grid.patch_part.assign(np, 0);
+  if (model.contact) {
+    grid2.setup(model.box_lo, hi, model.dcell, patch_cells, halo);
+    for (int f = 0; f < 6; ++f) grid2.fix[f] = model.fix[f];
+    grid2.mass_cutoff = model.mass_cutoff;
+    grid2.patch_part.assign(np, 0);
+  }
+  bind();
+  // Binning of the initial state: the energy stage sums over the patch lists, and the patch
+  // statistics before the first step (every step bins again).
+  bin_particles();
+  measure();
+  initial_total_energy = kinetic + internal;
+  if (regrid_every > 0) {
+    regrids = 1;
+    note_regrid(0);
+  }
+}
+
+namespace {
+
+// The context's grid arrays and patch buffers are those of grid g.
+void point_at_grid(StepContext& c, Grid& g) {
+  c.gmass = g.mass.data();
+  c.gmom = g.mom.data();
+  c.gforce = g.force.data();
+  c.patch_start = g.patch_start.data();
+  c.patch_part = g.patch_part.data();
+  c.patch_slot = g.patch_slot.data();
+  c.patch_buf = g.patch_buf.data();
+}
+
+// Room in g's patch buffers for the patches binned into c.nslot slots (a quarter more, so
+// that a slowly growing count does not reallocate every step).
+void ensure_patch_buffer(StepContext& c, Grid& g) {
+  const size_t need = size_t(c.nslot) * size_t(g.patch_nodes) * kNodeFields;
+  if (g.patch_buf.size() < need) {
+    g.patch_buf.resize(need + need / 4);
+    c.patch_buf = g.patch_buf.data();
+  }
+}
+
+}  // namespace
+
+void Simulation::bind() {
+  Particles& P = model.particles;
+  StepContext& c = ctx;
+  c.x = P.x.data();
+  c.v = P.v.data();
+  c.sig = P.sig.data();
+  c.mass = P.mass.data();
+  c.vol = P.vol.data();
+  c.epeff = P.epeff.data();
+  c.ie = P.ie.data();
+  c.temp = P.temp.empty() ? nullptr : P.temp.data();
+  c.fext = P.fext.empty() ? nullptr : P.fext.data();
+  c.tlight = P.tlight.empty() ? nullptr : P.tlight.data();
+  c.qv = P.qv.empty() ? nullptr : P.qv.data();
+  c.bulk_q1 = model.bulk_q1;
+  c.bulk_q2 = model.bulk_q2;
+  c.lx = lx_.data();
+  c.mat = P.mat.data();
+  c.body = P.body.data();
+  c.cell = cell_.data();
+  pscratch_.resize(size_t(P.np), 0);  // written by the bin stage (or the ranks) before it is read
+  c.pscratch = pscratch_.data();
+  std::vector<double>& grav = gravity_;
+  grav.assign(3 * model.bodies.size(), 0.0);
+  for (size_t b = 0; b < model.bodies.size(); ++b)
+    for (int a = 0; a < 3; ++a) grav[3 * b + a] = model.bodies[b].gravity[a];
+  c.gravity = grav.data();
+  c.mats = model.mats.data();
+  c.h = grid.h;
+  c.inv_h = 1.0 / grid.h;
+  c.dt = model.dt;
+  c.dt_int = model.dt;
+  c.mass_cutoff = grid.mass_cutoff;
+  c.np = P.np;
+  c.nbody = int(model.bodies.size());
+  c.nmat = int(model.mats.size());
+  c.patch_cells = grid.patch_cells;
+  for (int f = 0; f < 6; ++f) c.fix[f] = grid.fix[f];
+  c.scheme = model.scheme;
+  c.has_body_force = (model.has_gravity || model.has_loads || model.damping > 0.0) ? 1 : 0;
+  c.load_ramp_time = model.load_ramp_time;
+  c.damping = model.damping;
+  // GIMP and B-spline: 27-node stencils, patch buffers with a halo of one node layer.
+  c.psize = model.gimp ? P.psize.data() : nullptr;
+  c.shape = model.shape();
+  c.fix_layers = model.fix_layers();
+  c.patch_halo = grid.patch_halo;
+  c.body_comp = nullptr;
+  c.other = nullptr;
+  c.gnormal = nullptr;
+  c.cpartials = nullptr;
+  c.only_comp = 0;
+  c.defgrad = P.defgrad.empty() ? nullptr : P.defgrad.data();
+  c.tl = model.tl ? 1 : 0;
+  c.xbin = model.tl ? P.x0.data() : P.x.data();  // TLmp: the particles stay in their reference cells
+  c.pk1 = model.tl ? P.pk1.data() : nullptr;
+  c.uvf = model.uvf ? 1 : 0;
+  // sgmp: the cell centres' scratch fields (the grid window is the whole box: no regrid).
+  if (model.sg) aux_.assign(size_t(kAuxFields) * size_t(grid.nc[0]) * size_t(grid.nc[1]) * size_t(grid.nc[2]), 0.0);
+  c.aux = model.sg ? aux_.data() : nullptr;
+  if (model.sg) {
+    sg_w_.assign(size_t(kSgWeights) * size_t(P.np), 0.0);
+    sg_cell_.assign(8 * size_t(P.np), 0);
+    sg_reach_.assign(size_t(P.np), 0);
+  }
+  c.sg_w = model.sg ? sg_w_.data() : nullptr;
+  c.sg_cell = model.sg ? sg_cell_.data() : nullptr;
+  c.sg_reach = model.sg ? sg_reach_.data() : nullptr;
+  c.sg = model.sg ? 1 : 0;
+  forget_rest();  // new arrays: nothing is known still
+  bind_grid();  // before the contact copy: ctx2 starts as a copy of ctx
+  if (model.contact) {
+    // Two contexts over the same particles: each bins, scatters and updates the particles
+    // of its component on its own grid; the contact stage (in ctx) couples the two grids.
+    body_comp_.assign(model.bodies.size(), 1);
+    for (size_t b = 0; b < model.bodies.size(); ++b) body_comp_[b] = model.bodies[b].component;
+    // The nodes' contact marks outlive a rebinding after particles changed rank (USF reads
+    // them in the next step); zero when the grid is new.
+    if (gnormal1_.size() != 3 * size_t(grid.nnode())) gnormal1_.assign(3 * size_t(grid.nnode()), 0.0);
+    if (gnormal2_.size() != 3 * size_t(grid.nnode())) gnormal2_.assign(3 * size_t(grid.nnode()), 0.0);
+    cpartials_.assign(size_t(kContactFields) * size_t(grid.npatch), 0.0);
+    c.body_comp = body_comp_.data();
+    c.contact_mu = model.contact_mu;
+    c.contact_normbody = model.contact_normbody;
+    c.cpartials = cpartials_.data();
+    ctx2 = c;
+    c.only_comp = 1;
+    c.gnormal = gnormal1_.data();
+    c.other = &ctx2;
+    ctx2.only_comp = 2;
+    ctx2.gnormal = gnormal2_.data();
+    point_at_grid(ctx2, grid2);
+  }
+}
+
+void Simulation::bind_grid() {
+  StepContext& c = ctx;
+  point_at_grid(c, grid);
+  for (int a = 0; a < 3; ++a) {
+    c.origin[a] = grid.origin[a];
+    c.nc[a] = grid.nc[a];
+    c.nn[a] = grid.nn[a];
+    c.npd[a] = grid.npd[a];
+    c.cell_off[a] = grid.off[a];
+  }
+  c.nnode = grid.nnode();
+  c.npatch = grid.npatch;
+  // The energy stage's columns: one per patch and one for the particles outside the grid.
+  const size_t ncolumn_values = size_t(kReduceFields) * (size_t(grid.npatch) + 1);
+  if (partials_.size() != ncolumn_values) partials_.assign(ncolumn_values, 0.0);
+  c.partials = partials_.data();
+}
+
+void Simulation::regrid(int escaped) {
+  int off[3], nc[3];
+  const Particles& P = model.particles;
+  WindowExtent e = window_extent(grid, P.x.data(), P.v.data(), P.np);
+  if (ranks) {  // every rank's particles: the extents merged by min and max (exact)
+    std::vector<double> m = {-double(e.cmin[0]), -double(e.cmin[1]), -double(e.cmin[2]), double(e.cmax[0]),
+                             double(e.cmax[1]),  double(e.cmax[2]),  e.vmax2};
+    ranks->max(m);
+    for (int a = 0; a < 3; ++a) {
+      e.cmin[a] = -int(m[size_t(a)]);
+      e.cmax[a] = int(m[3 + size_t(a)]);
+    }
+    e.vmax2 = m[6];
+  }
+  window_of_extent(grid, e, regrid_every > 0 ? regrid_every : 1, model.dt, off, nc);
+  grid.set_window(off, nc);
+  bind_grid();
+  ++regrids;
+  if (escaped > 0) ++regrids_forced;
+}
+
+void Simulation::note_regrid(int escaped) {
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "regrid step %ld window %d %d %d %d %d %d cells %d x %d x %d, patches %d, empty %d, "
+                "particles per patch max %d mean %.1f, imbalance %.3f",
+                steps, grid.off[0], grid.off[0] + grid.nc[0], grid.off[1], grid.off[1] + grid.nc[1], grid.off[2],
+                grid.off[2] + grid.nc[2], grid.nc[0], grid.nc[1], grid.nc[2], stats.patches, stats.empty, stats.max,
+                stats.mean, stats.imbalance);
+  regrid_note = line;
+  if (escaped > 0) regrid_note += " (forced: " + std::to_string(escaped) + " particles had left the window)";
+}
+
+void Simulation::set_grid(const double origin[3], double h, const int deck_nc[3], int patch_cells, const int off[3],
+                          const int nc[3]) {
+  if (patch_cells < 1) throw std::invalid_argument("patch size must be at least one cell");
+  double hi[3];
+  for (int a = 0; a < 3; ++a) hi[a] = origin[a] + double(deck_nc[a]) * h;
+  grid.define(origin, hi, h, patch_cells, (model.shape() != 0 || model.sg) ? 1 : 0);
+  for (int a = 0; a < 3; ++a)
+    if (grid.deck_nc[a] != deck_nc[a]) throw std::runtime_error("grid: cannot rebuild the stored grid");
+  grid.set_window(off, nc);
+  for (int f = 0; f < 6; ++f) grid.fix[f] = model.fix[f];
+  grid.mass_cutoff = model.mass_cutoff;
+  grid.patch_part.assign(size_t(model.particles.np), 0);
+  bind();
+  lists_binned_ = false;  // the new grid's lists are empty until bin_particles or a step
+  reference_bin_holds_ = false;
+}
+
+void Simulation::bin_particles() {
+  forget_rest();  // the particles may have been replaced (a restart)
+  ctx.sg_cached = ctx2.sg_cached = 0;
+  stages_.fn[ST_BIN](&ctx);
+  if (model.contact) stages_.fn[ST_BIN](&ctx2);
+  lists_binned_ = true;
+  reference_bin_holds_ = model.tl && !ranks;
+  stats = patch_stats(grid, ctx.patch_start);
+  // The patch buffers for these lists now, with the set-up, rather than in the first step:
+  // their zero-filling and first touch (1.5 MB on taylor_coarse, 22 us a step averaged over
+  // 200 steps at 1 thread) is no part of a step's cost.
+  ensure_patch_buffers();
+}
+
+void Simulation::distribute(Ranks& r) {
+  ranks = &r;
+  r.distribute(*this);
+}
+
+void Simulation::particles_changed() {
+  // This step's time step and clock (Simulation::step sets them before the bin stage, where
+  // the particles move between ranks) outlive the rebinding.
+  const double dt = ctx.dt, dt_int = ctx.dt_int, t = ctx.time;
+  // The per-particle scratch keeps its rows (the ranks may have binned them already, moving
+  // them with the particles: StepContext::prebinned).
+  const size_t np = size_t(model.particles.np);
+  reference_bin_holds_ = false;
+  lx_.resize(3 * np, 0.0);
+  cell_.resize(np, -1);
+  grid.patch_part.resize(np, 0);
+  if (model.contact) grid2.patch_part.resize(np, 0);
+  bind();
+  for (StepContext* c : {&ctx, &ctx2}) {
+    c->dt = dt;
+    c->dt_int = dt_int;
+    c->time = t;
+  }
+}
+
+void Simulation::ensure_patch_buffers() {
+  ensure_patch_buffer(ctx, grid);
+  if (model.contact) ensure_patch_buffer(ctx2, grid2);
+}
+
+void Simulation::step() {
+  StepContext* c = &ctx;
+  const double kinetic_before = kinetic;
+  c->dt = model.dt;
+  c->dt_int = steps == 0 ? 0.5 * model.dt : model.dt;  // first step: momentum with dt/2
+  c->time = time + model.dt;  // the end of this step (programmed burn)
+  const bool contact = model.contact;
+  if (contact) {
+    ctx2.dt = c->dt;
+    ctx2.dt_int = c->dt_int;
+    ctx2.time = c->time;
+  }
+  // The scheme's row of the step table (step_order.c), walked as the Fortran driver does.
+  int order[MPM3D_MAX_STEP_STAGES];
+  const int nstage = mpm3d_step_order(c->scheme, order);
+  if (nstage < 0) throw std::logic_error("unknown update scheme " + std::to_string(c->scheme));
+  c->sg_rest = nullptr;  // the bin stage shares the patches by their particles
+  c->patch_work = nullptr;
+  for (int k = 0; k < nstage; ++k) {
+    const int s = order[k];
+    if (mpm3d_stage_needs_contact(s) && !contact) continue;
+    if (s == ST_BIN) {
+      bin_stage();
+      const bool rest = rest_possible();
+      if (rest != rest_on_) {  // switched on or off: nothing is known still
+        forget_rest();
+        rest_on_ = rest;
+      }
+      if (rest) timed(ST_BIN, [&] { mark_rest(); });  // with the bin stage, as the quiet check below
+      continue;
+    }
+    run_stage(s);
+    if (s == ST_CONTACT) {  // both grids integrated: the pair's momenta and forces corrected
+      for (int a = 0; a < 3; ++a) contact_force[a] = c->result[5 + a];
+      contact_nodes = c->ncontact;
+    }
+  }
+  if (rest_on_) timed(ST_BIN, [&] { quiet_patches(quiet_before_); });  // this step's lists, for the next
+  outside = c->noutside + (contact ? ctx2.noutside : 0);
+  if (ranks) outside = int(ranks->sum(outside));
+  kinetic = c->result[0];
+  internal = c->result[1];
+  for (int a = 0; a < 3; ++a) momentum[a] = c->result[2 + a];
+  ++steps;
+  time += model.dt;
+  // The bound of the work of gravity and loads: the energy stage's sum of |f . v| with the
+  // end-of-step velocities (0 without body forces), times this step's dt.
+  external_work += c->result[8] * model.dt;
+  if (model.dt_per_step) model.dt = velocity_time_step();
+  if (model.dynamic_relaxation && kinetic - kinetic_before <= 0.0) {
+    std::fill(model.particles.v.begin(), model.particles.v.end(), 0.0);
+    kinetic = 0.0;
+  }
+  health_check();
+}
+
+double Simulation::velocity_time_step() {
+  const double* v = model.particles.v.data();
+  const long n = 3L * model.particles.np;
+  double vmax = 0.0;  // a max: the same bits for any thread count
+#pragma omp parallel for reduction(max : vmax)
+  for (long i = 0; i < n; ++i) vmax = std::max(vmax, std::fabs(v[i]));
+  if (ranks) vmax = ranks->max(vmax);
+  double dt = std::numeric_limits<double>::infinity();
+  for (const MaterialParams& mp : model.mats) dt = std::min(dt, model.dcell / (mp.wave_speed + vmax));
+  return dt * model.dtscale;
+}
+
+bool Simulation::rest_possible() const {
+  // Grid values at rest are zero momenta and forces only without gravity, loads and
+  // damping; one process, one grid, one current position per particle; and the still bits
+  // are written by the C++ G2P and stress stages, whose skipping the other stages share.
+  if (!skip_rest || !model.sg || model.tl || model.contact || ranks) return false;
+  if (model.has_gravity || model.has_loads || model.damping > 0.0 || model.dynamic_relaxation) return false;
+  const StageTable cxx = cxx_stages();
+  for (int s : {ST_BIN, ST_P2G, ST_FORCES, ST_INTEGRATE, ST_G2P, ST_STRESS})
+    if (stages_.fn[s] != cxx.fn[s]) return false;
+  return true;
+}
+
+void Simulation::forget_rest() {
+  still_.assign(model.sg ? size_t(model.particles.np) : 0, 0);
+  quiet_before_.clear();
+  ctx.sg_still = nullptr;
+  ctx.sg_rest = nullptr;
+  ctx.patch_work = nullptr;
+  rest_on_ = false;
+}
+
+void Simulation::quiet_patches(std::vector<unsigned char>& quiet) const {
+  const StepContext* c = &ctx;
+  const int npatch = c->npatch;
+  quiet.assign(size_t(npatch), 0);
+  const unsigned char* still = still_.data();
+  unsigned char* out = quiet.data();
+  const double t = c->time;
+#pragma omp parallel for schedule(static)
+  for (int q = 0; q < npatch; ++q) {
+    bool all = true;
+    for (int e = c->patch_start[q]; all && e < c->patch_start[q + 1]; ++e)
+      all = particle_quiet(c, still, c->patch_part[e], t);
+    out[q] = all ? 1 : 0;
+  }
+}
+
+void Simulation::mark_rest() {
+  StepContext* c = &ctx;
+  const int npatch = c->npatch;
+  quiet_patches(quiet_);
+  // Quiet now over this step's lists and at the end of the step before over its lists: a
+  // particle that moved out of a patch's reach in that step was still listed there.
+  if (quiet_before_.size() != size_t(npatch)) quiet_before_.assign(size_t(npatch), 0);
+  for (int q = 0; q < npatch; ++q) quiet_[size_t(q)] = quiet_[size_t(q)] & quiet_before_[size_t(q)];
+  // At rest: every patch within kRestReachCells quiet, one axis at a time.
+  const int r = (kRestReachCells + c->patch_cells - 1) / c->patch_cells;
+  rest_ = quiet_;
+  ring_.assign(size_t(npatch), 0);
+  long stride = 1;
+  for (int a = 0; a < 3; ++a) {
+    const int len = c->npd[a];
+    for (int q = 0; q < npatch; ++q) {
+      const int i = int((q / stride) % len);
+      const int lo = i - r < 0 ? 0 : i - r, hi = i + r >= len ? len - 1 : i + r;
+      unsigned char all = 1;
+      for (int j = lo; j <= hi && all; ++j) all = rest_[size_t(q + (j - i) * stride)];
+      ring_[size_t(q)] = all;
+    }
+    rest_.swap(ring_);
+    stride *= len;
+  }
+  patch_work_.assign(size_t(npatch) + 1, 0);
+  for (int q = 0; q < npatch; ++q) {
+    const int n = c->patch_start[q + 1] - c->patch_start[q];
+    if (rest_[size_t(q)]) rest_particle_steps += n;
+    patch_work_[size_t(q) + 1] = patch_work_[size_t(q)] + n * (rest_[size_t(q)] ? 1 : kMovingWork);
+  }
+  c->sg_still = still_.data();
+  c->sg_rest = rest_.data();
+  c->patch_work = patch_work_.data();
+}
+
+void Simulation::run_stage(int s) {
+  timed(s, [&] { stages_.fn[s](&ctx); });
+  if (model.contact && mpm3d_stage_per_component(s)) timed(s, [&] { stages_.fn[s](&ctx2); });
+}
+
+void Simulation::bin_stage() {
+  StepContext* c = &ctx;
+  // TLmp bins the reference positions (StepContext::xbin): with the grid and the particles
+  // those of the last bin, its cells, local coordinates, lists and slots are this step's,
+  // bit for bit (one process: ranks bin in their migration).
+  if (reference_bin_holds_) return;  // and so do the sgmp weights cached from it
+  ctx.sg_cached = ctx2.sg_cached = 0;  // the particles are binned again below
+  // The adaptive window: a scheduled regrid before binning; a regrid and a second binning
+  // when a particle inside the deck's box has left the window, so that the window never
+  // freezes a particle the box would not have frozen.
+  const bool scheduled = regrid_every > 0 && steps > 0 && steps % regrid_every == 0;
+  if (scheduled) timed(ST_BIN, [&] { regrid(0); });
+  auto migrate = [&]() {  // the ranks' binning and migration: part of the bin stage's time
+    timed(ST_BIN, [&] { ranks->migrate(*this); });
+  };
+  if (ranks) migrate();
+  run_stage(ST_BIN);
+  lists_binned_ = true;
+  int escaped = 0;
+  if (!grid.window_is_box()) {
+    if (c->noutside > 0) escaped = count_escaped(grid, c->x, c->cell, c->np);
+    if (ranks) escaped = int(ranks->sum(escaped));
+    if (escaped > 0) {
+      timed(ST_BIN, [&] { regrid(escaped); });
+      if (ranks) migrate();  // the new window's patches, drawn over the ranks again
+      run_stage(ST_BIN);
+    }
+  }
+  stats = patch_stats(grid, c->patch_start);
+  reference_bin_holds_ = model.tl && !ranks;
+  if (ranks) ranks->add_ghost_slots(*this);  // also the patch statistics of every rank's particles
+  if (scheduled || escaped > 0) note_regrid(escaped);
+  ensure_patch_buffers();
+}
+
+void Simulation::measure() {
+  // The sums are folded over the patch lists: they must come from a bin of these particles.
+  if (!lists_binned_) throw std::logic_error("Simulation::measure: the particles are not binned");
+  stages_.fn[ST_ENERGY](&ctx);
+  kinetic = ctx.result[0];
+  internal = ctx.result[1];
+  for (int a = 0; a < 3; ++a) momentum[a] = ctx.result[2 + a];
+}
+
+std::string Simulation::body_and_rank(int p) const {
+  std::string s = "body " + std::to_string(model.particles.body[size_t(p)] + 1);
+  if (ranks) s += ", rank " + std::to_string(ranks->rank());
+  return s;
+}
+
+template <class F>
+std::string Simulation::about_particle(int deck, F&& format) const {
+  const Particles& P = model.particles;
+  int p = -1;
+  if (P.id.empty()) p = deck < P.np ? deck : -1;
+  else
+    for (int i = 0; i < P.np && p < 0; ++i)
+      if (P.id[size_t(i)] == deck) p = i;
+  std::string text = p >= 0 ? format(p) : std::string();
+  if (!ranks) return text;
+  const int from = ranks->min(p >= 0 ? ranks->rank() : std::numeric_limits<int>::max());
+  return ranks->broadcast(text, from);
+}
+
+// After every step: non-finite values (when an energy sum is not finite), then one pass
+// over the particles for a non-positive volume or a density outside
+// [kDensityRatioMin, kDensityRatioMax] rho0 (parallel, the lowest such deck number is
+// reported, whatever the thread count), then runaway energy. The pass reads two doubles and
+// one int per particle: about 1% of a step. On several ranks every decision is a min or a
+// max over the ranks, so that all of them stop at the same step with the same message.
+void Simulation::health_check() {
+  const Particles& P = model.particles;
+  constexpr int kNone = std::numeric_limits<int>::max();
+  auto lowest = [&](int deck) { return ranks ? ranks->min(deck) : deck; };
+  if (!(std::isfinite(kinetic) && std::isfinite(internal))) {
+    auto non_finite = [&](int p) -> const char* {
+      for (int a = 0; a < 3; ++a) {
+        if (!std::isfinite(P.x[3 * size_t(p) + a])) return "position";
+        if (!std::isfinite(P.v[3 * size_t(p) + a])) return "velocity";
+      }
+      for (int s = 0; s < 6; ++s)
+        if (!std::isfinite(P.sig[6 * size_t(p) + s])) return "stress";
+      if (!std::isfinite(P.ie[p])) return "internal energy";
+      if (!std::isfinite(P.vol[p])) return "volume";
+      return nullptr;
+    };
+    int first = kNone;
+    for (int p = 0; p < P.np; ++p)
+      if (non_finite(p)) first = std::min(first, P.deck_number(p));
+    first = lowest(first);
+    if (first != kNone)
+      throw HealthError(about_particle(first, [&](int p) {
+        std::ostringstream os;
+        os << "numerical breakdown at step " << steps << " (t = " << time << "): particle " << first + 1 << " ("
+           << body_and_rank(p) << ") has a non-finite " << non_finite(p);
+        return os.str();
+      }));
+  }
+  double ie_min = 0.0;  // the lowest particle internal energy, if negative (a min is exact)
+  {
+    const double* vol = P.vol.data();
+    const double* mass = P.mass.data();
+    const int* mat = P.mat.data();
+    const MaterialParams* mats = model.mats.data();
+    const int np = P.np;
+    const double* ie = P.ie.data();
+    int bad = kNone;  // the lowest deck number of a particle out of bounds
+#pragma omp parallel for schedule(static) reduction(min : bad, ie_min)
+    for (int p = 0; p < np; ++p) {
+      const double r0v = mats[mat[p]].rho0 * vol[p];
+      const bool ok = vol[p] > 0.0 && mass[p] >= kDensityRatioMin * r0v && mass[p] <= kDensityRatioMax * r0v;
+      if (!ok && P.deck_number(p) < bad) bad = P.deck_number(p);
+      if (ie[p] < ie_min) ie_min = ie[p];
+    }
+    bad = lowest(bad);
+    if (ranks) ie_min = ranks->min(ie_min);
+    if (bad != kNone)
+      throw HealthError(about_particle(bad, [&](int p) {
+        std::ostringstream os;
+        os << "numerical breakdown at step " << steps << " (t = " << time << "): particle " << bad + 1 << " ("
+           << body_and_rank(p) << ") has ";
+        const double rho0 = mats[mat[p]].rho0;
+        if (!(vol[p] > 0.0))
+          os << "a non-positive volume " << vol[p]
+             << " (crushed: reduce dtscale, or the impact speed is too high for the grid)";
+        else
+          os << "density " << mass[p] / vol[p] << " = " << (mass[p] / vol[p]) / rho0 << " rho0 (rho0 = " << rho0
+             << "), outside the bounds [" << kDensityRatioMin << ", " << kDensityRatioMax << "] rho0";
+        return os.str();
+      }));
+  }
+  if (std::isfinite(kinetic) && std::isfinite(internal)) {
+    // Runaway energy: the total may not exceed twice the initial energy plus the bound of
+    // the work of the external forces (sum of |f . v| dt per particle with the end-of-step
+    // velocities; the factor two leaves room for that approximation).
+    const double total = kinetic + internal;
+    if (std::fabs(total) <= 2.0 * (std::fabs(initial_total_energy) + std::fabs(external_work)) + 1e-300) {
+      energy_check(ie_min);
+      return;
+    }
+    // The fastest particle, ties to the lowest deck number.
+    double vmax = -1.0;
+    int worst = kNone;
+    for (int p = 0; p < P.np; ++p) {
+      const double* v = &P.v[3 * size_t(p)];
+      const double s = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+      if (s > vmax || (s == vmax && P.deck_number(p) < worst)) {
+        vmax = s;
+        worst = P.deck_number(p);
+      }
+    }
+    if (ranks) {
+      const double all = ranks->max(vmax);
+      worst = ranks->min(vmax == all ? worst : kNone);
+      vmax = all;
+    }
+    throw HealthError(about_particle(worst, [&](int p) {
+      std::ostringstream os;
+      os << "numerical instability at step " << steps << " (t = " << time << "): total energy " << total
+         << " exceeds twice the initial energy " << initial_total_energy << " plus the external work "
+         << external_work << "; fastest particle " << worst + 1 << " (" << body_and_rank(p) << ") at speed "
+         << std::sqrt(vmax) << " (reduce dtscale, or use MUSL)";
+      return os.str();
+    }));
+  }
+  throw HealthError("numerical breakdown at step " + std::to_string(steps) + ": non-finite energy");
+}
+
+// Energy bounds that a run can break silently, with its total still conserved: a body's
+// internal energy below -kEnergyWarnFraction (|E0| + |W|), or the kinetic energy above
+// E0 + |W| by more than that (both seen when a body starts pre-compressed under an EOS, or
+// an EOS releases more work than it stored). ie_min, the lowest particle internal energy
+// (0 if none is negative), is exact whatever the thread count: the per-body sums (serial,
+// in storage order, so their figures do not depend on the threads either) are formed only
+// when np * ie_min could reach the bound.
+void Simulation::energy_check(double ie_min) {
+  const double bound = kEnergyWarnFraction * (std::fabs(initial_total_energy) + std::fabs(external_work));
+  const Particles& P = model.particles;
+  std::vector<std::string> found;
+  if (ie_min < 0.0 && double(global_np()) * ie_min < -bound) {
+    std::vector<double> body_ie(model.bodies.size(), 0.0);
+    if (ranks) {  // the same serial sums in storage order, on the root
+      Particles all;
+      ranks->gather(P, all);
+      for (int p = 0; p < all.np; ++p) body_ie[size_t(all.body[p])] += all.ie[p];
+      ranks->broadcast(body_ie);
+    } else {
+      for (int p = 0; p < P.np; ++p) body_ie[size_t(P.body[p])] += P.ie[p];
+    }
+    body_ie_warned_.resize(body_ie.size(), 0);
+    for (size_t b = 0; b < body_ie.size(); ++b) {
+      if (body_ie_warned_[b] || !(body_ie[b] < -bound)) continue;
+      body_ie_warned_[b] = 1;
+      std::ostringstream os;
+      os << "energy: the internal energy of body " << b + 1 << " is " << body_ie[b] << " at step " << steps
+         << " (t = " << time << "), below -" << 100.0 * kEnergyWarnFraction << "% of the initial total energy "
+         << initial_total_energy << " plus the external work " << external_work
+         << " (its stress work releases more than it stored: check the EOS and that the particle cards' densities "
+            "are the materials')";
+      found.push_back(os.str());
+    }
+  }
+  if (!kinetic_warned_ && kinetic > (initial_total_energy + std::fabs(external_work)) + bound) {
+    kinetic_warned_ = true;
+    std::ostringstream os;
+    os << "energy: the kinetic energy " << kinetic << " at step " << steps << " (t = " << time
+       << ") exceeds the initial total energy " << initial_total_energy << " plus the external work " << external_work
+       << " by " << kinetic - (initial_total_energy + std::fabs(external_work)) << " (internal energy " << internal
+       << ")";
+    found.push_back(os.str());
+  }
+  if (found.empty()) return;
+  if (strict_energy) throw HealthError(found.front() + " (stopped: --strict-energy)");
+  for (auto& w : found) new_energy_warnings.push_back(std::move(w));
+}
+
+}  // namespace mpm3d

@@ -1,0 +1,80 @@
+// The parallel loops of the trilinear patch stages: over the patches, and over the patch
+// lists in chunks. Which thread runs a patch or a chunk never changes a bit (every patch
+// writes its own buffer and its own nodes; the assembly reads the buffers in a fixed
+// order), so the loops only decide speed.
+//
+// Each thread takes one contiguous run of patches holding an equal share of the binned
+// particles, the same run in every stage, so a thread finds most of the nodes and
+// particles it wrote in the stage before in its own cache. Side by side on the 2-core
+// machine (docs/PERFORMANCE.md) OpenMP's static schedule over the patches (equal patch
+// counts) and its dynamic one were 6-9% slower at 2 threads; measured timers, shares and
+// work stealing on top of these runs gained under 2% and were dropped.
+#pragma once
+#include <algorithm>
+#include <cstdint>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "stages/update_step.hpp"
+
+namespace mpm3d {
+
+// The stress update reads no patch buffer; it takes the patch lists in chunks of this many
+// entries: runs of whole lane groups.
+constexpr int kListChunk = 64;
+
+// The calling thread's number t in its team and the team's size T (0 and 1 outside a
+// parallel region).
+inline void team_position(int& t, int& T) {
+  t = 0;
+  T = 1;
+#ifdef _OPENMP
+  t = omp_get_thread_num();
+  T = omp_get_num_threads();
+#endif
+}
+
+// Patches [lo, hi) of thread t of T: the first patch whose list starts at or after the
+// thread's equal share of the binned particles, up to the next thread's (with patches at
+// rest, of the work: StepContext::patch_work).
+inline void thread_patches(const StepContext* c, int t, int T, int& lo, int& hi) {
+  const int n = c->npatch;
+  const int* start = c->patch_work ? c->patch_work : c->patch_start;
+  const int64_t total = start[n];
+  auto first = [&](int u) -> int {
+    if (u >= T) return n;
+    const int target = int(total * u / T);
+    return int(std::lower_bound(start, start + n, target) - start);
+  };
+  lo = first(t);
+  hi = first(t + 1);
+}
+
+// f(q) for every patch q, each thread over its thread_patches run.
+template <class F>
+inline void for_patches(const StepContext* c, F&& f) {
+#pragma omp parallel
+  {
+    int t, T, lo, hi;
+    team_position(t, T);
+    thread_patches(c, t, T, lo, hi);
+    for (int q = lo; q < hi; ++q) f(q);
+  }
+}
+
+// Patch q is at rest this step (StepContext::sg_rest): no stage touches it.
+inline bool patch_at_rest(const StepContext* c, int q) { return c->sg_rest && c->sg_rest[q]; }
+
+// f(first, count) for every chunk of kListChunk entries of the patch lists (the last one
+// shorter); the static schedule gives each thread one contiguous run of chunks.
+template <class F>
+inline void for_list_chunks(const StepContext* c, F&& f) {
+  const int total = c->patch_start[c->npatch];
+  const int nchunk = (total + kListChunk - 1) / kListChunk;
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < nchunk; ++k) f(k * kListChunk, std::min(kListChunk, total - k * kListChunk));
+}
+
+}  // namespace mpm3d

@@ -1,0 +1,209 @@
+// What several step stages share: the scalar P2G and G2P of one particle, the patch and
+// buffer loops, and the canonical assembly and boundary conditions (defined in
+// stage_p2g.cpp and stage_grid.cpp).
+#pragma once
+#include <cstddef>
+
+#include "core/grid.hpp"
+#include "stages/patch_index.hpp"
+#include "stages/patch_loops.hpp"
+#include "stages/update_step.hpp"
+
+namespace mpm3d {
+
+// Canonical assembly (docs/DESIGN.md section 4): each node's value is 0.0 plus the values of
+// the non-empty patches holding it, in ascending patch index (x fastest, then y, z).
+// Fields first..first+count-1 of the buffers go to dst_mass (field 0), dst_mom (1-3)
+// and dst_force (4-6). Every node is written by exactly one owner patch, so owners run in
+// parallel (for_patches). stage_p2g.cpp.
+void assemble(const StepContext* c, int first, int count, double* dst_mass, double* dst_mom,
+              double* dst_force);
+
+// Boundary conditions of the box faces on a nodal vector field (3,nnode): 1 fixed (all
+// components zero), 2 symmetry (normal component zero). stage_grid.cpp.
+void apply_bc(const StepContext* c, double* a);
+
+// Smoothed-gradient MPM (sgmp, stage_sg.cpp): the exchanges through the cell centres
+// (StepContext::aux, kAuxFields per cell). P2G: the nodes' mass and momentum and/or forces;
+// G2P: the particles' velocities and positions, with remap the nodes' momenta; stress: the
+// cells' velocity gradients from the node velocities gvel (each particle's:
+// sg_velocity_gradient, stage_sg.hpp, with the weights of sg_ensure_weights: each
+// patch-list entry's, in sg_w and sg_cell, computed once a step; with_reach: also what
+// the scatters of several threads need).
+void sg_p2g(StepContext* c, bool with_mass_mom, bool with_forces);
+void sg_g2p(StepContext* c, bool remap);
+void sg_cell_gradients(StepContext* c, const double* gvel);
+void sg_ensure_weights(StepContext* c, bool with_reach);
+
+namespace {
+
+// True when particle p belongs to another component than the context's (contact).
+inline bool other_component(const StepContext* c, int p) {
+  return c->only_comp > 0 && c->body_comp[c->body[p]] != c->only_comp;
+}
+
+// Fields first..first+count-1 of the pn nodes of a patch buffer set to zero.
+inline void zero_fields(double* buf, int pn, int first, int count) {
+  for (int ln = 0; ln < pn; ++ln)
+    for (int f = first; f < first + count; ++f) buf[size_t(ln) * kNodeFields + f] = 0.0;
+}
+
+// The node sums sum[0..count) of fields first.. into node n of the grid arrays (field 0
+// mass, 1-3 momentum, 4-6 force): the last step of every assembly and reduction.
+__attribute__((always_inline)) inline void store_node_fields(int first, int count, const double* sum, int n,
+                                                             double* dst_mass, double* dst_mom, double* dst_force) {
+  for (int f = 0; f < count; ++f) {
+    const int field = first + f;
+    if (field == 0) dst_mass[n] = sum[f];
+    else if (field <= 3) dst_mom[3 * n + field - 1] = sum[f];
+    else dst_force[3 * n + field - 4] = sum[f];
+  }
+}
+
+// f(q, q3, buf) for every non-empty patch q (coordinates q3, buffer buf), dealt out to the
+// threads one patch at a time: the GIMP stages and the contact's mass gradients.
+template <class F>
+inline void for_filled_patches(const StepContext* c, F&& f) {
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int q = 0; q < c->npatch; ++q) {
+    const int slot = c->patch_slot[q];
+    if (slot < 0) continue;
+    int q3[3];
+    patch_coords(c, q, q3);
+    f(q, q3, patch_buffer(c, slot));
+  }
+}
+
+// The body force of particle p: the point load (ramped with QuLo), the damping (Damp),
+// gravity, in the current version's order when either of the first two is on.
+__attribute__((always_inline)) inline void particle_body_force(const StepContext* c, int p, double fb[3]) {
+  const double mp = c->mass[p];
+  const double* vp = c->v + 3 * p;
+  const double* g = c->gravity + 3 * c->body[p];
+  if (c->load_ramp_time > 0.0 || c->damping > 0.0) {
+    // Quasi-static loading, in the current version's order: the load (ramped until
+    // load_ramp_time, c->time being the end of this step), the damping, gravity.
+    const bool ramp = c->load_ramp_time > 0.0 && c->time < c->load_ramp_time;
+    for (int a = 0; a < 3; ++a) {
+      double f = 0.0;
+      if (c->fext) f = ramp ? (c->fext[3 * p + a] / c->load_ramp_time) * c->time : c->fext[3 * p + a];
+      if (c->damping > 0.0) f = f - (c->damping * mp) * vp[a];
+      fb[a] = f + mp * g[a];
+    }
+  } else {
+    for (int a = 0; a < 3; ++a) {
+      fb[a] = mp * g[a];
+      if (c->fext) fb[a] = fb[a] + c->fext[3 * p + a];
+    }
+  }
+}
+
+// P2G contributions of particle p (weights N, gradients G) added to its kNodes nodes (8
+// trilinear, 27 GIMP), node(k) the 7 fields of stencil node k: mass and momentum
+// (with_mass_mom) and the force -V sigma G + N (m g + f_ext) (with_forces; body forces with
+// has_body_force). Used by the trilinear patch scatter (constant flags, so the loop
+// unrolls) and the GIMP scatter.
+template <int kNodes, class NodeOf>
+__attribute__((always_inline)) inline void p2g_particle(const StepContext* c, int p, const double* N,
+                                                        const double* G, bool with_mass_mom, bool with_forces,
+                                                        bool with_body, NodeOf node) {
+  const double mp = c->mass[p];
+  const double* vp = c->v + 3 * p;
+  // sigma V (Voigt), or under TLmp V0 P (pk, a 3x3 matrix, row i giving force component i).
+  double vs[6] = {0, 0, 0, 0, 0, 0}, fb[3] = {0, 0, 0};
+  const double* pk = c->pk1 ? c->pk1 + 9 * size_t(p) : nullptr;
+  if (with_forces) {
+    const double volp = c->vol[p];
+    for (int s = 0; s < 6; ++s) vs[s] = c->sig[6 * p + s] * volp;
+    if (with_body) particle_body_force(c, p, fb);
+  }
+  for (int k = 0; k < kNodes; ++k) {
+    double* b = node(k);
+    if (with_mass_mom) {
+      const double mn = mp * N[k];
+      b[0] += mn;
+      b[1] += mn * vp[0];
+      b[2] += mn * vp[1];
+      b[3] += mn * vp[2];
+    }
+    if (with_forces) {
+      const double gx = G[3 * k], gy = G[3 * k + 1], gz = G[3 * k + 2];
+      double fx, fy, fz;
+      if (pk) {
+        fx = -((pk[0] * gx + pk[1] * gy) + pk[2] * gz);
+        fy = -((pk[3] * gx + pk[4] * gy) + pk[5] * gz);
+        fz = -((pk[6] * gx + pk[7] * gy) + pk[8] * gz);
+      } else {
+        fx = -((vs[0] * gx + vs[5] * gy) + vs[4] * gz);
+        fy = -((vs[5] * gx + vs[1] * gy) + vs[3] * gz);
+        fz = -((vs[4] * gx + vs[3] * gy) + vs[2] * gz);
+      }
+      if (with_body) {
+        fx = N[k] * fb[0] + fx;
+        fy = N[k] * fb[1] + fy;
+        fz = N[k] * fb[2] + fz;
+      }
+      b[4] += fx;
+      b[5] += fy;
+      b[6] += fz;
+    }
+  }
+}
+
+// The end of every G2P: v_p += dt_int a, x_p += dt u with a and u the particle's
+// interpolated acceleration and grid velocity.
+__attribute__((always_inline)) inline void advance_particle(StepContext* c, int p, double ax, double ay, double az,
+                                                            double ux, double uy, double uz) {
+  const double dt = c->dt, dt_int = c->dt_int;
+  double* vp = c->v + 3 * p;
+  double* xp = c->x + 3 * p;
+  vp[0] = vp[0] + ax * dt_int;
+  vp[1] = vp[1] + ay * dt_int;
+  vp[2] = vp[2] + az * dt_int;
+  xp[0] = xp[0] + ux * dt;
+  xp[1] = xp[1] + uy * dt;
+  xp[2] = xp[2] + uz * dt;
+}
+
+// G2P of particle p over its kNodes nodes (grid node node(k) of stencil node k):
+// v_p += dt_int sum_k N_k f_k / m_k and x_p += dt sum_k N_k p_k / m_k over the nodes above
+// the mass cut-off. The GIMP stage; the trilinear stage runs
+// the same sums in lanes (g2p_values, transfer_lanes.hpp).
+template <int kNodes, class NodeOf>
+__attribute__((always_inline)) inline void g2p_particle(StepContext* c, int p, const double* N, NodeOf node) {
+  const double cutoff = c->mass_cutoff;
+  double ax = 0.0, ay = 0.0, az = 0.0, ux = 0.0, uy = 0.0, uz = 0.0;
+  for (int k = 0; k < kNodes; ++k) {
+    const int n = node(k);
+    const double m = c->gmass[n];
+    if (!(m > cutoff)) continue;
+    const double r = N[k] / m;
+    const double* f = c->gforce + 3 * n;
+    const double* pm = c->gmom + 3 * n;
+    ax += f[0] * r;
+    ay += f[1] * r;
+    az += f[2] * r;
+    ux += pm[0] * r;
+    uy += pm[1] * r;
+    uz += pm[2] * r;
+  }
+  advance_particle(c, p, ax, ay, az, ux, uy, uz);
+}
+
+// MUSL remap of particle p: its momentum m_p N_k v_p added to fields 1-3 of node(k).
+template <int kNodes, class NodeOf>
+__attribute__((always_inline)) inline void remap_particle(const StepContext* c, int p, const double* N,
+                                                          NodeOf node) {
+  const double mp = c->mass[p];
+  const double* vp = c->v + 3 * p;
+  for (int k = 0; k < kNodes; ++k) {
+    double* b = node(k);
+    const double mn = mp * N[k];
+    b[1] += mn * vp[0];
+    b[2] += mn * vp[1];
+    b[3] += mn * vp[2];
+  }
+}
+
+}  // namespace
+}  // namespace mpm3d

@@ -1,0 +1,129 @@
+// The energy stage: kinetic and internal energy, momentum and the rate of the external work
+// bound of all particles, as one column of partial sums per patch (and one for the particles
+// outside the grid), folded in column order.
+#include <cmath>
+#include <cstddef>
+
+#include "core/lanes.hpp"
+#include "stages/patch_loops.hpp"
+#include "stages/update_step.hpp"
+
+using namespace mpm3d;
+
+namespace {
+
+// Particles per lane group of the column loops: their products are formed side by side,
+// their sums still one particle after the other.
+constexpr int kEnergyLanes = 2;
+// List entries ahead whose particle data the column loops prefetch. The lists skip the
+// particles that left their patch, and the hardware prefetchers lose the stream at the gaps:
+// without it the stage took twice as long on taylor_coarse (300 steps, docs/PERFORMANCE.md).
+constexpr int kPrefetchAhead = 96;
+
+// One column's running sums: m |v|^2 / 2, e, m v (3), |f . v|.
+struct Sums {
+  double f[kReduceFields] = {0, 0, 0, 0, 0, 0};
+};
+
+// Adds the particles p[0 .. L::W-1] (in this order) to s: m |v|^2 / 2, e, m v (3) and,
+// with body forces (kWork), |f . v| with f = m g + f_ext (neither ramped nor damped): the
+// rate of the health check's bound of the external work (Simulation::external_work), per
+// particle in absolute value so that forces changing sign (vibrations, manufactured
+// solutions) do not cancel out. Each lane performs the scalar operations (lanes.hpp).
+template <bool kWork, class L>
+inline void add_particles(const StepContext* c, const int* p, Sums& s) {
+  int i3[L::W];
+  for (int k = 0; k < L::W; ++k) i3[k] = 3 * p[k];
+  const auto m = L::gather(c->mass, p);
+  const auto vx = L::gather(c->v, i3), vy = L::gather(c->v + 1, i3), vz = L::gather(c->v + 2, i3);
+  const auto ke = (0.5 * m) * ((vx * vx + vy * vy) + vz * vz);
+  const auto e = L::gather(c->ie, p);
+  const auto mx = m * vx, my = m * vy, mz = m * vz;
+  decltype(L::splat(0.0)) work = L::splat(0.0);
+  if (kWork) {
+    int g3[L::W];
+    for (int k = 0; k < L::W; ++k) g3[k] = 3 * c->body[p[k]];
+    const double* fext = c->fext;
+    const auto zero = L::splat(0.0);
+    const auto fx = m * L::gather(c->gravity, g3) + (fext ? L::gather(fext, i3) : zero);
+    const auto fy = m * L::gather(c->gravity + 1, g3) + (fext ? L::gather(fext + 1, i3) : zero);
+    const auto fz = m * L::gather(c->gravity + 2, g3) + (fext ? L::gather(fext + 2, i3) : zero);
+    const auto pw = ((zero + fx * vx) + fy * vy) + fz * vz;
+    for (int k = 0; k < L::W; ++k) L::set(work, k, std::fabs(L::get(pw, k)));
+  }
+  for (int k = 0; k < L::W; ++k) {
+    s.f[0] += L::get(ke, k);
+    s.f[1] += L::get(e, k);
+    s.f[2] += L::get(mx, k);
+    s.f[3] += L::get(my, k);
+    s.f[4] += L::get(mz, k);
+    if (kWork) s.f[5] += L::get(work, k);
+  }
+}
+
+// Adds the particles list[0 .. n-1], in this order, to s; prefetches the data of the entry
+// kPrefetchAhead places ahead (while that is before list_end, the end of all lists).
+template <bool kWork>
+inline void add_list(const StepContext* c, const int* list, int n, const int* list_end, Sums& s) {
+  typedef VectorLane<kEnergyLanes> VL;
+  int i = 0;
+  for (; i + kEnergyLanes <= n; i += kEnergyLanes) {
+    if (kPrefetchAhead > 0 && list + i + kPrefetchAhead + 1 < list_end) {
+      const int a = list[i + kPrefetchAhead], b = list[i + kPrefetchAhead + 1];
+      __builtin_prefetch(c->v + 3 * size_t(a));
+      __builtin_prefetch(c->v + 3 * size_t(b) + 2);
+      __builtin_prefetch(c->mass + a);
+      __builtin_prefetch(c->ie + a);
+    }
+    add_particles<kWork, VL>(c, list + i, s);
+  }
+  for (; i < n; ++i) add_particles<kWork, ScalarLane>(c, list + i, s);
+}
+
+// Every column of c->partials: column q < npatch sums patch q's list, then (contact)
+// component 2's list of the same patch; column npatch the particles outside the grid in
+// ascending index (c->order's, when set; one pass over the cells, only when there are any). Each column is one
+// serial sum, whichever thread computes it; each thread takes its run of patches
+// (for_patches: the particles it updated in the stress stage).
+template <bool kWork>
+void compute_columns(StepContext* c) {
+  const int npatch = c->npatch;
+  const StepContext* c2 = c->other;
+  const bool any_outside = c->noutside + (c2 ? c2->noutside : 0) > 0;
+  const int* end1 = c->patch_part + c->patch_start[npatch];
+  for_patches(c, [&](int q) {
+    Sums s;
+    add_list<kWork>(c, c->patch_part + c->patch_start[q], c->patch_start[q + 1] - c->patch_start[q], end1, s);
+    if (c2)
+      add_list<kWork>(c, c2->patch_part + c2->patch_start[q], c2->patch_start[q + 1] - c2->patch_start[q],
+                      c2->patch_part + c2->patch_start[npatch], s);
+    for (int f = 0; f < kReduceFields; ++f) c->partials[size_t(kReduceFields) * q + f] = s.f[f];
+  });
+  Sums s;
+  if (any_outside)  // the cell array is shared by both contact components
+    for (int i = 0; i < c->np; ++i) {
+      const int p = c->order ? c->order[i] : i;
+      if (c->cell[p] < 0) add_particles<kWork, ScalarLane>(c, &p, s);
+    }
+  for (int f = 0; f < kReduceFields; ++f) c->partials[size_t(kReduceFields) * npatch + f] = s.f[f];
+}
+
+}  // namespace
+
+// result[0..4] = sum_p (m_p |v_p|^2 / 2, e_p, m_p v_p), result[8] = sum_p |f_p . v_p| (0
+// without body forces). All npatch + 1 columns are computed first and then folded, every
+// column, empty or not, in column order: ((0.0 + col 0) + col 1) + ... + col npatch. The
+// columns depend on the patch lists only, so the sums are the same for any thread count and
+// (folding gathered columns) for any split of the patches among ranks.
+extern "C" void mpm3d_cxx_energy(StepContext* c) {
+  if (c->has_body_force)
+    compute_columns<true>(c);
+  else
+    compute_columns<false>(c);
+  if (c->exchange) c->exchange(c, EXCHANGE_PARTIALS, 0, 0);  // other ranks' columns
+  double sum[kReduceFields] = {0, 0, 0, 0, 0, 0};
+  for (int q = 0; q <= c->npatch; ++q)
+    for (int f = 0; f < kReduceFields; ++f) sum[f] += c->partials[size_t(kReduceFields) * q + f];
+  for (int f = 0; f < 5; ++f) c->result[f] = sum[f];
+  c->result[8] = sum[5];
+}

@@ -1,0 +1,302 @@
+// The grid update: the integrate stage (nodal momenta from the forces), the boundary
+// conditions of the box faces, and the multi-velocity contact and recontact stages.
+#include <cmath>
+#include <cstddef>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "stages/stage_common.hpp"
+#include "stages/update_step.hpp"
+
+namespace mpm3d {
+
+// Faces holding more nodes than this are cleared by a team (a one-cell-thick deck's faces
+// hold every node); smaller ones on the calling thread, where a team's fork and join cost
+// more than it saves (docs/PERFORMANCE.md).
+constexpr long kParallelBcNodes = 16384;
+
+void apply_bc(const StepContext* c, double* a) {
+  const int layers = c->fix_layers > 1 ? c->fix_layers : 1;  // 0 (unset) means 1
+  const long stride[3] = {1, c->nn[0], long(c->nn[0]) * c->nn[1]};
+  // A face's node plane as rows: the outer of the two other axes over the inner (the one
+  // of smaller stride), each row a run of nodes `stride[inner]` apart. Clearing is the same
+  // in any order: only the loop's shape differs between the team and one thread.
+  struct Plane {
+    int kind, axis, n_outer, n_inner;
+    long s_outer, s_inner;
+  };
+  auto plane = [&](int face) {
+    const int axis = face / 2, o1 = axis == 0 ? 1 : 0, o2 = axis == 2 ? 1 : 2;
+    return Plane{c->fix[face], axis, c->nn[o2], c->nn[o1], stride[o2], stride[o1]};
+  };
+  auto layer_base = [&](int face, int layer) {
+    const int axis = face / 2;
+    return stride[axis] * ((face % 2 == 0) ? layer : c->nn[axis] - 1 - layer);
+  };
+  auto clear_row = [&](const Plane& f, long first) {
+    if (f.kind == 1) {
+      for (int i = 0; i < f.n_inner; ++i) {
+        double* v = a + 3 * (first + i * f.s_inner);
+        v[0] = 0.0;
+        v[1] = 0.0;
+        v[2] = 0.0;
+      }
+    } else {
+      for (int i = 0; i < f.n_inner; ++i) a[3 * (first + i * f.s_inner) + f.axis] = 0.0;
+    }
+  };
+  long held = 0;
+  for (int face = 0; face < 6; ++face) {
+    if (c->fix[face] == 0) continue;
+    const Plane f = plane(face);
+    held += layers * long(f.n_outer) * f.n_inner;
+  }
+  int threads = 1;
+#ifdef _OPENMP
+  threads = omp_get_max_threads();
+#endif
+  if (threads > 1 && held > kParallelBcNodes) {
+    // Each thread one run of the node order, every face's components in it: no thread
+    // writes another's nodes, so no barrier between the faces (clearing twice is clearing).
+    unsigned comps[6];  // the components face f holds: all (fixed) or its normal one
+    for (int face = 0; face < 6; ++face)
+      comps[face] = c->fix[face] == 0 ? 0u : (c->fix[face] == 1 ? 7u : 1u << (face / 2));
+    const int n0 = c->nn[0], n1 = c->nn[1], n2 = c->nn[2];
+    const long nodes = long(n0) * n1 * n2;
+    auto clear = [&](double* v, unsigned m) {
+      for (int d = 0; d < 3; ++d)
+        if (m >> d & 1u) v[d] = 0.0;
+    };
+#pragma omp parallel
+    {
+      int t, T;
+      team_position(t, T);
+      const long first = nodes * t / T, last = nodes * (t + 1) / T;
+      for (long r = first / n0; r * n0 < last; ++r) {  // node rows along x
+        const int j = int(r % n1), k = int(r / n1);
+        unsigned m = 0;  // the y and z faces holding the row
+        if (j < layers) m |= comps[2];
+        if (j >= n1 - layers) m |= comps[3];
+        if (k < layers) m |= comps[4];
+        if (k >= n2 - layers) m |= comps[5];
+        const long i0 = first > r * n0 ? first - r * n0 : 0;
+        const long i1 = last < (r + 1) * n0 ? last - r * n0 : n0;
+        double* row = a + 3 * r * n0;
+        for (int d = 0; d < 3; ++d)
+          if (m >> d & 1u)
+            for (long i = i0; i < i1; ++i) row[3 * i + d] = 0.0;
+        for (long l = 0; l < layers; ++l) {  // the x faces' nodes of the row
+          if (l >= i0 && l < i1) clear(row + 3 * l, comps[0]);
+          if (n0 - 1 - l >= i0 && n0 - 1 - l < i1) clear(row + 3 * (n0 - 1 - l), comps[1]);
+        }
+      }
+    }
+    return;
+  }
+  for (int face = 0; face < 6; ++face) {
+    if (c->fix[face] == 0) continue;
+    const Plane f = plane(face);
+    for (int layer = 0; layer < layers; ++layer) {
+      const long base = layer_base(face, layer);
+      for (int o = 0; o < f.n_outer; ++o) clear_row(f, base + o * f.s_outer);
+    }
+  }
+}
+
+namespace {
+
+// Contact: g_i = sum_p m_p grad N_i(x_p) of the context's particles (the outward normal
+// direction of its body at node i) into gnormal, through the force fields (4-6) of the
+// patch buffers, which no stage reads after the force assembly.
+void scatter_mass_gradient(StepContext* c) {
+  const int P = c->patch_cells, Q = P + 1 + 2 * c->patch_halo;
+  const int pn = patch_nodes(c);
+  const CellDecoder dec(c);
+  const StencilOffsets in_buffer(Q, Q);
+  for_filled_patches(c, [&](int q, const int q3[3], double* buf) {
+    zero_fields(buf, pn, 4, 3);
+    for (int idx = c->patch_start[q]; idx < c->patch_start[q + 1]; ++idx) {
+      const int p = c->patch_part[idx];
+      const double mp = c->mass[p];
+      auto add = [&](double* b, const double* g) {
+        b[4] += mp * g[0];
+        b[5] += mp * g[1];
+        b[6] += mp * g[2];
+      };
+      if (c->shape != 0) {
+        GimpStencil st;
+        gimp_stencil(c, dec, p, st);
+        double* corner = buf + size_t(gimp_patch_corner(c, q3, st)) * kNodeFields;
+        for (int k = 0; k < 27; ++k) add(corner + size_t(in_buffer.of[k]) * kNodeFields, st.G + 3 * k);
+      } else {
+        double N[8], G[24];
+        shape_linear(c->lx + 3 * p, c->inv_h, N, G);
+        const int base = patch_base(c, dec, q3, c->cell[p]);
+        for (int k = 0; k < 8; ++k) add(buf + size_t(base + patch_local(P, k)) * kNodeFields, G + 3 * k);
+      }
+    }
+  });
+  assemble(c, 4, 3, c->gmass, c->gmom, c->gnormal);
+}
+
+// Multi-velocity contact (Bardenhagen et al. 2000, 2001; Huang et al. 2011) between
+// component 1 (this context) and component 2 (c->other). At a node where both components
+// have mass above the cut-off:
+// - the unit normal n points from component 1 into component 2; it is g1 (normbody 1),
+//   -g2 (2) or g1 - g2 (0), normalised, where g_k = sum_p m_p grad N_i(x_p) over the
+//   particles of component k points out of body k;
+// - q = (m2 p1 - m1 p2)/(m1 + m2) is the momentum component 1 gives up to reach the common
+//   velocity; component 1's momentum changes by d = -(q.n n + f t), t = q - q.n n the
+//   tangential part, f = 1 (stick) or mu |q.n| / |t| when |t| exceeds mu |q.n| (Coulomb
+//   slip), and component 2's by -d.
+// Stage `contact` (after both integrates): the nodes where the components approach
+// (q.n > 0) are corrected, their forces change by d/dt_int (so that G2P's accelerations
+// agree with the corrected momenta), and the unit normal of each corrected node is kept in
+// this context's gnormal (zero at the other nodes of the loop), marking the node as in
+// contact for this step. The contact force on component 1, the sum of d/dt_int over the
+// nodes, goes to result[5..7] and the number of corrected nodes to ncontact: per-patch
+// partials (cpartials: force, count; owned nodes in k, j, i order) folded in patch order,
+// with several ranks after each rank's columns reached every rank.
+// Stage `recontact`: the momenta of the nodes marked in contact are corrected again with
+// the kept normals, for either sign of q.n, so that the strain rates see the same normal
+// velocity for both bodies at these nodes as the position update did. MUSL runs it after
+// both G2P remaps of the step, USF after both P2Gs of the next step (before the stresses;
+// the marks of the previous step, which is why with USF the `contact` stage also clears
+// the nodes of patches outside its loop). Without it the velocities that the strain rates
+// read separate at nodes whose corrected velocities did not, and the stresses of the
+// rebounding bodies release more work than the bodies did (the spheres deck gained
+// 9-67% of its energy per impact, more with larger steps).
+// Both stages apply the boundary conditions again.
+// The correction of node n (contact: where the components approach; recontact: where it
+// is marked); the contact force on component 1 is added to part. True when corrected.
+template <bool kRemap>
+inline bool contact_node(StepContext* c, StepContext* c2, int n, double part[3]) {
+  const double cutoff = c->mass_cutoff, mu = c->contact_mu, dt_int = c->dt_int;
+  const int nb = c->contact_normbody;
+  const double m1 = c->gmass[n], m2 = c2->gmass[n];
+  double* g1 = c->gnormal + 3 * n;
+  if (!(m1 > cutoff) || !(m2 > cutoff)) {
+    if (!kRemap) g1[0] = g1[1] = g1[2] = 0.0;
+    return false;
+  }
+  double un[3], qv[3];
+  if (kRemap) {
+    if (g1[0] == 0.0 && g1[1] == 0.0 && g1[2] == 0.0) return false;  // not in contact
+    for (int a = 0; a < 3; ++a) un[a] = g1[a];
+  } else {
+    const double* g2 = c2->gnormal + 3 * n;
+    double nv[3];
+    for (int a = 0; a < 3; ++a) nv[a] = nb == 1 ? g1[a] : (nb == 2 ? -g2[a] : g1[a] - g2[a]);
+    for (int a = 0; a < 3; ++a) g1[a] = 0.0;
+    const double len = std::sqrt((nv[0] * nv[0] + nv[1] * nv[1]) + nv[2] * nv[2]);
+    if (!(len > 0.0)) return false;
+    for (int a = 0; a < 3; ++a) un[a] = nv[a] / len;
+  }
+  double* p1 = c->gmom + 3 * n;
+  double* p2 = c2->gmom + 3 * n;
+  const double mt = m1 + m2;
+  for (int a = 0; a < 3; ++a) qv[a] = (m2 * p1[a] - m1 * p2[a]) / mt;
+  const double qn = (qv[0] * un[0] + qv[1] * un[1]) + qv[2] * un[2];
+  if (!kRemap) {
+    if (!(qn > 0.0)) return false;
+    for (int a = 0; a < 3; ++a) g1[a] = un[a];  // in contact this step
+  }
+  double t[3];
+  for (int a = 0; a < 3; ++a) t[a] = qv[a] - qn * un[a];
+  const double tl = std::sqrt((t[0] * t[0] + t[1] * t[1]) + t[2] * t[2]);
+  const double fr = mu * std::fabs(qn);
+  const double ft = tl > fr ? fr / tl : 1.0;
+  double* f1 = c->gforce + 3 * n;
+  double* f2 = c2->gforce + 3 * n;
+  for (int a = 0; a < 3; ++a) {
+    const double d = -(qn * un[a] + ft * t[a]);
+    p1[a] = p1[a] + d;
+    p2[a] = p2[a] - d;
+    if (!kRemap) {
+      const double fc = d / dt_int;
+      f1[a] = f1[a] + fc;
+      f2[a] = f2[a] - fc;
+      part[a] += fc;
+    }
+  }
+  return true;
+}
+
+// Both stages over the owned nodes of the patches active in both components, patch by
+// patch; the contact stage's force partials and count, and the boundary conditions.
+template <bool kRemap>
+void contact_correct(StepContext* c) {
+  StepContext* c2 = c->other;
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int q = 0; q < c->npatch; ++q) {
+    double part[3] = {0.0, 0.0, 0.0};
+    int count = 0;
+    const OwnedNodes o = owned_nodes(c, q);
+    if (o.active && owned_nodes(c2, q).active) {
+      for_owned_nodes(c, o, [&](int n) { count += contact_node<kRemap>(c, c2, n, part); });
+    } else if (!kRemap && c->scheme == SCHEME_USF) {
+      // USF reads the marks again in the next step (recontact before the stresses): no
+      // node outside this loop keeps a mark or a mass gradient.
+      for_owned_nodes(c, o, [&](int n) {
+        double* g1 = c->gnormal + 3 * n;
+        g1[0] = g1[1] = g1[2] = 0.0;
+      });
+    }
+    if (!kRemap) {
+      double* col = c->cpartials + size_t(kContactFields) * size_t(q);
+      for (int a = 0; a < 3; ++a) col[a] = part[a];
+      col[3] = double(count);
+    }
+  }
+  apply_bc(c, c->gmom);
+  apply_bc(c2, c2->gmom);
+  if (kRemap) return;
+  if (c->exchange) c->exchange(c, EXCHANGE_CONTACT, 0, 0);  // other ranks' columns
+  double s[kContactFields] = {0.0, 0.0, 0.0, 0.0};
+  for (int q = 0; q < c->npatch; ++q)
+    for (int a = 0; a < kContactFields; ++a) s[a] += c->cpartials[size_t(kContactFields) * size_t(q) + size_t(a)];
+  for (int a = 0; a < 3; ++a) c->result[5 + a] = s[a];
+  c->ncontact = int(s[3]);
+  apply_bc(c, c->gforce);
+  apply_bc(c2, c2->gforce);
+}
+
+}  // namespace
+}  // namespace mpm3d
+
+using namespace mpm3d;
+
+// p_i += f_i dt_int at the nodes of the active patches; then the boundary conditions on
+// momenta and forces (G2P reads both).
+extern "C" void mpm3d_cxx_integrate(StepContext* c) {
+  const double dt = c->dt_int;
+  double* mom = c->gmom;
+  const double* f = c->gforce;
+  for_patches(c, [&](int q) {
+    if (patch_at_rest(c, q)) return;  // p = 0 + 0 dt there
+    const OwnedNodes o = owned_nodes(c, q);
+    if (!o.active) return;
+    // One node row as one run of 3 (hi - lo) values, which vectorises.
+    for (int k = o.lo[2]; k < o.hi[2]; ++k)
+      for (int j = o.lo[1]; j < o.hi[1]; ++j) {
+        const int row = 3 * (c->nn[0] * (j + c->nn[1] * k));
+        for (int i = row + 3 * o.lo[0]; i < row + 3 * o.hi[0]; ++i) mom[i] = mom[i] + f[i] * dt;
+      }
+  });
+  apply_bc(c, c->gmom);
+  apply_bc(c, c->gforce);
+}
+
+extern "C" void mpm3d_cxx_contact(StepContext* c) {
+  if (!c->other) return;
+  scatter_mass_gradient(c);
+  scatter_mass_gradient(c->other);
+  contact_correct<false>(c);
+}
+
+extern "C" void mpm3d_cxx_recontact(StepContext* c) {
+  if (!c->other) return;
+  contact_correct<true>(c);
+}
