@@ -1,0 +1,192 @@
+// The simulation's checks after every step (cxx/solver/simulation.hpp): non-finite values,
+// volumes and densities out of range, runaway energy (HealthError), and the energy bounds
+// that a run can break silently (warnings, or an error with --strict-energy).
+#include "solver/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace mpm3d {
+
+std::string Simulation::body_and_rank(int p) const {
+  std::string s = "body " + std::to_string(model.particles.body[size_t(p)] + 1);
+  if (ranks) s += ", rank " + std::to_string(ranks->rank());
+  return s;
+}
+
+template <class F>
+std::string Simulation::about_particle(int deck, F&& format) const {
+  const Particles& P = model.particles;
+  int p = -1;
+  if (P.id.empty()) p = deck < P.np ? deck : -1;
+  else
+    for (int i = 0; i < P.np && p < 0; ++i)
+      if (P.id[size_t(i)] == deck) p = i;
+  std::string text = p >= 0 ? format(p) : std::string();
+  if (!ranks) return text;
+  const int from = ranks->min(p >= 0 ? ranks->rank() : std::numeric_limits<int>::max());
+  return ranks->broadcast(text, from);
+}
+
+// After every step: non-finite values (when an energy sum is not finite), then one pass
+// over the particles for a non-positive volume or a density outside
+// [kDensityRatioMin, kDensityRatioMax] rho0 (parallel, the lowest such deck number is
+// reported, whatever the thread count), then runaway energy. The pass reads two doubles and
+// one int per particle: about 1% of a step. On several ranks every decision is a min or a
+// max over the ranks, so that all of them stop at the same step with the same message.
+void Simulation::health_check() {
+  const Particles& P = model.particles;
+  constexpr int kNone = std::numeric_limits<int>::max();
+  auto lowest = [&](int deck) { return ranks ? ranks->min(deck) : deck; };
+  if (!(std::isfinite(kinetic) && std::isfinite(internal))) {
+    auto non_finite = [&](int p) -> const char* {
+      for (int a = 0; a < 3; ++a) {
+        if (!std::isfinite(P.x[3 * size_t(p) + a])) return "position";
+        if (!std::isfinite(P.v[3 * size_t(p) + a])) return "velocity";
+      }
+      for (int s = 0; s < 6; ++s)
+        if (!std::isfinite(P.sig[6 * size_t(p) + s])) return "stress";
+      if (!std::isfinite(P.ie[p])) return "internal energy";
+      if (!std::isfinite(P.vol[p])) return "volume";
+      return nullptr;
+    };
+    int first = kNone;
+    for (int p = 0; p < P.np; ++p)
+      if (non_finite(p)) first = std::min(first, P.deck_number(p));
+    first = lowest(first);
+    if (first != kNone)
+      throw HealthError(about_particle(first, [&](int p) {
+        std::ostringstream os;
+        os << "numerical breakdown at step " << steps << " (t = " << time << "): particle " << first + 1 << " ("
+           << body_and_rank(p) << ") has a non-finite " << non_finite(p);
+        return os.str();
+      }));
+  }
+  double ie_min = 0.0;  // the lowest particle internal energy, if negative (a min is exact)
+  {
+    const double* vol = P.vol.data();
+    const double* mass = P.mass.data();
+    const int* mat = P.mat.data();
+    const MaterialParams* mats = model.mats.data();
+    const int np = P.np;
+    const double* ie = P.ie.data();
+    int bad = kNone;  // the lowest deck number of a particle out of bounds
+#pragma omp parallel for schedule(static) reduction(min : bad, ie_min)
+    for (int p = 0; p < np; ++p) {
+      const double r0v = mats[mat[p]].rho0 * vol[p];
+      const bool ok = vol[p] > 0.0 && mass[p] >= kDensityRatioMin * r0v && mass[p] <= kDensityRatioMax * r0v;
+      if (!ok && P.deck_number(p) < bad) bad = P.deck_number(p);
+      if (ie[p] < ie_min) ie_min = ie[p];
+    }
+    bad = lowest(bad);
+    if (ranks) ie_min = ranks->min(ie_min);
+    if (bad != kNone)
+      throw HealthError(about_particle(bad, [&](int p) {
+        std::ostringstream os;
+        os << "numerical breakdown at step " << steps << " (t = " << time << "): particle " << bad + 1 << " ("
+           << body_and_rank(p) << ") has ";
+        const double rho0 = mats[mat[p]].rho0;
+        if (!(vol[p] > 0.0))
+          os << "a non-positive volume " << vol[p]
+             << " (crushed: reduce dtscale, or the impact speed is too high for the grid)";
+        else
+          os << "density " << mass[p] / vol[p] << " = " << (mass[p] / vol[p]) / rho0 << " rho0 (rho0 = " << rho0
+             << "), outside the bounds [" << kDensityRatioMin << ", " << kDensityRatioMax << "] rho0";
+        return os.str();
+      }));
+  }
+  if (std::isfinite(kinetic) && std::isfinite(internal)) {
+    // Runaway energy: the total may not exceed twice the initial energy plus the bound of
+    // the work of the external forces (sum of |f . v| dt per particle with the end-of-step
+    // velocities; the factor two leaves room for that approximation).
+    const double total = kinetic + internal;
+    if (std::fabs(total) <= 2.0 * (std::fabs(initial_total_energy) + std::fabs(external_work)) + 1e-300) {
+      energy_check(ie_min);
+      return;
+    }
+    // The fastest particle, ties to the lowest deck number.
+    double vmax = -1.0;
+    int worst = kNone;
+    for (int p = 0; p < P.np; ++p) {
+      const double* v = &P.v[3 * size_t(p)];
+      const double s = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+      if (s > vmax || (s == vmax && P.deck_number(p) < worst)) {
+        vmax = s;
+        worst = P.deck_number(p);
+      }
+    }
+    if (ranks) {
+      const double all = ranks->max(vmax);
+      worst = ranks->min(vmax == all ? worst : kNone);
+      vmax = all;
+    }
+    throw HealthError(about_particle(worst, [&](int p) {
+      std::ostringstream os;
+      os << "numerical instability at step " << steps << " (t = " << time << "): total energy " << total
+         << " exceeds twice the initial energy " << initial_total_energy << " plus the external work "
+         << external_work << "; fastest particle " << worst + 1 << " (" << body_and_rank(p) << ") at speed "
+         << std::sqrt(vmax) << " (reduce dtscale, or use MUSL)";
+      return os.str();
+    }));
+  }
+  throw HealthError("numerical breakdown at step " + std::to_string(steps) + ": non-finite energy");
+}
+
+// Energy bounds that a run can break silently, with its total still conserved: a body's
+// internal energy below -kEnergyWarnFraction (|E0| + |W|), or the kinetic energy above
+// E0 + |W| by more than that (both seen when a body starts pre-compressed under an EOS, or
+// an EOS releases more work than it stored). ie_min, the lowest particle internal energy
+// (0 if none is negative), is exact whatever the thread count: the per-body sums (serial,
+// in storage order, so their figures do not depend on the threads either) are formed only
+// when np * ie_min could reach the bound.
+void Simulation::energy_check(double ie_min) {
+  const double bound = kEnergyWarnFraction * (std::fabs(initial_total_energy) + std::fabs(external_work));
+  const Particles& P = model.particles;
+  std::vector<std::string> found;
+  if (ie_min < 0.0 && double(global_np()) * ie_min < -bound) {
+    std::vector<double> body_ie(model.bodies.size(), 0.0);
+    if (ranks) {  // the same serial sums in storage order, on the root
+      Particles all;
+      ranks->gather(P, all);
+      for (int p = 0; p < all.np; ++p) body_ie[size_t(all.body[p])] += all.ie[p];
+      ranks->broadcast(body_ie);
+    } else {
+      for (int p = 0; p < P.np; ++p) body_ie[size_t(P.body[p])] += P.ie[p];
+    }
+    body_ie_warned_.resize(body_ie.size(), 0);
+    for (size_t b = 0; b < body_ie.size(); ++b) {
+      if (body_ie_warned_[b] || !(body_ie[b] < -bound)) continue;
+      body_ie_warned_[b] = 1;
+      std::ostringstream os;
+      os << "energy: the internal energy of body " << b + 1 << " is " << body_ie[b] << " at step " << steps
+         << " (t = " << time << "), below -" << 100.0 * kEnergyWarnFraction << "% of the initial total energy "
+         << initial_total_energy << " plus the external work " << external_work
+         << " (its stress work releases more than it stored: check the EOS and that the particle cards' densities "
+            "are the materials')";
+      found.push_back(os.str());
+    }
+  }
+  if (!kinetic_warned_ && kinetic > (initial_total_energy + std::fabs(external_work)) + bound) {
+    kinetic_warned_ = true;
+    std::ostringstream os;
+    os << "energy: the kinetic energy " << kinetic << " at step " << steps << " (t = " << time
+       << ") exceeds the initial total energy " << initial_total_energy << " plus the external work " << external_work
+       << " by " << kinetic - (initial_total_energy + std::fabs(external_work)) << " (internal energy " << internal
+       << ")";
+    found.push_back(os.str());
+  }
+  if (found.empty()) return;
+  if (strict_energy) throw HealthError(found.front() + " (stopped: --strict-energy)");
+  for (auto& w : found) new_energy_warnings.push_back(std::move(w));
+}
+
+}  // namespace mpm3d
