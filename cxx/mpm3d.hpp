@@ -1,7 +1,9 @@
-// MPM3D (the original's main program): the simulation (simulation.hpp) and the command-line
-// driver run_main (cli.cpp), the one include for the program, the bindings and the tests.
+// MPM3D (the original's main program): the simulation (simulation.hpp), its time loop
+// (time_loop.hpp) and the command-line driver run_main (cli.cpp); the one include for the
+// program, the bindings and the tests.
 #pragma once
 #include "solver/simulation.hpp"
+#include "solver/time_loop.hpp"
 
 namespace mpm3d {
 

@@ -193,7 +193,10 @@ MPM3D_API int mpm3d_step(mpm3d_sim* sim, int nsteps) {
   if (!sim) return fail(MPM3D_ERR_ARGUMENT, "mpm3d_step: null handle");
   if (nsteps < 0) return fail(MPM3D_ERR_ARGUMENT, "mpm3d_step: negative number of steps (%d)", nsteps);
   try {
-    for (int k = 0; k < nsteps; ++k) sim->sim.step();
+    mpm3d::LoopLimits limits;
+    limits.max_steps = sim->sim.steps + nsteps;
+    const mpm3d::LoopProgress progress = mpm3d::run_steps(sim->sim, limits);
+    if (!progress.failure.empty()) return fail(MPM3D_ERR_HEALTH, "%s", progress.failure.c_str());
     return MPM3D_OK;
   } catch (...) {
     return fail_current(sim->sim.model.deck_path.c_str());

@@ -387,13 +387,13 @@ int run_main(int argc, char** argv, Ranks* ranks) {
     };
     log_regrid();
 
-    double step_seconds = 0.0, dt_min = m.dt, dt_max = m.dt, max_epeff = 0.0;
+    double dt_min = m.dt, dt_max = m.dt, max_epeff = 0.0;
     double next_out = restarted ? resume.next_out : m.outtime, next_rpt = restarted ? resume.next_rpt : m.rpttime;
     if (!restarted && animates) write_frame(0.0, 0);
     const double eps = 1e-9 * m.dt;
     std::string failure;
     std::vector<std::string> energy_warnings;  // printed when raised, listed in the summary
-    long steps_run = 0, last_ckpt = restarted ? sim.steps : -1;
+    long last_ckpt = restarted ? sim.steps : -1;
     std::string last_ckpt_path = restarted ? opt.restart : std::string();
     auto save_checkpoint = [&](const std::string& path) {
       OutputSchedule o;
@@ -423,21 +423,18 @@ int run_main(int argc, char** argv, Ranks* ranks) {
       last_ckpt_path = path;
     };
     int interrupted = 0;
+    LoopLimits limits;
+    limits.end_time = end_time;
+    limits.eps = eps;
+    limits.max_steps = opt.max_steps;
     // QuLo without --end-time: on past the end time until the load has settled.
-    const bool settle = m.load_ramp_time > 0.0 && opt.end_time <= 0.0;
-    stepping = true;
-    while ((settle ? !sim.quasi_static_done() : sim.time < end_time - eps) &&
-           (opt.max_steps < 0 || sim.steps < opt.max_steps)) {
-      const auto t0 = std::chrono::steady_clock::now();
+    limits.settle = m.load_ramp_time > 0.0 && opt.end_time <= 0.0;
+    LoopHooks hooks;
+    hooks.before_step = [&](Simulation&) {
       dt_min = std::min(dt_min, m.dt);
       dt_max = std::max(dt_max, m.dt);
-      try {
-        sim.step();
-      } catch (const HealthError& e) {
-        failure = e.what();
-      }
-      ++steps_run;
-      step_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    };
+    hooks.after_step = [&](Simulation&, const LoopProgress& progress) {
       log_regrid();
       for (const auto& w : sim.new_energy_warnings) {
         out.log("warning: " + w);
@@ -445,7 +442,7 @@ int run_main(int argc, char** argv, Ranks* ranks) {
         energy_warnings.push_back(w);
       }
       sim.new_energy_warnings.clear();
-      if (!failure.empty()) break;
+      if (!progress.failure.empty()) return false;
       if (curves) {
         held_curve_values(m, curve_rows, curve_values);
         if (ranks) ranks->max(curve_values);
@@ -458,7 +455,7 @@ int run_main(int argc, char** argv, Ranks* ranks) {
       }
       if (sim.time >= next_rpt - eps || sim.time >= end_time - eps) {
         next_rpt += m.rpttime;
-        const double left = (end_time - sim.time) / m.dt * (step_seconds / double(steps_run));
+        const double left = (end_time - sim.time) / m.dt * (progress.step_seconds / double(progress.steps_run));
         char line[256];
         std::snprintf(line, sizeof line, "step %7ld  t %.4e  KE %.4e  IE %.4e  E %.4e  outside %d  eta %.1f s",
                       sim.steps, sim.time, sim.kinetic, sim.internal, sim.kinetic + sim.internal, sim.outside,
@@ -467,12 +464,14 @@ int run_main(int argc, char** argv, Ranks* ranks) {
         if (!opt.quiet) std::cout << line << std::endl;
       }
       if (opt.checkpoint_every > 0 && sim.steps % opt.checkpoint_every == 0) save_checkpoint(ckpt_path);
-      const int sig = ranks ? -ranks->min(-int(g_signal)) : int(g_signal);  // every rank stops at one step
-      if (sig) {
-        interrupted = sig;
-        break;
-      }
-    }
+      interrupted = ranks ? -ranks->min(-int(g_signal)) : int(g_signal);  // every rank stops at one step
+      return interrupted == 0;
+    };
+    stepping = true;
+    const LoopProgress progress = run_steps(sim, limits, hooks);
+    const long steps_run = progress.steps_run;
+    const double step_seconds = progress.step_seconds;
+    failure = progress.failure;
     if (!failure.empty()) {
       if (last_ckpt >= 0)
         failure += "; the last checkpoint (step " + std::to_string(last_ckpt) + ") is kept in " + last_ckpt_path;

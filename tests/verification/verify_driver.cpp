@@ -213,32 +213,32 @@ int main(int argc, char** argv) {
     long first_trip_step = -1;
     const double setup_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t_setup).count();
-    while (sim.time < tend - eps && (max_steps < 0 || sim.steps < max_steps)) {
-      const auto t0 = std::chrono::steady_clock::now();
-      if (use_mms) {
+    LoopLimits limits;
+    limits.end_time = tend;
+    limits.eps = eps;
+    limits.max_steps = max_steps;
+    LoopHooks hooks;
+    if (use_mms)
+      hooks.before_step = [&](Simulation&) {
         const double t = sim.time;
         for (int p = 0; p < np; ++p) {
           double b[3];
           mms.force(&X0[3 * size_t(p)], t, b);
           for (int a = 0; a < 3; ++a) P.fext[3 * size_t(p) + a] = P.mass[p] * b[a];
         }
+      };
+    // --keep-going: an energy trip (finite energies) is recorded and the run goes on.
+    hooks.tolerate = [&](Simulation&, const HealthError& e) {
+      const bool energy_only = std::isfinite(sim.kinetic) && std::isfinite(sim.internal);
+      if (!(keep_going && energy_only)) return false;
+      if (first_trip_step < 0) {
+        first_trip_step = sim.steps;
+        first_trip = e.what();
       }
-      try {
-        sim.step();
-      } catch (const HealthError& e) {
-        const bool energy_only = std::isfinite(sim.kinetic) && std::isfinite(sim.internal);
-        if (keep_going && energy_only) {
-          if (first_trip_step < 0) {
-            first_trip_step = sim.steps;
-            first_trip = e.what();
-          }
-        } else {
-          status = "stopped";
-          message = e.what();
-        }
-      }
-      loop_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      if (status != "ok") break;
+      return true;
+    };
+    hooks.after_step = [&](Simulation&, const LoopProgress& progress) {
+      if (!progress.failure.empty()) return false;
       record();
       const double err = std::fabs((sim.kinetic + sim.internal) - E0 - sim.external_work);
       if (err > max_energy_error) max_energy_error = err;
@@ -246,6 +246,13 @@ int main(int argc, char** argv) {
         snapshot();
         ++next_snap;
       }
+      return true;
+    };
+    const LoopProgress progress = run_steps(sim, limits, hooks);
+    loop_seconds = progress.step_seconds;
+    if (!progress.failure.empty()) {
+      status = "stopped";
+      message = progress.failure;
     }
     if (status == "ok" && nsnap_written == 0 && !snaps.empty()) snapshot();
     // Final checks: non-finite values anywhere, mass, momentum.
