@@ -11,13 +11,13 @@
 // noutside is the last int before the pointer tlight: the padding before tlight would hide
 // one int missing from the ints there, so its own offset is checked.
 
-extern "C" void mpm3d_f_context_layout(size_t out[25]);
-extern "C" void mpm3d_f_step_constants(int out[14]);
+extern "C" void mpm3d_f_context_layout(size_t out[26]);
+extern "C" void mpm3d_f_step_constants(int out[17]);
 
 int main() {
-  size_t f[25];
+  size_t f[26];
   mpm3d_f_context_layout(f);
-  const size_t c[25] = {sizeof(StepContext),
+  const size_t c[26] = {sizeof(StepContext),
                        offsetof(StepContext, result),
                        offsetof(StepContext, np),
                        offsetof(StepContext, fix),
@@ -41,31 +41,33 @@ int main() {
                        offsetof(StepContext, order),
                        offsetof(StepContext, prebinned),
                        offsetof(StepContext, sg_cached),
-                       offsetof(StepContext, patch_work)};
-  const char* what[25] = {"sizeof(StepContext)", "offsetof(result)", "offsetof(np)", "offsetof(fix)",
+                       offsetof(StepContext, patch_work),
+                       offsetof(StepContext, family)};
+  const char* what[26] = {"sizeof(StepContext)", "offsetof(result)", "offsetof(np)", "offsetof(fix)",
                          "offsetof(noutside)", "sizeof(MaterialParams)", "offsetof(eos_e0)",
                          "offsetof(eos_type)", "offsetof(bulk_q2)", "offsetof(dp_tension)", "offsetof(cell_off)",
                          "offsetof(psize)", "offsetof(ncontact)",
                          "offsetof(defgrad)", "offsetof(uvf)", "offsetof(damping)", "offsetof(tl)",
                          "offsetof(fix_layers)", "offsetof(aux)", "offsetof(sg)",
                          "offsetof(exchange)", "offsetof(order)", "offsetof(prebinned)",
-                         "offsetof(sg_cached)", "offsetof(patch_work)"};
+                         "offsetof(sg_cached)", "offsetof(patch_work)", "offsetof(family)"};
   int bad = 0;
-  for (int i = 0; i < 25; ++i) {
+  for (int i = 0; i < 26; ++i) {
     const bool ok = c[i] == f[i];
     std::printf("%-24s C %4zu  Fortran %4zu%s\n", what[i], c[i], f[i], ok ? "" : "  MISMATCH");
     if (!ok) bad = 1;
   }
-  int fk[14];
+  int fk[17];
   mpm3d_f_step_constants(fk);
-  const int ck[14] = {ST_BIN,       ST_P2G,    ST_FORCES,   ST_INTEGRATE, ST_G2P,     ST_STRESS, ST_ENERGY,
+  const int ck[17] = {ST_BIN,       ST_P2G,    ST_FORCES,   ST_INTEGRATE, ST_G2P,     ST_STRESS, ST_ENERGY,
                       ST_CONTACT,   ST_RECONTACT, ST_COUNT, SCHEME_MUSL,  SCHEME_USL, SCHEME_USF,
-                      MPM3D_MAX_STEP_STAGES};
-  for (int i = 0; i < 14; ++i)
+                      MPM3D_MAX_STEP_STAGES, TRANSFER_TRILINEAR, TRANSFER_STENCIL27,
+                      TRANSFER_SMOOTHED_GRADIENT};
+  for (int i = 0; i < 17; ++i)
     if (fk[i] != ck[i]) {
       std::printf("step constant %d: C %d  Fortran %d  MISMATCH\n", i, ck[i], fk[i]);
       bad = 1;
     }
-  if (!bad) std::printf("stage and scheme identifiers: the same\n");
+  if (!bad) std::printf("stage, scheme and transfer family identifiers: the same\n");
   return bad;
 }

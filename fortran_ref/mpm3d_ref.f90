@@ -350,6 +350,8 @@ contains
     ! sgmp: the cell centres' scratch fields (the grid window is the whole box: no regrid).
     ctx%aux = c_null_ptr
     ctx%sg = merge(1, 0, model%sg)
+    ! The shape-function family, as Simulation::bind chooses it (TRANSFER_*, update_step.hpp).
+    ctx%family = merge(2, merge(1, 0, ctx%shape /= 0), model%sg)
     if (model%sg) then
       allocate(aux(34, grid%nc(1) * grid%nc(2) * grid%nc(3)))
       aux = 0.0_dp

@@ -14,6 +14,10 @@ module mpm3d_stage_common
   private
 
   integer, parameter, public :: SCHEME_MUSL = 0, SCHEME_USL = 1, SCHEME_USF = 2
+  ! The shape-function families (enum TransferFamily, cxx/stages/update_step.hpp): the stages
+  ! dispatch on step_context%family; the point-shape families share one scatter, gather and
+  ! gradient loop through particle_shape (8 or 27 nodes), sgmp has its own (stage_sg.f90).
+  integer, parameter, public :: TRANSFER_TRILINEAR = 0, TRANSFER_STENCIL27 = 1, TRANSFER_SMOOTHED_GRADIENT = 2
   ! Fields of the energy stage's columns: kinetic, internal energy, momentum (3), sum |f.v|.
   integer, parameter, public :: REDUCE_FIELDS = 6
 
@@ -74,6 +78,7 @@ module mpm3d_stage_common
                                            ! version with 27-node stencils or sgmp)
     type(c_ptr) :: aux = c_null_ptr        ! sgmp: (32, ncell) the cell centres' fields
     integer(c_int) :: sg = 0               ! 1: smoothed-gradient MPM (stage_sg.f90)
+    integer(c_int) :: family = 0           ! the shape-function family (TRANSFER_*, update_step.hpp)
     ! The C++ kernels' scratch (not used here): pscratch, then sgmp's sg_w, sg_cell, sg_reach.
     type(c_ptr) :: pscratch = c_null_ptr, sg_w = c_null_ptr, sg_cell = c_null_ptr, sg_reach = c_null_ptr
     ! Distributed runs (cxx/parallel/ranks.hpp; null with one rank): the ranks' hook, called between a
@@ -248,7 +253,7 @@ contains
   ! Layout of step_context and material_params as this compiler sees them (for the
   ! layout test against the C structs): sizes and a few offsets, in bytes.
   subroutine mpm3d_f_context_layout(out) bind(C, name='mpm3d_f_context_layout')
-    integer(c_size_t), intent(out) :: out(25)
+    integer(c_size_t), intent(out) :: out(26)
     type(step_context), target :: c
     type(material_params), target :: m(2)
     out(1) = c_sizeof(c)
@@ -276,6 +281,7 @@ contains
     out(23) = transfer(c_loc(c%prebinned), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
     out(24) = transfer(c_loc(c%sg_cached), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
     out(25) = transfer(c_loc(c%patch_work), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
+    out(26) = transfer(c_loc(c%family), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
   end subroutine mpm3d_f_context_layout
 
 end module mpm3d_stage_common

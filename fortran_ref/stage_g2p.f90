@@ -25,7 +25,7 @@ contains
     integer :: ci(3), o(3)
     logical :: remap, wide
     remap = c%scheme == SCHEME_MUSL
-    if (c%sg /= 0) then
+    if (c%family == TRANSFER_SMOOTHED_GRADIENT) then
       call sg_g2p(c, remap)
       if (remap) then
         call c_f_pointer(c%gmom, gmom, [3, c%nnode])
@@ -36,7 +36,7 @@ contains
     pc = c%patch_cells
     qq = pc + 1 + 2 * c%patch_halo
     pn = qq * qq * qq
-    wide = c%shape /= 0
+    wide = c%family == TRANSFER_STENCIL27
     if (c%shape == 1) call c_f_pointer(c%psize, psize, [c%np])
     call c_f_pointer(c%gmass, gmass, [c%nnode])
     call c_f_pointer(c%gmom, gmom, [3, c%nnode])

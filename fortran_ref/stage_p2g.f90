@@ -25,7 +25,7 @@ contains
     call c_f_pointer(c%gmass, gmass, [c%nnode])
     call c_f_pointer(c%gmom, gmom, [3, c%nnode])
     call c_f_pointer(c%gforce, gforce, [3, c%nnode])
-    if (c%sg /= 0) then
+    if (c%family == TRANSFER_SMOOTHED_GRADIENT) then
       call sg_p2g(c, .true., forces)
       call apply_bc(c, gmom)
       return
@@ -43,7 +43,7 @@ contains
   subroutine mpm3d_f_forces(c) bind(C, name='mpm3d_f_forces')
     type(step_context), intent(inout) :: c
     real(dp), pointer :: gmass(:), gmom(:,:), gforce(:,:)
-    if (c%sg /= 0) then
+    if (c%family == TRANSFER_SMOOTHED_GRADIENT) then
       call sg_p2g(c, .false., .true.)
       return
     end if
@@ -72,7 +72,7 @@ contains
     if (c%nslot <= 0) return
     pc = c%patch_cells
     qq = pc + 1 + 2 * c%patch_halo
-    wide = c%shape /= 0
+    wide = c%family == TRANSFER_STENCIL27
     if (c%shape == 1) call c_f_pointer(c%psize, psize, [c%np])
     call view_buffers(c, buf)
     call c_f_pointer(c%patch_start, pstart, [c%npatch + 1])
@@ -223,7 +223,7 @@ contains
     pc = c%patch_cells
     qq = pc + 1 + 2 * c%patch_halo
     pn = qq * qq * qq
-    wide = c%shape /= 0
+    wide = c%family == TRANSFER_STENCIL27
     call c_f_pointer(c%gmass, gmass, [c%nnode])
     call c_f_pointer(c%gmom, gmom, [3, c%nnode])
     call c_f_pointer(c%gnormal, gnormal, [3, c%nnode])

@@ -1,9 +1,10 @@
-! stage_sg: the current MPM3D-F90's smoothed-gradient MPM (sgmp) as cxx/stages/stage_sg.cpp, the
+! stage_sg: the current MPM3D-F90's smoothed-gradient MPM (sgmp) as
+! cxx/transfer/smoothed_gradient.cpp (the family TRANSFER_SMOOTHED_GRADIENT), the
 ! same operations in the same order: the particles exchange with the cell centres (trilinear
 ! weights of the auxiliary cell around the nearest node), the cell centres with the corners
 ! of their cells (1/8 each; one-point gradients at the centre for forces and strain rates).
-! The stages call it when c%sg /= 0. aux(AUX_FIELDS, ncell) holds the cells' fields, 1-based
-! field f + 1 for the C++ field f.
+! The stages call it when c%family == TRANSFER_SMOOTHED_GRADIENT. aux(AUX_FIELDS, ncell)
+! holds the cells' fields, 1-based field f + 1 for the C++ field f.
 module mpm3d_stage_sg
   use, intrinsic :: iso_c_binding
   use mpm3d_material, only: dp

@@ -28,7 +28,7 @@ contains
     integer :: ci(3), o(3)
     logical :: has_temp, has_tl, has_q, wide, filter, neoh
     dt = c%dt
-    wide = c%shape /= 0
+    wide = c%family == TRANSFER_STENCIL27
     if (c%shape == 1) call c_f_pointer(c%psize, psize, [c%np])
     call view_components(c, filter, body, bcomp)
     call c_f_pointer(c%lx, lx, [3, c%np])
@@ -56,14 +56,14 @@ contains
     if (c%tl /= 0) call c_f_pointer(c%pk1, pk1, [9, c%np])
     tdummy = 0.0_dp
     qdummy = 0.0_dp
-    if (c%sg /= 0) call sg_cell_gradients(c)
+    if (c%family == TRANSFER_SMOOTHED_GRADIENT) call sg_cell_gradients(c)
     do p = 1, c%np
       cl = cell(p)
       if (cl < 0) cycle
       if (filter) then
         if (other_component(c, p, body, bcomp)) cycle
       end if
-      if (c%sg /= 0) then
+      if (c%family == TRANSFER_SMOOTHED_GRADIENT) then
         call sg_velocity_gradient(c, cl, lx(:, p), lg)
       else
         call particle_shape(c, wide, p, cl, lx, psize, ci, o, sn, sg, nk)

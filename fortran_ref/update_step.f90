@@ -5,6 +5,7 @@
 module mpm3d_update_step
   use, intrinsic :: iso_c_binding, only: c_int
   use mpm3d_stage_common, only: step_context, SCHEME_MUSL, SCHEME_USL, SCHEME_USF, REDUCE_FIELDS, &
+                                TRANSFER_TRILINEAR, TRANSFER_STENCIL27, TRANSFER_SMOOTHED_GRADIENT, &
                                 mpm3d_f_context_layout
   use mpm3d_stage_bin, only: mpm3d_f_bin
   use mpm3d_stage_p2g, only: mpm3d_f_p2g, mpm3d_f_forces
@@ -79,9 +80,10 @@ contains
   ! The identifiers this module and stage_common repeat from cxx/stages/step_order.h, for the
   ! layout check: the stages in order, ST_COUNT, the schemes, the longest row.
   subroutine mpm3d_f_step_constants(out) bind(C, name='mpm3d_f_step_constants')
-    integer(c_int), intent(out) :: out(14)
+    integer(c_int), intent(out) :: out(17)
     out = [ST_BIN, ST_P2G, ST_FORCES, ST_INTEGRATE, ST_G2P, ST_STRESS, ST_ENERGY, ST_CONTACT, &
-           ST_RECONTACT, ST_COUNT, SCHEME_MUSL, SCHEME_USL, SCHEME_USF, MPM3D_MAX_STEP_STAGES]
+           ST_RECONTACT, ST_COUNT, SCHEME_MUSL, SCHEME_USL, SCHEME_USF, MPM3D_MAX_STEP_STAGES, &
+           TRANSFER_TRILINEAR, TRANSFER_STENCIL27, TRANSFER_SMOOTHED_GRADIENT]
   end subroutine mpm3d_f_step_constants
 
 end module mpm3d_update_step

@@ -202,6 +202,7 @@ void Simulation::bind() {
   c.sg_cell = model.sg ? sg_cell_.data() : nullptr;
   c.sg_reach = model.sg ? sg_reach_.data() : nullptr;
   c.sg = model.sg ? 1 : 0;
+  c.family = model.sg ? TRANSFER_SMOOTHED_GRADIENT : c.shape != 0 ? TRANSFER_STENCIL27 : TRANSFER_TRILINEAR;
   forget_rest();  // new arrays: nothing is known still
   bind_grid();  // before the contact copy: ctx2 starts as a copy of ctx
   if (model.contact) {

@@ -1,6 +1,6 @@
-// What several step stages share: the scalar P2G and G2P of one particle, the patch and
-// buffer loops, and the canonical assembly and boundary conditions (defined in
-// stage_p2g.cpp and stage_grid.cpp).
+// What several step stages and transfer families share: the scalar P2G and G2P of one
+// particle, the patch and buffer loops, and the canonical assembly and boundary conditions
+// (defined in assembly.cpp and stage_grid.cpp).
 #pragma once
 #include <cstddef>
 
@@ -15,25 +15,13 @@ namespace mpm3d {
 // the non-empty patches holding it, in ascending patch index (x fastest, then y, z).
 // Fields first..first+count-1 of the buffers go to dst_mass (field 0), dst_mom (1-3)
 // and dst_force (4-6). Every node is written by exactly one owner patch, so owners run in
-// parallel (for_patches). stage_p2g.cpp.
+// parallel (for_patches). assembly.cpp.
 void assemble(const StepContext* c, int first, int count, double* dst_mass, double* dst_mom,
               double* dst_force);
 
 // Boundary conditions of the box faces on a nodal vector field (3,nnode): 1 fixed (all
 // components zero), 2 symmetry (normal component zero). stage_grid.cpp.
 void apply_bc(const StepContext* c, double* a);
-
-// Smoothed-gradient MPM (sgmp, stage_sg.cpp): the exchanges through the cell centres
-// (StepContext::aux, kAuxFields per cell). P2G: the nodes' mass and momentum and/or forces;
-// G2P: the particles' velocities and positions, with remap the nodes' momenta; stress: the
-// cells' velocity gradients from the node velocities gvel (each particle's:
-// sg_velocity_gradient, stage_sg.hpp, with the weights of sg_ensure_weights: each
-// patch-list entry's, in sg_w and sg_cell, computed once a step; with_reach: also what
-// the scatters of several threads need).
-void sg_p2g(StepContext* c, bool with_mass_mom, bool with_forces);
-void sg_g2p(StepContext* c, bool remap);
-void sg_cell_gradients(StepContext* c, const double* gvel);
-void sg_ensure_weights(StepContext* c, bool with_reach);
 
 namespace {
 

@@ -9,6 +9,7 @@
 
 #include "stages/stage_common.hpp"
 #include "stages/update_step.hpp"
+#include "transfer/transfer.hpp"
 
 namespace mpm3d {
 
@@ -109,35 +110,10 @@ namespace {
 
 // Contact: g_i = sum_p m_p grad N_i(x_p) of the context's particles (the outward normal
 // direction of its body at node i) into gnormal, through the force fields (4-6) of the
-// patch buffers, which no stage reads after the force assembly.
+// patch buffers, which no stage reads after the force assembly; the gradients are the
+// deck's shape-function family's (transfer/transfer.hpp).
 void scatter_mass_gradient(StepContext* c) {
-  const int P = c->patch_cells, Q = P + 1 + 2 * c->patch_halo;
-  const int pn = patch_nodes(c);
-  const CellDecoder dec(c);
-  const StencilOffsets in_buffer(Q, Q);
-  for_filled_patches(c, [&](int q, const int q3[3], double* buf) {
-    zero_fields(buf, pn, 4, 3);
-    for (int idx = c->patch_start[q]; idx < c->patch_start[q + 1]; ++idx) {
-      const int p = c->patch_part[idx];
-      const double mp = c->mass[p];
-      auto add = [&](double* b, const double* g) {
-        b[4] += mp * g[0];
-        b[5] += mp * g[1];
-        b[6] += mp * g[2];
-      };
-      if (c->shape != 0) {
-        GimpStencil st;
-        gimp_stencil(c, dec, p, st);
-        double* corner = buf + size_t(gimp_patch_corner(c, q3, st)) * kNodeFields;
-        for (int k = 0; k < 27; ++k) add(corner + size_t(in_buffer.of[k]) * kNodeFields, st.G + 3 * k);
-      } else {
-        double N[8], G[24];
-        shape_linear(c->lx + 3 * p, c->inv_h, N, G);
-        const int base = patch_base(c, dec, q3, c->cell[p]);
-        for (int k = 0; k < 8; ++k) add(buf + size_t(base + patch_local(P, k)) * kNodeFields, G + 3 * k);
-      }
-    }
-  });
+  transfer_of(c).mass_gradient(c);
   assemble(c, 4, 3, c->gmass, c->gmom, c->gnormal);
 }
 

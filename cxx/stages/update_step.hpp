@@ -76,15 +76,16 @@ struct StepContext {
   int fix_layers;            // node layers the boundary conditions of a face hold: 1, or 2
                              // (the current version with 27-node stencils or sgmp)
   // Smoothed-gradient MPM (the current version's sgmp): the stages exchange through the
-  // cell centres, aux (kAuxFields, ncell) their scratch fields (stage_sg.cpp); else null, 0.
+  // cell centres, aux (kAuxFields, ncell) their scratch fields (transfer/smoothed_gradient.cpp); else null, 0.
   double *aux;
   int sg;
+  int family;          // the shape-function family (TransferFamily), chosen when the deck is bound
   // Stage-internal scratch of the C++ kernels (the Fortran mirror, step_context in
   // fortran_ref/stage_common.f90, holds them as untouched pointers).
   int *pscratch;       // (np) patch of each particle during binning
   // sgmp: each patch-list entry's auxiliary weights (kSgWeights: the P2G rule's 8, the
   // G2P rule's 8) and centres (8), written by the step's first C++ sgmp stage and read by
-  // the later ones (stage_sg.cpp); else null.
+  // the later ones (transfer/smoothed_gradient.cpp); else null.
   double *sg_w;
   int *sg_cell;             // (np, 8) the centres of the entry's corners
   unsigned char *sg_reach;  // bits 2a, 2a+1: a corner lies in the patch below, above on axis a
@@ -122,6 +123,9 @@ struct StepContext {
   const unsigned char* sg_rest;
   const int* patch_work;
 };
+
+// The shape-function families of the transfer layer (cxx/transfer/transfer.hpp).
+enum TransferFamily { TRANSFER_TRILINEAR = 0, TRANSFER_STENCIL27 = 1, TRANSFER_SMOOTHED_GRADIENT = 2, TRANSFER_COUNT = 3 };
 
 typedef void (*StageFn)(StepContext*);
 

@@ -9,7 +9,7 @@
 //   starts at +0.0 never holds -0.0 under round-to-nearest, so x + 0.0 == x);
 // - scatters into the patch buffers stay one particle after the other, in list order,
 //   so every node sums its contributions in the canonical order.
-// The stage files (stage_bin, stage_p2g, stage_g2p, stage_stress.cpp) instantiate these for
+// The trilinear family (trilinear.cpp) and the bin stage (stage_bin.cpp) instantiate these for
 // the baseline instruction set, transfer_lanes_avx2.cpp for AVX2 (the *_avx2 functions
 // declared at the end); each unit has its own copies (internal linkage).
 #pragma once

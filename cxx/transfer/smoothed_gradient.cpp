@@ -29,8 +29,10 @@
 #endif
 
 #include "stages/stage_common.hpp"
-#include "stages/stage_sg.hpp"
+#include "stages/stress_loop.hpp"
 #include "stages/update_step.hpp"
+#include "transfer/smoothed_gradient.hpp"
+#include "transfer/transfer.hpp"
 
 namespace mpm3d {
 
@@ -482,5 +484,36 @@ void sg_cell_gradients(StepContext* c, const double* gvel) {
     for (int r = 0; r < 9; ++r) a[AUX_L + r] = L[r];
   });
 }
+
+namespace {
+
+// sgmp: the patch lists in chunks, each entry's gradient from its weights of this step
+// (sg_ensure_weights).
+void stress_sg(StepContext* c) {
+  sg_ensure_weights(c, false);
+  const CellDecoder dec(c);
+  const StressBlockArgs args = stress_args(c);
+  auto gradient = [&](const CellDecoder&, int e, int, double* L) {
+    sg_velocity_gradient(c, c->sg_cell + 8 * size_t(e), sg_p2g_weights(c, e), L);
+  };
+  if (c->sg_rest) {  // the patches not at rest, shared by their work
+    for_patches(c, [&](int q) {
+      if (patch_at_rest(c, q)) return;
+      const int first = c->patch_start[q];
+      stress_run(c, dec, args, c->patch_part, first, c->patch_start[q + 1] - first, gradient);
+    });
+    return;
+  }
+  for_list_chunks(c, [&](int first, int count) { stress_run(c, dec, args, c->patch_part, first, count, gradient); });
+}
+
+void stress_smoothed_gradient(StepContext* c, const double* gvel) {
+  sg_cell_gradients(c, gvel);
+  stress_sg(c);
+}
+
+}  // namespace
+
+const Transfer kSmoothedGradientTransfer = {sg_p2g, sg_g2p, stress_smoothed_gradient, mass_gradient_trilinear};
 
 }  // namespace mpm3d

@@ -1,6 +1,6 @@
 // Smoothed-gradient MPM (sgmp): the cell-centre fields and the particles' weights on the
-// auxiliary grid of cell centres (stage_sg.cpp says what they are), shared by stage_sg.cpp
-// and the stress stage. Internal linkage, like patch_index.hpp.
+// auxiliary grid of cell centres (smoothed_gradient.cpp says what they are), and the
+// family's stages. Internal linkage, like patch_index.hpp, but for the stages.
 #pragma once
 #include <cstddef>
 #ifdef __SSE2__
@@ -11,6 +11,19 @@
 #include "stages/update_step.hpp"
 
 namespace mpm3d {
+
+// The family's stages (smoothed_gradient.cpp): the exchanges through the cell centres
+// (StepContext::aux, kAuxFields per cell). P2G: the nodes' mass and momentum and/or forces;
+// G2P: the particles' velocities and positions, with remap the nodes' momenta; stress: the
+// cells' velocity gradients from the node velocities gvel (each particle's:
+// sg_velocity_gradient, below, with the weights of sg_ensure_weights: each
+// patch-list entry's, in sg_w and sg_cell, computed once a step; with_reach: also what
+// the scatters of several threads need).
+void sg_p2g(StepContext* c, bool with_mass_mom, bool with_forces);
+void sg_g2p(StepContext* c, bool remap);
+void sg_cell_gradients(StepContext* c, const double* gvel);
+void sg_ensure_weights(StepContext* c, bool with_reach);
+
 namespace {
 
 // Fields of one cell centre in StepContext::aux (kAuxFields doubles per cell).

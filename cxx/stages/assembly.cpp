@@ -1,0 +1,166 @@
+// The canonical assembly of the patch buffers into the node arrays (stage_common.hpp
+// assemble; docs/DESIGN.md section 4), for buffers without a halo (the trilinear family)
+// and with one (the 27-node stencils, sgmp). The P2G of every family, the G2P remap and
+// the contact's mass gradients end with it.
+#include <algorithm>
+#include <cstddef>
+#include <stdexcept>
+#include <vector>
+
+#include "stages/stage_common.hpp"
+#include "stages/update_step.hpp"
+
+namespace mpm3d {
+namespace {
+
+// The trilinear assembly (no halo): owner patch q gathers each of its nodes from its own
+// buffer and those of its seven lower neighbours. The field range is a compile-time
+// constant, so the per-node loops unroll.
+template <int first, int count>
+void assemble_fields(const StepContext* c, double* dst_mass, double* dst_mom, double* dst_force) {
+  const int P = c->patch_cells, Q = P + 1;
+  const int npd0 = c->npd[0], npd1 = c->npd[1], npd2 = c->npd[2];
+  const int pn = Q * Q * Q;
+  for_patches(c, [&](int q) {
+    const int qx = q % npd0, qy = (q / npd0) % npd1, qz = q / (npd0 * npd1);
+    // Slots of the patch and its lower neighbours: nb[cz][cy][cx], c = 0 lower, 1 self.
+    const double* nb[2][2][2];
+    bool any = false;
+    for (int cz = 0; cz < 2; ++cz)
+      for (int cy = 0; cy < 2; ++cy)
+        for (int cx = 0; cx < 2; ++cx) {
+          const int px = qx - 1 + cx, py = qy - 1 + cy, pz = qz - 1 + cz;
+          const double* b = nullptr;
+          if (px >= 0 && py >= 0 && pz >= 0) {
+            const int slot = c->patch_slot[px + npd0 * (py + npd1 * pz)];
+            if (slot >= 0) b = c->patch_buf + size_t(slot) * size_t(pn) * kNodeFields;
+          }
+          nb[cz][cy][cx] = b;
+          any = any || b;
+        }
+    if (!any) return;  // inactive: no stage reads these nodes
+    const int i0 = qx * P, j0 = qy * P, k0 = qz * P;
+    const int i1 = qx == npd0 - 1 ? c->nn[0] : i0 + P;
+    const int j1 = qy == npd1 - 1 ? c->nn[1] : j0 + P;
+    const int k1 = qz == npd2 - 1 ? c->nn[2] : k0 + P;
+    for (int k = k0; k < k1; ++k)
+      for (int j = j0; j < j1; ++j) {
+        // Row pointers of the contributing buffers, in ascending patch order: (cz, cy)
+        // ascending, and within each the lower x patch (cx = 0) before the own one.
+        const double* row[8];
+        int cxs[8], nrow = 0;
+        const int czlo = (k == k0 && qz > 0) ? 0 : 1;
+        const int cylo = (j == j0 && qy > 0) ? 0 : 1;
+        for (int cz = czlo; cz < 2; ++cz)
+          for (int cy = cylo; cy < 2; ++cy)
+            for (int cx = 0; cx < 2; ++cx) {
+              const double* b = nb[cz][cy][cx];
+              if (!b) continue;
+              const int lj = j - (qy - 1 + cy) * P, lk = k - (qz - 1 + cz) * P;
+              // Buffer node of x index i is at (i - (qx - 1 + cx) P) + Q (lj + Q lk).
+              row[nrow] = b + std::ptrdiff_t(Q * (lj + Q * lk) - (qx - 1 + cx) * P) * kNodeFields;
+              cxs[nrow++] = cx;
+            }
+        const int nbase = c->nn[0] * (j + c->nn[1] * k);
+        for (int i = i0; i < i1; ++i) {
+          const bool lower_x = (i == i0 && qx > 0);
+          double sum[kNodeFields] = {0, 0, 0, 0, 0, 0, 0};
+          for (int r = 0; r < nrow; ++r) {
+            if (cxs[r] == 0 && !lower_x) continue;
+            const double* v = row[r] + size_t(i) * kNodeFields + first;
+            for (int f = 0; f < count; ++f) sum[f] += v[f];
+          }
+          store_node_fields(first, count, sum, i + nbase, dst_mass, dst_mom, dst_force);
+        }
+      }
+  });
+}
+
+// Patches whose buffers (halo H) hold node n along one axis: [lo, hi].
+inline void patch_range(int n, int P, int H, int npd, int& lo, int& hi) {
+  const int t = n - P - H;
+  lo = t <= 0 ? 0 : (t + P - 1) / P;
+  hi = (n + H) / P;
+  if (hi > npd - 1) hi = npd - 1;
+}
+
+// The assembly for buffers with a halo (27-node stencils): the owner patch of each node
+// gathers it from every non-empty patch whose buffer holds it, in ascending patch index.
+// The owned block is summed one contributing patch at a time (the patch's whole overlap at
+// once, patches in ascending index), which gives every node the same additions in the same
+// order as a node-by-node gather, at a fraction of its index arithmetic.
+void assemble_wide(const StepContext* c, int first, int count, double* dst_mass, double* dst_mom,
+                   double* dst_force) {
+  const int P = c->patch_cells, H = c->patch_halo, Q = P + 1 + 2 * H;
+  const size_t pn = size_t(Q) * size_t(Q) * size_t(Q);
+#pragma omp parallel
+  {
+    std::vector<double> acc;
+#pragma omp for schedule(dynamic, 1)
+    for (int q = 0; q < c->npatch; ++q) {
+      const OwnedNodes o = owned_nodes(c, q);
+      if (!o.active) continue;
+      const int ex = o.hi[0] - o.lo[0], ey = o.hi[1] - o.lo[1], ez = o.hi[2] - o.lo[2];
+      acc.assign(size_t(ex) * size_t(ey) * size_t(ez) * size_t(count), 0.0);
+      int rlo[3], rhi[3];
+      for (int a = 0; a < 3; ++a) {
+        int l0, h0, l1, h1;
+        patch_range(o.lo[a], P, H, c->npd[a], l0, h0);
+        patch_range(o.hi[a] - 1, P, H, c->npd[a], l1, h1);
+        rlo[a] = l0;
+        rhi[a] = h1;
+      }
+      for (int rz = rlo[2]; rz <= rhi[2]; ++rz)
+        for (int ry = rlo[1]; ry <= rhi[1]; ++ry)
+          for (int rx = rlo[0]; rx <= rhi[0]; ++rx) {
+            const int slot = c->patch_slot[rx + c->npd[0] * (ry + c->npd[1] * rz)];
+            if (slot < 0) continue;
+            const int r3[3] = {rx, ry, rz};
+            int b0[3], b1[3];  // the overlap of the owned block and the buffer's nodes
+            for (int a = 0; a < 3; ++a) {
+              b0[a] = std::max(o.lo[a], r3[a] * P - H);
+              b1[a] = std::min(o.hi[a], r3[a] * P + P + H + 1);
+            }
+            const double* buf = c->patch_buf + size_t(slot) * pn * kNodeFields;
+            for (int k = b0[2]; k < b1[2]; ++k)
+              for (int j = b0[1]; j < b1[1]; ++j) {
+                const int ln0 = (b0[0] - rx * P + H) + Q * ((j - ry * P + H) + Q * (k - rz * P + H));
+                const size_t a0 = size_t((k - o.lo[2]) * ey + (j - o.lo[1])) * size_t(ex) + size_t(b0[0] - o.lo[0]);
+                for (int i = 0; i < b1[0] - b0[0]; ++i) {
+                  const double* v = buf + size_t(ln0 + i) * kNodeFields + first;
+                  double* t = acc.data() + (a0 + size_t(i)) * size_t(count);
+                  for (int f = 0; f < count; ++f) t[f] += v[f];
+                }
+              }
+          }
+      for (int k = o.lo[2]; k < o.hi[2]; ++k)
+        for (int j = o.lo[1]; j < o.hi[1]; ++j)
+          for (int i = o.lo[0]; i < o.hi[0]; ++i) {
+            const size_t a = size_t((k - o.lo[2]) * ey + (j - o.lo[1])) * size_t(ex) + size_t(i - o.lo[0]);
+            store_node_fields(first, count, acc.data() + a * size_t(count), i + c->nn[0] * (j + c->nn[1] * k),
+                              dst_mass, dst_mom, dst_force);
+          }
+    }
+  }
+}
+
+}  // namespace
+
+void assemble(const StepContext* c, int first, int count, double* dst_mass, double* dst_mom,
+              double* dst_force) {
+  if (c->exchange) c->exchange(c, EXCHANGE_BUFFERS, first, count);  // ghost patches' buffers
+  if (c->patch_halo > 0)
+    assemble_wide(c, first, count, dst_mass, dst_mom, dst_force);
+  else if (first == 0 && count == 7)
+    assemble_fields<0, 7>(c, dst_mass, dst_mom, dst_force);
+  else if (first == 0 && count == 4)
+    assemble_fields<0, 4>(c, dst_mass, dst_mom, dst_force);
+  else if (first == 1 && count == 3)
+    assemble_fields<1, 3>(c, dst_mass, dst_mom, dst_force);
+  else if (first == 4 && count == 3)
+    assemble_fields<4, 3>(c, dst_mass, dst_mom, dst_force);
+  else
+    throw std::logic_error("assemble: unexpected field range");
+}
+
+}  // namespace mpm3d

@@ -1,0 +1,79 @@
+// The constitutive loop of the stress stage for the families that give one particle's
+// velocity gradient at a time (stencil27.cpp, smoothed_gradient.cpp): runs of particles of
+// one material, kStressLanes at a time, through stress_block (constitution.hpp). The
+// trilinear family runs the same update in lanes (stress_list, transfer_lanes.hpp).
+#pragma once
+#include <algorithm>
+
+#include "materials/constitution.hpp"
+#include "stages/stage_common.hpp"
+#include "transfer/transfer_lanes.hpp"
+
+namespace mpm3d {
+namespace {
+
+// What the constitutive update takes from the context besides the particles.
+inline StressBlockArgs stress_args(const StepContext* c) {
+  return StressBlockArgs{c->dt, c->temp != nullptr, c->qv != nullptr, c->bulk_q1, c->bulk_q2, c->h, c->uvf != 0,
+                         c->tl != 0};
+}
+
+// The constitutive update of the particles list[i] (i where list is null), i in
+// [first, first + count): velocity gradients one particle at a time (gradient(dec, i, p, L)), the update
+// of kStressLanes consecutive particles of one material at a time (stress_block; a shorter
+// run lane by lane, which gives the same bits).
+template <class Gradient>
+void stress_run(StepContext* c, const CellDecoder& dec, const StressBlockArgs& args, const int* list, int first,
+                int count, Gradient& gradient) {
+  const bool filter = c->only_comp > 0;
+  StressBlock b;
+  int part[kStressLanes];
+  int n = 0, mat = -1;
+  auto flush = [&]() {
+    const MaterialParams& mp = c->mats[mat];
+    if (n == kStressLanes)
+      stress_block(mp, b, args);
+    else
+      for (int i = 0; i < n; ++i) stress_block_lane(mp, b, i, args);
+    if (c->sg_still) {
+      // Still bit 0: the update changed no bit of the stress state (and an explosive is
+      // unlit, so that the next step's burn fraction is the same zero).
+      const bool unlit_or_inert = mp.type != MAT_HIEX;
+      for (int i = 0; i < n; ++i) {
+        const bool same = stress_state_same(c, part[i], i, b) && (unlit_or_inert || b.burn[i] == 0.0);
+        c->sg_still[part[i]] = static_cast<unsigned char>((c->sg_still[part[i]] & 2u) | (same ? 1u : 0u));
+      }
+    }
+    for (int i = 0; i < n; ++i) stress_block_store(c, part[i], i, b);
+    n = 0;
+  };
+  for (int i = first; i < first + count; ++i) {
+    const int p = list ? list[i] : i;
+    if (c->cell[p] < 0) continue;
+    if (filter && other_component(c, p)) continue;
+    if (n > 0 && c->mat[p] != mat) flush();
+    mat = c->mat[p];
+    double L[9];
+    gradient(dec, i, p, L);
+    for (int r = 0; r < 9; ++r) b.L[r][n] = L[r];
+    stress_block_load(c, c->mats[mat], p, n, b);
+    part[n++] = p;
+    if (n == kStressLanes) flush();
+  }
+  if (n > 0) flush();
+}
+
+// The particle loop of the 27-node stencils: fixed chunks of the particles.
+template <class Gradient>
+void stress_particles(StepContext* c, Gradient&& gradient) {
+  const CellDecoder dec(c);
+  const StressBlockArgs args = stress_args(c);
+  constexpr int kChunk = 256;
+  const int nchunk = (c->np + kChunk - 1) / kChunk;
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int ch = 0; ch < nchunk; ++ch)
+    stress_run(c, dec, args, nullptr, ch * kChunk, std::min(c->np, (ch + 1) * kChunk) - ch * kChunk, gradient);
+}
+
+}  // namespace
+}  // namespace mpm3d
