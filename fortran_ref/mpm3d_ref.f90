@@ -167,7 +167,7 @@ program mpm3d_ref
   ! Simulation constructor; every step bins again).
   call run_each(ST_BIN)
   call mpm3d_f_energy(ctx)
-  initial_total = ctx%result(1) + ctx%result(2)
+  initial_total = ctx%out%result(1) + ctx%out%result(2)
   if (.not. quiet) then
     write (output_unit, '(a)') 'mpm3d_ref: ' // model%title
     write (output_unit, '(a,i0,a,i0,a,i0,a,i0,a,i0,a,es12.5)') '  ', np, ' particles, grid ', &
@@ -183,9 +183,9 @@ program mpm3d_ref
   ! ---------------------------------------------------------------- time loop
   steps = 0
   time = 0.0_dp
-  kinetic = ctx%result(1)
-  internal = ctx%result(2)
-  momentum = ctx%result(3:5)
+  kinetic = ctx%out%result(1)
+  internal = ctx%out%result(2)
+  momentum = ctx%out%result(3:5)
   rc = 0
   external_work = 0.0_dp
   eps = 1.0e-9_dp * model%dt
@@ -196,11 +196,11 @@ program mpm3d_ref
     call step()
     steps = steps + 1
     time = time + model%dt
-    kinetic = ctx%result(1)
-    internal = ctx%result(2)
-    momentum = ctx%result(3:5)
+    kinetic = ctx%out%result(1)
+    internal = ctx%out%result(2)
+    momentum = ctx%out%result(3:5)
     ! The energy stage's sum of |f . v| (0 without body forces) times this step's dt.
-    external_work = external_work + ctx%result(9) * model%dt
+    external_work = external_work + ctx%out%result(9) * model%dt
     if (model%dt_per_step) model%dt = velocity_time_step()
     ! drda: every particle stops after a step in which the kinetic energy did not grow.
     if (model%dynamic_relaxation .and. kinetic - kinetic_before <= 0.0_dp) then
@@ -214,7 +214,7 @@ program mpm3d_ref
   end do
   if (.not. quiet) then
     write (output_unit, '(a,i0,a,es14.7,a,es14.7,a,es14.7,a,i0)') 'done: ', steps, ' steps, t ', time, &
-      '  KE ', kinetic, '  IE ', internal, '  outside ', ctx%noutside + ctx2%noutside
+      '  KE ', kinetic, '  IE ', internal, '  outside ', ctx%out%noutside + ctx2%out%noutside
   end if
   if (len(state_path) > 0) call write_state_h5(state_path, model, time, steps, model%dt)
   if (len(energy_path) > 0) call write_energies(energy_path)
@@ -302,73 +302,73 @@ contains
   subroutine bind_context()
     integer :: a
     associate (p => model%particles)
-      ctx%x = c_loc(p%x)
-      ctx%v = c_loc(p%v)
-      ctx%sig = c_loc(p%sig)
-      ctx%mass = c_loc(p%mass)
-      ctx%vol = c_loc(p%vol)
-      ctx%epeff = c_loc(p%epeff)
-      ctx%ie = c_loc(p%ie)
-      ctx%temp = c_null_ptr
-      if (allocated(p%temp)) ctx%temp = c_loc(p%temp)
-      ctx%fext = c_null_ptr
-      if (allocated(p%fext)) ctx%fext = c_loc(p%fext)
-      ctx%tlight = c_null_ptr
-      if (allocated(p%tlight)) ctx%tlight = c_loc(p%tlight)
-      ctx%qv = c_null_ptr
-      if (allocated(p%qv)) ctx%qv = c_loc(p%qv)
-      ctx%mat = c_loc(p%mat)
-      ctx%body = c_loc(p%body)
+      ctx%part%x = c_loc(p%x)
+      ctx%part%v = c_loc(p%v)
+      ctx%part%sig = c_loc(p%sig)
+      ctx%part%mass = c_loc(p%mass)
+      ctx%part%vol = c_loc(p%vol)
+      ctx%part%epeff = c_loc(p%epeff)
+      ctx%part%ie = c_loc(p%ie)
+      ctx%part%temp = c_null_ptr
+      if (allocated(p%temp)) ctx%part%temp = c_loc(p%temp)
+      ctx%part%fext = c_null_ptr
+      if (allocated(p%fext)) ctx%part%fext = c_loc(p%fext)
+      ctx%part%tlight = c_null_ptr
+      if (allocated(p%tlight)) ctx%part%tlight = c_loc(p%tlight)
+      ctx%part%qv = c_null_ptr
+      if (allocated(p%qv)) ctx%part%qv = c_loc(p%qv)
+      ctx%part%mat = c_loc(p%mat)
+      ctx%part%body = c_loc(p%body)
     end associate
-    ctx%lx = c_loc(lx)
-    ctx%cell = c_loc(cell)
-    ctx%gravity = c_loc(gravity)
-    ctx%mats = c_loc(model%mats)
-    ctx%patch_part = c_loc(grid%patch_part)
-    ctx%patch_buf = c_null_ptr
-    ctx%h = grid%h
-    ctx%inv_h = 1.0_dp / grid%h
-    ctx%dt = model%dt
-    ctx%dt_int = model%dt
-    ctx%mass_cutoff = grid%mass_cutoff
-    ctx%np = np
-    ctx%nbody = model%nbodies
-    ctx%nmat = model%nmat
-    ctx%patch_cells = grid%patch_cells
-    ctx%fix = grid%fix
-    ctx%scheme = model%scheme
-    ctx%has_body_force = merge(1, 0, model%has_gravity .or. model%has_loads .or. model%damping > 0.0_dp)
-    ctx%load_ramp_time = model%load_ramp_time
-    ctx%damping = model%damping
-    ctx%bulk_q1 = model%bulk_q1
-    ctx%bulk_q2 = model%bulk_q2
+    ctx%part%lx = c_loc(lx)
+    ctx%part%cell = c_loc(cell)
+    ctx%part%gravity = c_loc(gravity)
+    ctx%part%mats = c_loc(model%mats)
+    ctx%patch%patch_part = c_loc(grid%patch_part)
+    ctx%patch%patch_buf = c_null_ptr
+    ctx%grid%h = grid%h
+    ctx%grid%inv_h = 1.0_dp / grid%h
+    ctx%clock%dt = model%dt
+    ctx%clock%dt_int = model%dt
+    ctx%grid%mass_cutoff = grid%mass_cutoff
+    ctx%part%np = np
+    ctx%part%nbody = model%nbodies
+    ctx%part%nmat = model%nmat
+    ctx%patch%patch_cells = grid%patch_cells
+    ctx%grid%fix = grid%fix
+    ctx%method%scheme = model%scheme
+    ctx%method%has_body_force = merge(1, 0, model%has_gravity .or. model%has_loads .or. model%damping > 0.0_dp)
+    ctx%method%load_ramp_time = model%load_ramp_time
+    ctx%method%damping = model%damping
+    ctx%method%bulk_q1 = model%bulk_q1
+    ctx%method%bulk_q2 = model%bulk_q2
     ! GIMP and B-spline: 27-node stencils, patch buffers with a halo of one node layer.
-    ctx%psize = c_null_ptr
-    if (model%gimp) ctx%psize = c_loc(model%particles%psize)
-    ctx%shape = model_shape(model)
-    ctx%fix_layers = model_fix_layers(model)
+    ctx%part%psize = c_null_ptr
+    if (model%gimp) ctx%part%psize = c_loc(model%particles%psize)
+    ctx%method%shape = model_shape(model)
+    ctx%grid%fix_layers = model_fix_layers(model)
     ! sgmp: the cell centres' scratch fields (the grid window is the whole box: no regrid).
-    ctx%aux = c_null_ptr
-    ctx%sg = merge(1, 0, model%sg)
+    ctx%sgmp%aux = c_null_ptr
+    ctx%method%sg = merge(1, 0, model%sg)
     ! The shape-function family, as Simulation::bind chooses it (TRANSFER_*, update_step.hpp).
-    ctx%family = merge(2, merge(1, 0, ctx%shape /= 0), model%sg)
+    ctx%method%family = merge(2, merge(1, 0, ctx%method%shape /= 0), model%sg)
     if (model%sg) then
       allocate(aux(34, grid%nc(1) * grid%nc(2) * grid%nc(3)))
       aux = 0.0_dp
-      ctx%aux = c_loc(aux)
+      ctx%sgmp%aux = c_loc(aux)
     end if
-    ctx%defgrad = c_null_ptr
-    if (allocated(model%particles%defgrad)) ctx%defgrad = c_loc(model%particles%defgrad)
-    ctx%uvf = merge(1, 0, model%uvf)
-    ctx%tl = merge(1, 0, model%tl)
-    ctx%pk1 = c_null_ptr
+    ctx%part%defgrad = c_null_ptr
+    if (allocated(model%particles%defgrad)) ctx%part%defgrad = c_loc(model%particles%defgrad)
+    ctx%method%uvf = merge(1, 0, model%uvf)
+    ctx%method%tl = merge(1, 0, model%tl)
+    ctx%part%pk1 = c_null_ptr
     if (model%tl) then
-      ctx%xbin = c_loc(model%particles%x0)   ! the particles stay in their reference cells
-      ctx%pk1 = c_loc(model%particles%pk1)
+      ctx%part%xbin = c_loc(model%particles%x0)   ! the particles stay in their reference cells
+      ctx%part%pk1 = c_loc(model%particles%pk1)
     else
-      ctx%xbin = c_loc(model%particles%x)
+      ctx%part%xbin = c_loc(model%particles%x)
     end if
-    ctx%patch_halo = grid%patch_halo
+    ctx%patch%patch_halo = grid%patch_halo
     call bind_grid()      ! before the contact copy: ctx2 starts as a copy of ctx
     if (model%contact) then
       ! Two contexts over the same particles (Simulation::bind): component 1 in ctx,
@@ -382,19 +382,19 @@ contains
       gnormal1 = 0.0_dp
       gnormal2 = 0.0_dp
       cpartials = 0.0_dp
-      ctx%body_comp = c_loc(body_comp)
-      ctx%contact_mu = model%contact_mu
-      ctx%contact_normbody = model%contact_normbody
-      ctx%cpartials = c_loc(cpartials)
+      ctx%contact%body_comp = c_loc(body_comp)
+      ctx%contact%contact_mu = model%contact_mu
+      ctx%contact%contact_normbody = model%contact_normbody
+      ctx%contact%cpartials = c_loc(cpartials)
       ctx2 = ctx
-      ctx%only_comp = 1
-      ctx%gnormal = c_loc(gnormal1)
-      ctx%other = c_loc(ctx2)
-      ctx2%only_comp = 2
-      ctx2%gnormal = c_loc(gnormal2)
+      ctx%contact%only_comp = 1
+      ctx%contact%gnormal = c_loc(gnormal1)
+      ctx%contact%other = c_loc(ctx2)
+      ctx2%contact%only_comp = 2
+      ctx2%contact%gnormal = c_loc(gnormal2)
       call point_at_grid(ctx2, grid2)
-      ctx2%patch_part = c_loc(grid2%patch_part)
-      ctx2%patch_buf = c_null_ptr
+      ctx2%patch%patch_part = c_loc(grid2%patch_part)
+      ctx2%patch%patch_buf = c_null_ptr
     end if
   end subroutine bind_context
 
@@ -403,14 +403,14 @@ contains
     integer :: a
     call point_at_grid(ctx, grid)
     do a = 1, 3
-      ctx%origin(a) = grid%origin(a)
-      ctx%nc(a) = grid%nc(a)
-      ctx%nn(a) = grid%nn(a)
-      ctx%npd(a) = grid%npd(a)
-      ctx%cell_off(a) = grid%off(a)
+      ctx%grid%origin(a) = grid%origin(a)
+      ctx%grid%nc(a) = grid%nc(a)
+      ctx%grid%nn(a) = grid%nn(a)
+      ctx%patch%npd(a) = grid%npd(a)
+      ctx%grid%cell_off(a) = grid%off(a)
     end do
-    ctx%nnode = grid_nnode(grid)
-    ctx%npatch = grid%npatch
+    ctx%grid%nnode = grid_nnode(grid)
+    ctx%patch%npatch = grid%npatch
     ! The energy stage's columns: one per patch and one for the particles outside the grid.
     if (allocated(partials)) then
       if (size(partials, 2) /= grid%npatch + 1) deallocate(partials)
@@ -419,18 +419,18 @@ contains
       allocate(partials(REDUCE_FIELDS, grid%npatch + 1))
       partials = 0.0_dp
     end if
-    ctx%partials = c_loc(partials)
+    ctx%out%partials = c_loc(partials)
   end subroutine bind_grid
 
   ! The node arrays and patch tables of grid g in context c.
   subroutine point_at_grid(c, g)
     type(step_context), intent(inout) :: c
     type(grid_t), intent(in), target :: g
-    c%gmass = c_loc(g%mass)
-    c%gmom = c_loc(g%mom)
-    c%gforce = c_loc(g%force)
-    c%patch_start = c_loc(g%patch_start)
-    c%patch_slot = c_loc(g%patch_slot)
+    c%grid%gmass = c_loc(g%mass)
+    c%grid%gmom = c_loc(g%mom)
+    c%grid%gforce = c_loc(g%force)
+    c%patch%patch_start = c_loc(g%patch_start)
+    c%patch%patch_slot = c_loc(g%patch_slot)
   end subroutine point_at_grid
 
   ! Buffers for the non-empty patches found by the bin stage (Simulation::ensure_patch_buffers).
@@ -439,18 +439,18 @@ contains
     if (model%contact) call ensure_buffers_of(grid2, ctx2)
   end subroutine ensure_patch_buffers
 
-  ! Room for c%nslot patch buffers in g, grown (never shrunk) as the non-empty patches need.
+  ! Room for c%patch%nslot patch buffers in g, grown (never shrunk) as the non-empty patches need.
   subroutine ensure_buffers_of(g, c)
     type(grid_t), intent(inout), target :: g
     type(step_context), intent(inout) :: c
     integer :: have
     have = 0
     if (allocated(g%patch_buf)) have = size(g%patch_buf, 3)
-    if (have < c%nslot) then
+    if (have < c%patch%nslot) then
       if (allocated(g%patch_buf)) deallocate(g%patch_buf)
-      allocate(g%patch_buf(NODE_FIELDS, g%patch_nodes, c%nslot))
+      allocate(g%patch_buf(NODE_FIELDS, g%patch_nodes, c%patch%nslot))
       g%patch_buf = 0.0_dp
-      c%patch_buf = c_loc(g%patch_buf)
+      c%patch%patch_buf = c_loc(g%patch_buf)
     end if
   end subroutine ensure_buffers_of
 
@@ -480,17 +480,17 @@ contains
   ! scheme's order.
   subroutine step()
     integer :: s
-    ctx%dt = model%dt
+    ctx%clock%dt = model%dt
     if (steps == 0) then
-      ctx%dt_int = 0.5_dp * model%dt      ! first step: momentum with dt/2
+      ctx%clock%dt_int = 0.5_dp * model%dt      ! first step: momentum with dt/2
     else
-      ctx%dt_int = model%dt
+      ctx%clock%dt_int = model%dt
     end if
-    ctx%time = time + model%dt      ! the end of this step (programmed burn)
+    ctx%clock%time = time + model%dt      ! the end of this step (programmed burn)
     if (model%contact) then
-      ctx2%dt = ctx%dt
-      ctx2%dt_int = ctx%dt_int
-      ctx2%time = ctx%time
+      ctx2%clock%dt = ctx%clock%dt
+      ctx2%clock%dt_int = ctx%clock%dt_int
+      ctx2%clock%time = ctx%clock%time
     end if
     do s = 1, nstage
       if (mpm3d_stage_needs_contact(step_order(s)) /= 0 .and. .not. model%contact) cycle
@@ -520,7 +520,7 @@ contains
     if (scheduled) call regrid()
     call run_each(ST_BIN)
     escaped = 0
-    if (ctx%noutside > 0 .and. .not. grid_window_is_box(grid)) then
+    if (ctx%out%noutside > 0 .and. .not. grid_window_is_box(grid)) then
       ! A particle inside the deck's box has left the window: widen it and bin again.
       escaped = grid_count_escaped(grid, model%particles%x, cell, np)
       if (escaped > 0) then

@@ -22,32 +22,32 @@ contains
     integer :: idx(3)
     real(dp) :: t, fl, f0
     logical :: inside, filter, has_order
-    pc = c%patch_cells
+    pc = c%patch%patch_cells
     call view_components(c, filter, body, bcomp)     ! contact: this context's component only
-    call c_f_pointer(c%xbin, x, [3, c%np])   ! the reference positions under TLmp
-    call c_f_pointer(c%lx, lx, [3, c%np])
+    call c_f_pointer(c%part%xbin, x, [3, c%part%np])   ! the reference positions under TLmp
+    call c_f_pointer(c%part%lx, lx, [3, c%part%np])
     call view_patch_lists(c, start, ppart, slots, cell)
     ! start(q + 1) is C's start[q].
-    do q = 0, c%npatch
+    do q = 0, c%patch%npatch
       start(q + 1) = 0
     end do
     outside = 0
-    do p = 1, c%np
+    do p = 1, c%part%np
       if (filter) then
         if (other_component(c, p, body, bcomp)) cycle
       end if
       inside = .true.
       do a = 1, 3
         ! Cell on the deck's lattice, then in the window (the same bits for any window).
-        t = (x(a, p) - c%origin(a)) / c%h
+        t = (x(a, p) - c%grid%origin(a)) / c%grid%h
         fl = aint(t)                      ! floor(t) as a double, exactly (NaN stays NaN)
         if (fl > t) fl = fl - 1.0_dp
-        f0 = real(c%cell_off(a), dp)
-        if (.not. (fl >= f0 .and. fl < f0 + real(c%nc(a), dp))) then   ! also catches NaN
+        f0 = real(c%grid%cell_off(a), dp)
+        if (.not. (fl >= f0 .and. fl < f0 + real(c%grid%nc(a), dp))) then   ! also catches NaN
           inside = .false.
           exit
         end if
-        idx(a) = int(fl) - c%cell_off(a)
+        idx(a) = int(fl) - c%grid%cell_off(a)
         lx(a, p) = t - fl
       end do
       if (.not. inside) then
@@ -55,12 +55,12 @@ contains
         outside = outside + 1
         cycle
       end if
-      cell(p) = idx(1) + c%nc(1) * (idx(2) + c%nc(2) * idx(3))
-      q = idx(1) / pc + c%npd(1) * (idx(2) / pc + c%npd(2) * (idx(3) / pc))
+      cell(p) = idx(1) + c%grid%nc(1) * (idx(2) + c%grid%nc(2) * idx(3))
+      q = idx(1) / pc + c%patch%npd(1) * (idx(2) / pc + c%patch%npd(2) * (idx(3) / pc))
       start(q + 2) = start(q + 2) + 1
     end do
     nslot = 0
-    do q = 0, c%npatch - 1
+    do q = 0, c%patch%npatch - 1
       if (start(q + 2) > 0) then
         slots(q + 1) = nslot
         nslot = nslot + 1
@@ -69,17 +69,17 @@ contains
       end if
       start(q + 2) = start(q + 2) + start(q + 1)
     end do
-    c%nslot = nslot
-    c%noutside = outside
+    c%patch%nslot = nslot
+    c%out%noutside = outside
     ! Second pass: a stable counting sort; the end offsets serve as fill pointers. The
-    ! particles go in one process's storage order (a distributed run's c%order).
-    do q = c%npatch, 1, -1
+    ! particles go in one process's storage order (a distributed run's c%ranks%order).
+    do q = c%patch%npatch, 1, -1
       start(q + 1) = start(q)
     end do
     start(1) = 0
-    has_order = c_associated(c%order)
-    if (has_order) call c_f_pointer(c%order, order, [c%np])
-    do n = 1, c%np
+    has_order = c_associated(c%ranks%order)
+    if (has_order) call c_f_pointer(c%ranks%order, order, [c%part%np])
+    do n = 1, c%part%np
       p = n
       if (has_order) p = order(n) + 1
       if (filter) then
@@ -87,10 +87,10 @@ contains
       end if
       cl = cell(p)
       if (cl < 0) cycle
-      i = mod(cl, c%nc(1))
-      j = mod(cl / c%nc(1), c%nc(2))
-      k = cl / (c%nc(1) * c%nc(2))
-      q = i / pc + c%npd(1) * (j / pc + c%npd(2) * (k / pc))
+      i = mod(cl, c%grid%nc(1))
+      j = mod(cl / c%grid%nc(1), c%grid%nc(2))
+      k = cl / (c%grid%nc(1) * c%grid%nc(2))
+      q = i / pc + c%patch%npd(1) * (j / pc + c%patch%npd(2) * (k / pc))
       ppart(start(q + 2) + 1) = p - 1
       start(q + 2) = start(q + 2) + 1
     end do

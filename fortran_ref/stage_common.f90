@@ -21,80 +21,146 @@ module mpm3d_stage_common
   ! Fields of the energy stage's columns: kinetic, internal energy, momentum (3), sum |f.v|.
   integer, parameter, public :: REDUCE_FIELDS = 6
 
-  type, bind(C), public :: step_context
-    ! Particles (np): x, v (3,np); sig (6,np); scalars (np).
+  ! The particles (np) and their materials and bodies (struct StepParticles).
+  type, bind(C), public :: step_particles
+    ! x, v (3,np); sig (6,np); mass, vol, epeff, ie (np)
     type(c_ptr) :: x = c_null_ptr, v = c_null_ptr, sig = c_null_ptr, mass = c_null_ptr, &
                    vol = c_null_ptr, epeff = c_null_ptr, ie = c_null_ptr
-    type(c_ptr) :: temp = c_null_ptr      ! (np) or null
-    type(c_ptr) :: fext = c_null_ptr      ! (3,np) or null
-    type(c_ptr) :: lx = c_null_ptr        ! (3,np) local cell coordinates (bin stage)
-    type(c_ptr) :: mat = c_null_ptr, body = c_null_ptr   ! int (np), 0-based
-    type(c_ptr) :: cell = c_null_ptr      ! int (np), 0-based base cell, -1 outside
-    type(c_ptr) :: gravity = c_null_ptr   ! (3,nbody) or null
-    type(c_ptr) :: mats = c_null_ptr      ! material_params (nmat)
-    ! Grid nodes (nnode).
+    type(c_ptr) :: temp = c_null_ptr  ! (np) or null: only with thermal Johnson-Cook materials
+    type(c_ptr) :: fext = c_null_ptr  ! (3,np) or null: only with point or body loads
+    type(c_ptr) :: lx = c_null_ptr  ! (3,np) local cell coordinates, written by the bin stage
+    type(c_ptr) :: mat = c_null_ptr, body = c_null_ptr  ! (np) 0-based
+    ! (np) base cell index written by the bin stage; -1: outside the grid
+    type(c_ptr) :: cell = c_null_ptr
+    type(c_ptr) :: gravity = c_null_ptr  ! (3,nbody) or null
+    type(c_ptr) :: mats = c_null_ptr  ! (nmat)
+    ! (np) lighting time of each particle, or null: only with hiex
+    type(c_ptr) :: tlight = c_null_ptr
+    ! (np) bulk viscosity pressure of each particle, or null: only with bulk
+    type(c_ptr) :: qv = c_null_ptr
+    type(c_ptr) :: psize = c_null_ptr  ! (np) GIMP particle half-size lp, or null
+    type(c_ptr) :: defgrad = c_null_ptr  ! (9,np) F - I, row-major, or null: only with neoh
+    ! (3,np) the positions the bin stage places: x, or the reference ones (TLmp)
+    type(c_ptr) :: xbin = c_null_ptr
+    type(c_ptr) :: pk1 = c_null_ptr  ! (9,np) V0 P, row-major (TLmp), or null (updated Lagrangian)
+    integer(c_int) :: np = 0, nbody = 0, nmat = 0
+  end type step_particles
+
+  ! The background grid's window and its node arrays (nnode) (struct StepGrid).
+  type, bind(C), public :: step_grid
+    ! mass, momentum (3,nnode), force (3,nnode)
     type(c_ptr) :: gmass = c_null_ptr, gmom = c_null_ptr, gforce = c_null_ptr
-    ! Patches: start (npatch+1), particle list (np), slot (npatch), buffers.
+    ! lower corner of the deck's box (the lattice origin)
+    real(c_double) :: origin(3) = 0.0_c_double
+    real(c_double) :: h = 0.0_c_double, inv_h = 0.0_c_double, mass_cutoff = 0.0_c_double
+    integer(c_int) :: nnode = 0
+    integer(c_int) :: nc(3) = 0, nn(3) = 0  ! cells and nodes per axis of the window
+    ! first cell of the window on the deck's lattice (adaptive grid)
+    integer(c_int) :: cell_off(3) = 0
+    integer(c_int) :: fix(6) = 0  ! boundary condition of each box face: 0 free, 1 fixed, 2 symmetry
+    ! node layers a held face holds: 1, or 2 (current version, 27 nodes or sgmp)
+    integer(c_int) :: fix_layers = 1
+  end type step_grid
+
+  ! The patch decomposition: lists, buffers and their sizes (struct StepPatches).
+  type, bind(C), public :: step_patches
+    ! start (npatch+1), particle list (np), slot (npatch)
     type(c_ptr) :: patch_start = c_null_ptr, patch_part = c_null_ptr, patch_slot = c_null_ptr
-    type(c_ptr) :: patch_buf = c_null_ptr
-    type(c_ptr) :: partials = c_null_ptr  ! (REDUCE_FIELDS, npatch + 1) columns of the energy stage
-    ! Energy stage: kinetic, internal, momentum (3) in 1..5, sum |f.v| in 9; contact: force in 6..8.
-    real(c_double) :: result(9) = 0.0_dp
-    real(c_double) :: origin(3) = 0.0_dp
-    real(c_double) :: h = 0.0_dp, inv_h = 0.0_dp, dt = 0.0_dp, dt_int = 0.0_dp, mass_cutoff = 0.0_dp
-    integer(c_int) :: np = 0, nbody = 0, nmat = 0, nnode = 0
-    integer(c_int) :: nc(3) = 0, nn(3) = 0
-    integer(c_int) :: patch_cells = 0, npd(3) = 0, npatch = 0, nslot = 0
-    integer(c_int) :: fix(6) = 0
-    integer(c_int) :: scheme = 0
-    integer(c_int) :: has_body_force = 0
-    integer(c_int) :: noutside = 0
-    ! Explosives and bulk viscosity (stress stage only).
-    type(c_ptr) :: tlight = c_null_ptr    ! (np) lighting times, or null (only with hiex)
-    type(c_ptr) :: qv = c_null_ptr        ! (np) bulk viscosity pressures, or null (only with bulk)
-    real(c_double) :: time = 0.0_dp       ! time at the end of this step
-    real(c_double) :: bulk_q1 = 0.0_dp, bulk_q2 = 0.0_dp
-    integer(c_int) :: cell_off(3) = 0     ! first cell of the grid window on the deck's lattice
-    ! GIMP and multi-velocity contact (issue 5); null / 0 when the deck does not use them.
-    type(c_ptr) :: psize = c_null_ptr      ! (np) GIMP particle half-size lp
-    type(c_ptr) :: body_comp = c_null_ptr  ! int (nbody) contact component (1 or 2) of each body
-    type(c_ptr) :: other = c_null_ptr      ! contact: component 2's step_context (in component 1's)
-    type(c_ptr) :: gnormal = c_null_ptr    ! contact: (3,nnode) sum_p m_p grad N_i(x_p), this component
-    type(c_ptr) :: cpartials = c_null_ptr  ! contact: (4,npatch) scratch of the contact force and count
-    real(c_double) :: contact_mu = 0.0_dp  ! Coulomb friction coefficient
-    integer(c_int) :: shape = 0            ! 0 trilinear, 1 uGIMP, 2 B-spline
-    integer(c_int) :: patch_halo = 0       ! node layers a buffer holds beyond its cells: 0, 1
-    integer(c_int) :: only_comp = 0        ! 0 every particle; 1 or 2 this component only
-    integer(c_int) :: contact_normbody = 0 ! normals from component 1, 2, or 0 (both)
-    integer(c_int) :: ncontact = 0         ! contact stage: nodes corrected
-    type(c_ptr) :: defgrad = c_null_ptr    ! (9,np) F - I (row-major) of each particle: neoh only
-    integer(c_int) :: uvf = 0              ! 1: volume from det(I + L dt) (UVFp, neoh)
-    real(c_double) :: load_ramp_time = 0.0_c_double   ! QuLo: loads ramp over this time; 0 off
-    real(c_double) :: damping = 0.0_c_double          ! Damp: -damping m v in the body force
-    type(c_ptr) :: xbin = c_null_ptr       ! positions the bin stage places: x, or the reference ones (TLmp)
-    type(c_ptr) :: pk1 = c_null_ptr        ! (9,np) V0 P (TLmp), or null
-    integer(c_int) :: tl = 0               ! 1: total Lagrangian MPM
-    integer(c_int) :: fix_layers = 1       ! node layers a fixed face holds: 1, or 2 (current
-                                           ! version with 27-node stencils or sgmp)
-    type(c_ptr) :: aux = c_null_ptr        ! sgmp: (32, ncell) the cell centres' fields
-    integer(c_int) :: sg = 0               ! 1: smoothed-gradient MPM (stage_sg.f90)
-    integer(c_int) :: family = 0           ! the shape-function family (TRANSFER_*, update_step.hpp)
-    ! The C++ kernels' scratch (not used here): pscratch, then sgmp's sg_w, sg_cell, sg_reach.
-    type(c_ptr) :: pscratch = c_null_ptr, sg_w = c_null_ptr, sg_cell = c_null_ptr, sg_reach = c_null_ptr
-    ! Distributed runs (cxx/parallel/ranks.hpp; null with one rank): the ranks' hook, called between a
-    ! scatter into the patch buffers and their assembly, and before the energy and contact
-    ! columns are folded (rank_exchange); the particles in one process's storage order
-    ! (int (np), 0-based), in which the bin stage fills the lists and the energy stage sums
-    ! the particles outside the grid; prebinned: cell and lx already hold the particles'
-    ! binning (the same values this bin stage computes).
+    type(c_ptr) :: patch_buf = c_null_ptr  ! the non-empty patches' buffers (kNodeFields per node)
+    ! C++ kernels' scratch: (np) patch of each particle during binning
+    type(c_ptr) :: pscratch = c_null_ptr
+    ! (npatch + 1) prefix sums of the patches' work for thread_patches, or null
+    type(c_ptr) :: patch_work = c_null_ptr
+    integer(c_int) :: patch_cells = 0  ! cells per patch edge
+    integer(c_int) :: npd(3) = 0  ! patches per axis
+    ! patch_halo: node layers a buffer holds beyond its cells
+    integer(c_int) :: npatch = 0, nslot = 0, patch_halo = 0
+  end type step_patches
+
+  ! The step's time (struct StepClock).
+  type, bind(C), public :: step_clock
+    ! time: at the end of this step (the burn fraction's clock)
+    real(c_double) :: dt = 0.0_c_double, dt_int = 0.0_c_double, time = 0.0_c_double
+  end type step_clock
+
+  ! What the deck asks of the step (struct StepMethod).
+  type, bind(C), public :: step_method
+    ! bulk viscosity coefficients (quadratic, linear); length h
+    real(c_double) :: bulk_q1 = 0.0_c_double, bulk_q2 = 0.0_c_double
+    ! QuLo: the point loads ramp over this time; Damp: -damping m v (0: off)
+    real(c_double) :: load_ramp_time = 0.0_c_double, damping = 0.0_c_double
+    integer(c_int) :: scheme = 0  ! SCHEME_MUSL, SCHEME_USL or SCHEME_USF
+    integer(c_int) :: has_body_force = 0  ! gravity or loads present: forces carry N * (m g + f_ext)
+    integer(c_int) :: uvf = 0  ! 1: volume from det(I + L dt) (UVFp, and always for neoh)
+    integer(c_int) :: tl = 0  ! 1: total Lagrangian (TLmp)
+    integer(c_int) :: shape = 0  ! 0 trilinear (8 nodes), 1 uGIMP, 2 B-spline (27 nodes)
+    integer(c_int) :: sg = 0  ! 1: smoothed-gradient MPM (sgmp)
+    ! the shape-function family (TransferFamily), chosen when the deck is bound
+    integer(c_int) :: family = 0
+  end type step_method
+
+  ! What the energy, bin and contact stages report (struct StepResults).
+  type, bind(C), public :: step_results
+    ! (kReduceFields, npatch + 1) the energy stage's columns, the last for the particles outside the grid
+    type(c_ptr) :: partials = c_null_ptr
+    ! energy: kinetic, internal, momentum (3) in 0..4, sum |f.v| in 8; contact: force in 5..7
+    real(c_double) :: result(9) = 0.0_c_double
+    integer(c_int) :: noutside = 0  ! bin stage: particles outside the grid
+  end type step_results
+
+  ! Multi-velocity contact; null / 0 without it (struct StepContact).
+  type, bind(C), public :: step_contact
+    ! (nbody) contact component (1 or 2) of each body, or null
+    type(c_ptr) :: body_comp = c_null_ptr
+    type(c_ptr) :: other = c_null_ptr  ! component 2's context, set in component 1's; else null
+    type(c_ptr) :: gnormal = c_null_ptr  ! (3,nnode) sum_p m_p grad N_i(x_p) of this component
+    ! (kContactFields, npatch) scratch of the contact force and count
+    type(c_ptr) :: cpartials = c_null_ptr
+    real(c_double) :: contact_mu = 0.0_c_double  ! Coulomb friction coefficient
+    integer(c_int) :: only_comp = 0  ! 0: every particle; 1 or 2: this context's component only
+    integer(c_int) :: contact_normbody = 0  ! normals from component 1, 2, or 0 (both)
+    integer(c_int) :: ncontact = 0  ! contact stage: nodes corrected in this step
+  end type step_contact
+
+  ! Smoothed-gradient MPM's state (transfer/smoothed_gradient.cpp); null / 0 otherwise (struct StepSgmp).
+  type, bind(C), public :: step_sgmp
+    type(c_ptr) :: aux = c_null_ptr  ! (kAuxFields, ncell) the cell centres' fields
+    type(c_ptr) :: sg_w = c_null_ptr  ! C++ kernels: each patch-list entry's weights (kSgWeights)
+    type(c_ptr) :: sg_cell = c_null_ptr  ! C++ kernels: (np, 8) the centres of the entry's corners
+    ! C++ kernels: bits 2a, 2a+1: a corner lies in the patch below, above on axis a
+    type(c_ptr) :: sg_reach = c_null_ptr
+    ! C++ kernels: nonzero once sg_w and sg_cell hold this bin's weights (2: with sg_reach)
+    integer(c_int) :: sg_cached = 0
+  end type step_sgmp
+
+  ! Distributed runs (cxx/parallel/ranks.hpp); null / 0 with one rank (struct StepRanks).
+  type, bind(C), public :: step_ranks
+    ! called between a scatter and its assembly, and before the energy and contact columns are folded
     type(c_funptr) :: exchange = c_null_funptr
     type(c_ptr) :: exchange_data = c_null_ptr
-    type(c_ptr) :: order = c_null_ptr
-    integer(c_int) :: prebinned = 0
-    ! The C++ kernels' scratch (not used here): sgmp's weights written since the last bin.
-    integer(c_int) :: sg_cached = 0
-    ! The C++ kernels' scratch (not used here): sgmp's patches at rest and the work shares.
-    type(c_ptr) :: sg_still = c_null_ptr, sg_rest = c_null_ptr, patch_work = c_null_ptr
+    type(c_ptr) :: order = c_null_ptr  ! (np) the particles in one process's storage order, or null
+    integer(c_int) :: prebinned = 0  ! 1: cell, lx and pscratch already hold the particles' binning
+  end type step_ranks
+
+  ! sgmp, C++ kernels: patches at rest (docs/ARCHITECTURE.md); null when not looked for (struct StepRest).
+  type, bind(C), public :: step_rest
+    ! (np) bit 0: the stress update changed nothing; bit 1: G2P changed nothing
+    type(c_ptr) :: sg_still = c_null_ptr
+    type(c_ptr) :: sg_rest = c_null_ptr  ! (npatch) 1 where every stage skips the patch
+  end type step_rest
+
+  ! struct StepContext (cxx/stages/update_step.hpp): the groups above, in its order.
+  type, bind(C), public :: step_context
+    type(step_particles) :: part
+    type(step_grid) :: grid
+    type(step_patches) :: patch
+    type(step_clock) :: clock
+    type(step_method) :: method
+    type(step_results) :: out
+    type(step_contact) :: contact
+    type(step_sgmp) :: sgmp
+    type(step_ranks) :: ranks
+    type(step_rest) :: rest
   end type step_context
 
   ! step_context%exchange's kinds (cxx/stages/update_step.hpp ExchangeKind).
@@ -118,9 +184,9 @@ contains
     type(step_context), intent(in) :: c
     real(dp), pointer, intent(out) :: buf(:,:,:)
     integer :: qq, pn
-    qq = c%patch_cells + 1 + 2 * c%patch_halo
+    qq = c%patch%patch_cells + 1 + 2 * c%patch%patch_halo
     pn = qq * qq * qq
-    call c_f_pointer(c%patch_buf, buf, [NODE_FIELDS, pn, c%nslot])
+    call c_f_pointer(c%patch%patch_buf, buf, [NODE_FIELDS, pn, c%patch%nslot])
   end subroutine view_buffers
 
   ! 27-node stencil (shape 1 GIMP, 2 B-spline; lp is only read with GIMP) of particle p
@@ -133,20 +199,20 @@ contains
     integer, intent(out) :: ci(3), o(3)
     real(dp), intent(out) :: sn(27), sg(3, 27)
     integer :: a
-    ci(1) = mod(cl, c%nc(1))
-    ci(2) = mod(cl / c%nc(1), c%nc(2))
-    ci(3) = cl / (c%nc(1) * c%nc(2))
-    if (c%shape == 2) then
+    ci(1) = mod(cl, c%grid%nc(1))
+    ci(2) = mod(cl / c%grid%nc(1), c%grid%nc(2))
+    ci(3) = cl / (c%grid%nc(1) * c%grid%nc(2))
+    if (c%method%shape == 2) then
       do a = 1, 3
         o(a) = bspline_offset(ci(a))
       end do
-      call shape_bspline(lxp, o, c%inv_h, sn, sg)
+      call shape_bspline(lxp, o, c%grid%inv_h, sn, sg)
       return
     end if
     do a = 1, 3
-      o(a) = gimp_offset(lxp(a), ci(a), c%nc(a))
+      o(a) = gimp_offset(lxp(a), ci(a), c%grid%nc(a))
     end do
-    call shape_gimp(lxp, o, lp * c%inv_h, c%inv_h, sn, sg)
+    call shape_gimp(lxp, o, lp * c%grid%inv_h, c%grid%inv_h, sn, sg)
   end subroutine gimp_stencil
 
   ! True when particle p (1-based) belongs to another component than the context's.
@@ -155,7 +221,7 @@ contains
     integer, intent(in) :: p
     integer(c_int), intent(in) :: body(:), bcomp(:)
     other_component = .false.
-    if (c%only_comp > 0) other_component = bcomp(body(p) + 1) /= c%only_comp
+    if (c%contact%only_comp > 0) other_component = bcomp(body(p) + 1) /= c%contact%only_comp
   end function other_component
 
   ! The body force of particle p (1-based; cxx particle_body_force): the point load (ramped
@@ -169,24 +235,24 @@ contains
     real(dp) :: mp, f
     integer :: a
     logical :: has_fext
-    call c_f_pointer(c%mass, mass, [c%np])
-    call c_f_pointer(c%v, v, [3, c%np])
-    call c_f_pointer(c%body, body, [c%np])
-    call c_f_pointer(c%gravity, grav, [3, max(c%nbody, 1)])
-    has_fext = c_associated(c%fext)
-    if (has_fext) call c_f_pointer(c%fext, fext, [3, c%np])
+    call c_f_pointer(c%part%mass, mass, [c%part%np])
+    call c_f_pointer(c%part%v, v, [3, c%part%np])
+    call c_f_pointer(c%part%body, body, [c%part%np])
+    call c_f_pointer(c%part%gravity, grav, [3, max(c%part%nbody, 1)])
+    has_fext = c_associated(c%part%fext)
+    if (has_fext) call c_f_pointer(c%part%fext, fext, [3, c%part%np])
     mp = mass(p)
-    if (c%load_ramp_time > 0.0_dp .or. c%damping > 0.0_dp) then
+    if (c%method%load_ramp_time > 0.0_dp .or. c%method%damping > 0.0_dp) then
       do a = 1, 3
         f = 0.0_dp
         if (has_fext) then
-          if (c%load_ramp_time > 0.0_dp .and. c%time < c%load_ramp_time) then
-            f = (fext(a, p) / c%load_ramp_time) * c%time
+          if (c%method%load_ramp_time > 0.0_dp .and. c%clock%time < c%method%load_ramp_time) then
+            f = (fext(a, p) / c%method%load_ramp_time) * c%clock%time
           else
             f = fext(a, p)
           end if
         end if
-        if (c%damping > 0.0_dp) f = f - (c%damping * mp) * v(a, p)
+        if (c%method%damping > 0.0_dp) f = f - (c%method%damping * mp) * v(a, p)
         fb(a) = f + mp * grav(a, body(p) + 1)
       end do
     else
@@ -206,9 +272,9 @@ contains
     real(dp), intent(inout) :: a(:,:)
     integer :: face, kind, axis, fixed_index, u, w, ju, jw, n, layer, layers
     integer :: idx(0:2)
-    layers = max(1, c%fix_layers)   ! 0 (unset) means 1
+    layers = max(1, c%grid%fix_layers)   ! 0 (unset) means 1
     do face = 0, 5
-      kind = c%fix(face + 1)
+      kind = c%grid%fix(face + 1)
       if (kind == 0) cycle
       axis = face / 2
       u = mod(axis + 1, 3)
@@ -217,14 +283,14 @@ contains
         if (mod(face, 2) == 0) then
           fixed_index = layer
         else
-          fixed_index = c%nn(axis + 1) - 1 - layer
+          fixed_index = c%grid%nn(axis + 1) - 1 - layer
         end if
-        do jw = 0, c%nn(w + 1) - 1
-          do ju = 0, c%nn(u + 1) - 1
+        do jw = 0, c%grid%nn(w + 1) - 1
+          do ju = 0, c%grid%nn(u + 1) - 1
             idx(axis) = fixed_index
             idx(u) = ju
             idx(w) = jw
-            n = idx(0) + c%nn(1) * (idx(1) + c%nn(2) * idx(2)) + 1
+            n = idx(0) + c%grid%nn(1) * (idx(1) + c%grid%nn(2) * idx(2)) + 1
             if (kind == 1) then
               a(1, n) = 0.0_dp
               a(2, n) = 0.0_dp
@@ -245,43 +311,119 @@ contains
     type(step_context), intent(in), target :: c
     integer, intent(in) :: kind, first, count
     procedure(exchange_hook), pointer :: hook
-    if (.not. c_associated(c%exchange)) return
-    call c_f_procpointer(c%exchange, hook)
+    if (.not. c_associated(c%ranks%exchange)) return
+    call c_f_procpointer(c%ranks%exchange, hook)
     call hook(c_loc(c), int(kind, c_int), int(first, c_int), int(count, c_int))
   end subroutine rank_exchange
 
-  ! Layout of step_context and material_params as this compiler sees them (for the
-  ! layout test against the C structs): sizes and a few offsets, in bytes.
+  ! The layout of step_context (its size, then every group's and every member's offset, in
+  ! the order of layout_check.cpp) and of material_params (size, eos_e0, eos_type, dp_tension).
   subroutine mpm3d_f_context_layout(out) bind(C, name='mpm3d_f_context_layout')
-    integer(c_size_t), intent(out) :: out(26)
+    integer(c_size_t), intent(out) :: out(99)
     type(step_context), target :: c
     type(material_params), target :: m(2)
+    integer(c_intptr_t) :: c0, m0
+    c0 = transfer(c_loc(c), 0_c_intptr_t)
+    m0 = transfer(c_loc(m(1)), 0_c_intptr_t)
     out(1) = c_sizeof(c)
-    out(2) = transfer(c_loc(c%result), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
-    out(3) = transfer(c_loc(c%np), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
-    out(4) = transfer(c_loc(c%fix), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
-    out(5) = transfer(c_loc(c%noutside), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
-    out(6) = c_sizeof(m(1))
-    out(7) = transfer(c_loc(m(1)%eos_e0), 0_c_intptr_t) - transfer(c_loc(m(1)), 0_c_intptr_t)
-    out(8) = transfer(c_loc(m(1)%eos_type), 0_c_intptr_t) - transfer(c_loc(m(1)), 0_c_intptr_t)
-    out(9) = transfer(c_loc(c%bulk_q2), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
-    out(10) = transfer(c_loc(m(1)%dp_tension), 0_c_intptr_t) - transfer(c_loc(m(1)), 0_c_intptr_t)
-    out(11) = transfer(c_loc(c%cell_off), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
-    out(12) = transfer(c_loc(c%psize), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
-    out(13) = transfer(c_loc(c%ncontact), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
-    out(14) = transfer(c_loc(c%defgrad), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
-    out(15) = transfer(c_loc(c%uvf), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
-    out(16) = transfer(c_loc(c%damping), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
-    out(17) = transfer(c_loc(c%tl), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
-    out(18) = transfer(c_loc(c%fix_layers), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
-    out(19) = transfer(c_loc(c%aux), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
-    out(20) = transfer(c_loc(c%sg), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
-    out(21) = transfer(c_loc(c%exchange), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
-    out(22) = transfer(c_loc(c%order), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
-    out(23) = transfer(c_loc(c%prebinned), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
-    out(24) = transfer(c_loc(c%sg_cached), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
-    out(25) = transfer(c_loc(c%patch_work), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
-    out(26) = transfer(c_loc(c%family), 0_c_intptr_t) - transfer(c_loc(c), 0_c_intptr_t)
+    out(2) = transfer(c_loc(c%part), 0_c_intptr_t) - c0
+    out(3) = transfer(c_loc(c%part%x), 0_c_intptr_t) - c0
+    out(4) = transfer(c_loc(c%part%v), 0_c_intptr_t) - c0
+    out(5) = transfer(c_loc(c%part%sig), 0_c_intptr_t) - c0
+    out(6) = transfer(c_loc(c%part%mass), 0_c_intptr_t) - c0
+    out(7) = transfer(c_loc(c%part%vol), 0_c_intptr_t) - c0
+    out(8) = transfer(c_loc(c%part%epeff), 0_c_intptr_t) - c0
+    out(9) = transfer(c_loc(c%part%ie), 0_c_intptr_t) - c0
+    out(10) = transfer(c_loc(c%part%temp), 0_c_intptr_t) - c0
+    out(11) = transfer(c_loc(c%part%fext), 0_c_intptr_t) - c0
+    out(12) = transfer(c_loc(c%part%lx), 0_c_intptr_t) - c0
+    out(13) = transfer(c_loc(c%part%mat), 0_c_intptr_t) - c0
+    out(14) = transfer(c_loc(c%part%body), 0_c_intptr_t) - c0
+    out(15) = transfer(c_loc(c%part%cell), 0_c_intptr_t) - c0
+    out(16) = transfer(c_loc(c%part%gravity), 0_c_intptr_t) - c0
+    out(17) = transfer(c_loc(c%part%mats), 0_c_intptr_t) - c0
+    out(18) = transfer(c_loc(c%part%tlight), 0_c_intptr_t) - c0
+    out(19) = transfer(c_loc(c%part%qv), 0_c_intptr_t) - c0
+    out(20) = transfer(c_loc(c%part%psize), 0_c_intptr_t) - c0
+    out(21) = transfer(c_loc(c%part%defgrad), 0_c_intptr_t) - c0
+    out(22) = transfer(c_loc(c%part%xbin), 0_c_intptr_t) - c0
+    out(23) = transfer(c_loc(c%part%pk1), 0_c_intptr_t) - c0
+    out(24) = transfer(c_loc(c%part%np), 0_c_intptr_t) - c0
+    out(25) = transfer(c_loc(c%part%nbody), 0_c_intptr_t) - c0
+    out(26) = transfer(c_loc(c%part%nmat), 0_c_intptr_t) - c0
+    out(27) = transfer(c_loc(c%grid), 0_c_intptr_t) - c0
+    out(28) = transfer(c_loc(c%grid%gmass), 0_c_intptr_t) - c0
+    out(29) = transfer(c_loc(c%grid%gmom), 0_c_intptr_t) - c0
+    out(30) = transfer(c_loc(c%grid%gforce), 0_c_intptr_t) - c0
+    out(31) = transfer(c_loc(c%grid%origin), 0_c_intptr_t) - c0
+    out(32) = transfer(c_loc(c%grid%h), 0_c_intptr_t) - c0
+    out(33) = transfer(c_loc(c%grid%inv_h), 0_c_intptr_t) - c0
+    out(34) = transfer(c_loc(c%grid%mass_cutoff), 0_c_intptr_t) - c0
+    out(35) = transfer(c_loc(c%grid%nnode), 0_c_intptr_t) - c0
+    out(36) = transfer(c_loc(c%grid%nc), 0_c_intptr_t) - c0
+    out(37) = transfer(c_loc(c%grid%nn), 0_c_intptr_t) - c0
+    out(38) = transfer(c_loc(c%grid%cell_off), 0_c_intptr_t) - c0
+    out(39) = transfer(c_loc(c%grid%fix), 0_c_intptr_t) - c0
+    out(40) = transfer(c_loc(c%grid%fix_layers), 0_c_intptr_t) - c0
+    out(41) = transfer(c_loc(c%patch), 0_c_intptr_t) - c0
+    out(42) = transfer(c_loc(c%patch%patch_start), 0_c_intptr_t) - c0
+    out(43) = transfer(c_loc(c%patch%patch_part), 0_c_intptr_t) - c0
+    out(44) = transfer(c_loc(c%patch%patch_slot), 0_c_intptr_t) - c0
+    out(45) = transfer(c_loc(c%patch%patch_buf), 0_c_intptr_t) - c0
+    out(46) = transfer(c_loc(c%patch%pscratch), 0_c_intptr_t) - c0
+    out(47) = transfer(c_loc(c%patch%patch_work), 0_c_intptr_t) - c0
+    out(48) = transfer(c_loc(c%patch%patch_cells), 0_c_intptr_t) - c0
+    out(49) = transfer(c_loc(c%patch%npd), 0_c_intptr_t) - c0
+    out(50) = transfer(c_loc(c%patch%npatch), 0_c_intptr_t) - c0
+    out(51) = transfer(c_loc(c%patch%nslot), 0_c_intptr_t) - c0
+    out(52) = transfer(c_loc(c%patch%patch_halo), 0_c_intptr_t) - c0
+    out(53) = transfer(c_loc(c%clock), 0_c_intptr_t) - c0
+    out(54) = transfer(c_loc(c%clock%dt), 0_c_intptr_t) - c0
+    out(55) = transfer(c_loc(c%clock%dt_int), 0_c_intptr_t) - c0
+    out(56) = transfer(c_loc(c%clock%time), 0_c_intptr_t) - c0
+    out(57) = transfer(c_loc(c%method), 0_c_intptr_t) - c0
+    out(58) = transfer(c_loc(c%method%bulk_q1), 0_c_intptr_t) - c0
+    out(59) = transfer(c_loc(c%method%bulk_q2), 0_c_intptr_t) - c0
+    out(60) = transfer(c_loc(c%method%load_ramp_time), 0_c_intptr_t) - c0
+    out(61) = transfer(c_loc(c%method%damping), 0_c_intptr_t) - c0
+    out(62) = transfer(c_loc(c%method%scheme), 0_c_intptr_t) - c0
+    out(63) = transfer(c_loc(c%method%has_body_force), 0_c_intptr_t) - c0
+    out(64) = transfer(c_loc(c%method%uvf), 0_c_intptr_t) - c0
+    out(65) = transfer(c_loc(c%method%tl), 0_c_intptr_t) - c0
+    out(66) = transfer(c_loc(c%method%shape), 0_c_intptr_t) - c0
+    out(67) = transfer(c_loc(c%method%sg), 0_c_intptr_t) - c0
+    out(68) = transfer(c_loc(c%method%family), 0_c_intptr_t) - c0
+    out(69) = transfer(c_loc(c%out), 0_c_intptr_t) - c0
+    out(70) = transfer(c_loc(c%out%partials), 0_c_intptr_t) - c0
+    out(71) = transfer(c_loc(c%out%result), 0_c_intptr_t) - c0
+    out(72) = transfer(c_loc(c%out%noutside), 0_c_intptr_t) - c0
+    out(73) = transfer(c_loc(c%contact), 0_c_intptr_t) - c0
+    out(74) = transfer(c_loc(c%contact%body_comp), 0_c_intptr_t) - c0
+    out(75) = transfer(c_loc(c%contact%other), 0_c_intptr_t) - c0
+    out(76) = transfer(c_loc(c%contact%gnormal), 0_c_intptr_t) - c0
+    out(77) = transfer(c_loc(c%contact%cpartials), 0_c_intptr_t) - c0
+    out(78) = transfer(c_loc(c%contact%contact_mu), 0_c_intptr_t) - c0
+    out(79) = transfer(c_loc(c%contact%only_comp), 0_c_intptr_t) - c0
+    out(80) = transfer(c_loc(c%contact%contact_normbody), 0_c_intptr_t) - c0
+    out(81) = transfer(c_loc(c%contact%ncontact), 0_c_intptr_t) - c0
+    out(82) = transfer(c_loc(c%sgmp), 0_c_intptr_t) - c0
+    out(83) = transfer(c_loc(c%sgmp%aux), 0_c_intptr_t) - c0
+    out(84) = transfer(c_loc(c%sgmp%sg_w), 0_c_intptr_t) - c0
+    out(85) = transfer(c_loc(c%sgmp%sg_cell), 0_c_intptr_t) - c0
+    out(86) = transfer(c_loc(c%sgmp%sg_reach), 0_c_intptr_t) - c0
+    out(87) = transfer(c_loc(c%sgmp%sg_cached), 0_c_intptr_t) - c0
+    out(88) = transfer(c_loc(c%ranks), 0_c_intptr_t) - c0
+    out(89) = transfer(c_loc(c%ranks%exchange), 0_c_intptr_t) - c0
+    out(90) = transfer(c_loc(c%ranks%exchange_data), 0_c_intptr_t) - c0
+    out(91) = transfer(c_loc(c%ranks%order), 0_c_intptr_t) - c0
+    out(92) = transfer(c_loc(c%ranks%prebinned), 0_c_intptr_t) - c0
+    out(93) = transfer(c_loc(c%rest), 0_c_intptr_t) - c0
+    out(94) = transfer(c_loc(c%rest%sg_still), 0_c_intptr_t) - c0
+    out(95) = transfer(c_loc(c%rest%sg_rest), 0_c_intptr_t) - c0
+    out(96) = c_sizeof(m(1))
+    out(97) = transfer(c_loc(m(1)%eos_e0), 0_c_intptr_t) - m0
+    out(98) = transfer(c_loc(m(1)%eos_type), 0_c_intptr_t) - m0
+    out(99) = transfer(c_loc(m(1)%dp_tension), 0_c_intptr_t) - m0
   end subroutine mpm3d_f_context_layout
 
 end module mpm3d_stage_common

@@ -25,27 +25,27 @@ contains
     real(dp) :: part(REDUCE_FIELDS), s(REDUCE_FIELDS)
     integer :: q, p, i, noutside
     logical :: contact, work, has_fext
-    contact = c_associated(c%other)
-    work = c%has_body_force /= 0
-    has_fext = c_associated(c%fext)
-    noutside = c%noutside
-    call c_f_pointer(c%mass, mass, [c%np])
-    call c_f_pointer(c%v, v, [3, c%np])
-    call c_f_pointer(c%ie, ie, [c%np])
-    call c_f_pointer(c%body, body, [c%np])
-    if (work) call c_f_pointer(c%gravity, grav, [3, max(c%nbody, 1)])
-    if (has_fext) call c_f_pointer(c%fext, fext, [3, c%np])
-    call c_f_pointer(c%cell, cell, [c%np])
-    call c_f_pointer(c%patch_start, start, [c%npatch + 1])
-    call c_f_pointer(c%patch_part, ppart, [c%np])
+    contact = c_associated(c%contact%other)
+    work = c%method%has_body_force /= 0
+    has_fext = c_associated(c%part%fext)
+    noutside = c%out%noutside
+    call c_f_pointer(c%part%mass, mass, [c%part%np])
+    call c_f_pointer(c%part%v, v, [3, c%part%np])
+    call c_f_pointer(c%part%ie, ie, [c%part%np])
+    call c_f_pointer(c%part%body, body, [c%part%np])
+    if (work) call c_f_pointer(c%part%gravity, grav, [3, max(c%part%nbody, 1)])
+    if (has_fext) call c_f_pointer(c%part%fext, fext, [3, c%part%np])
+    call c_f_pointer(c%part%cell, cell, [c%part%np])
+    call c_f_pointer(c%patch%patch_start, start, [c%patch%npatch + 1])
+    call c_f_pointer(c%patch%patch_part, ppart, [c%part%np])
     if (contact) then
-      call c_f_pointer(c%other, c2)
-      noutside = noutside + c2%noutside
-      call c_f_pointer(c2%patch_start, start2, [c2%npatch + 1])
-      call c_f_pointer(c2%patch_part, ppart2, [c2%np])
+      call c_f_pointer(c%contact%other, c2)
+      noutside = noutside + c2%out%noutside
+      call c_f_pointer(c2%patch%patch_start, start2, [c2%patch%npatch + 1])
+      call c_f_pointer(c2%patch%patch_part, ppart2, [c2%part%np])
     end if
-    call c_f_pointer(c%partials, partials, [REDUCE_FIELDS, c%npatch + 1])
-    do q = 0, c%npatch - 1
+    call c_f_pointer(c%out%partials, partials, [REDUCE_FIELDS, c%patch%npatch + 1])
+    do q = 0, c%patch%npatch - 1
       part = 0.0_dp
       do i = start(q + 1) + 1, start(q + 2)
         call add_particle(ppart(i) + 1)
@@ -58,28 +58,28 @@ contains
       partials(:, q + 1) = part
     end do
     part = 0.0_dp
-    if (noutside > 0) then   ! in one process's storage order (a distributed run's c%order)
-      if (c_associated(c%order)) then
-        call c_f_pointer(c%order, order, [c%np])
-        do i = 1, c%np
+    if (noutside > 0) then   ! in one process's storage order (a distributed run's c%ranks%order)
+      if (c_associated(c%ranks%order)) then
+        call c_f_pointer(c%ranks%order, order, [c%part%np])
+        do i = 1, c%part%np
           p = order(i) + 1
           if (cell(p) < 0) call add_particle(p)
         end do
       else
-        do p = 1, c%np
+        do p = 1, c%part%np
           if (cell(p) < 0) call add_particle(p)
         end do
       end if
     end if
-    partials(:, c%npatch + 1) = part
+    partials(:, c%patch%npatch + 1) = part
     ! The fold, apart from the columns (a distributed run's ranks exchange them first).
     call rank_exchange(c, EXCHANGE_PARTIALS, 0, 0)
     s = 0.0_dp
-    do q = 1, c%npatch + 1
+    do q = 1, c%patch%npatch + 1
       s = s + partials(:, q)
     end do
-    c%result(1:5) = s(1:5)
-    c%result(9) = s(6)
+    c%out%result(1:5) = s(1:5)
+    c%out%result(9) = s(6)
 
   contains
 

@@ -24,31 +24,31 @@ contains
     integer :: pc, qq, pn, q, slot, idx, p, base, pbase, k, n, a, ln, nk
     integer :: ci(3), o(3)
     logical :: remap, wide
-    remap = c%scheme == SCHEME_MUSL
-    if (c%family == TRANSFER_SMOOTHED_GRADIENT) then
+    remap = c%method%scheme == SCHEME_MUSL
+    if (c%method%family == TRANSFER_SMOOTHED_GRADIENT) then
       call sg_g2p(c, remap)
       if (remap) then
-        call c_f_pointer(c%gmom, gmom, [3, c%nnode])
+        call c_f_pointer(c%grid%gmom, gmom, [3, c%grid%nnode])
         call apply_bc(c, gmom)
       end if
       return
     end if
-    pc = c%patch_cells
-    qq = pc + 1 + 2 * c%patch_halo
+    pc = c%patch%patch_cells
+    qq = pc + 1 + 2 * c%patch%patch_halo
     pn = qq * qq * qq
-    wide = c%family == TRANSFER_STENCIL27
-    if (c%shape == 1) call c_f_pointer(c%psize, psize, [c%np])
-    call c_f_pointer(c%gmass, gmass, [c%nnode])
-    call c_f_pointer(c%gmom, gmom, [3, c%nnode])
-    call c_f_pointer(c%gforce, gforce, [3, c%nnode])
-    if (c%nslot > 0) then
+    wide = c%method%family == TRANSFER_STENCIL27
+    if (c%method%shape == 1) call c_f_pointer(c%part%psize, psize, [c%part%np])
+    call c_f_pointer(c%grid%gmass, gmass, [c%grid%nnode])
+    call c_f_pointer(c%grid%gmom, gmom, [3, c%grid%nnode])
+    call c_f_pointer(c%grid%gforce, gforce, [3, c%grid%nnode])
+    if (c%patch%nslot > 0) then
       call view_buffers(c, buf)
       call view_patch_lists(c, pstart, ppart, slots, cell)
-      call c_f_pointer(c%lx, lx, [3, c%np])
-      call c_f_pointer(c%v, v, [3, c%np])
-      call c_f_pointer(c%x, x, [3, c%np])
-      call c_f_pointer(c%mass, mass, [c%np])
-      do q = 0, c%npatch - 1
+      call c_f_pointer(c%part%lx, lx, [3, c%part%np])
+      call c_f_pointer(c%part%v, v, [3, c%part%np])
+      call c_f_pointer(c%part%x, x, [3, c%part%np])
+      call c_f_pointer(c%part%mass, mass, [c%part%np])
+      do q = 0, c%patch%npatch - 1
         slot = slots(q + 1)
         if (slot < 0) cycle
         if (remap) then
@@ -67,7 +67,7 @@ contains
           do k = 0, nk - 1
             n = stencil_node(c, wide, base, k)
             m = gmass(n)
-            if (.not. (m > c%mass_cutoff)) cycle
+            if (.not. (m > c%grid%mass_cutoff)) cycle
             r = sn(k + 1) / m
             do a = 1, 3
               acc(a) = acc(a) + (gforce(a, n) * r)
@@ -75,8 +75,8 @@ contains
             end do
           end do
           do a = 1, 3
-            v(a, p) = v(a, p) + (acc(a) * c%dt_int)
-            x(a, p) = x(a, p) + (vel(a) * c%dt)
+            v(a, p) = v(a, p) + (acc(a) * c%clock%dt_int)
+            x(a, p) = x(a, p) + (vel(a) * c%clock%dt)
           end do
           if (remap) then
             pbase = stencil_first_local(c, wide, q, cell(p), ci, o)

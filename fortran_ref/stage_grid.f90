@@ -18,10 +18,10 @@ contains
     real(dp), pointer :: gmom(:,:), gforce(:,:)
     real(dp) :: dt
     integer :: n, a
-    call c_f_pointer(c%gmom, gmom, [3, c%nnode])
-    call c_f_pointer(c%gforce, gforce, [3, c%nnode])
-    dt = c%dt_int
-    do n = 1, c%nnode
+    call c_f_pointer(c%grid%gmom, gmom, [3, c%grid%nnode])
+    call c_f_pointer(c%grid%gforce, gforce, [3, c%grid%nnode])
+    dt = c%clock%dt_int
+    do n = 1, c%grid%nnode
       do a = 1, 3
         gmom(a, n) = gmom(a, n) + (gforce(a, n) * dt)
       end do
@@ -30,15 +30,15 @@ contains
     call apply_bc(c, gforce)
   end subroutine mpm3d_f_integrate
 
-  ! Contact: multi-velocity correction between component 1 (c) and component 2 (c%other),
+  ! Contact: multi-velocity correction between component 1 (c) and component 2 (c%contact%other),
   ! as mpm3d_cxx_contact (see there for the algorithm): same nodes, same operations, the
   ! contact force as per-patch partials folded in patch order into result(6:8), the unit
-  ! normals of the corrected nodes kept in c%gnormal (zero at the other nodes of the loop).
+  ! normals of the corrected nodes kept in c%contact%gnormal (zero at the other nodes of the loop).
   subroutine mpm3d_f_contact(c) bind(C, name='mpm3d_f_contact')
     type(step_context), intent(inout), target :: c
     type(step_context), pointer :: c2
-    if (.not. c_associated(c%other)) return
-    call c_f_pointer(c%other, c2)
+    if (.not. c_associated(c%contact%other)) return
+    call c_f_pointer(c%contact%other, c2)
     call scatter_mass_gradient(c)
     call scatter_mass_gradient(c2)
     call contact_correct(c, .false.)
@@ -49,7 +49,7 @@ contains
   ! this step, USF after the P2G of the next step.
   subroutine mpm3d_f_recontact(c) bind(C, name='mpm3d_f_recontact')
     type(step_context), intent(inout), target :: c
-    if (.not. c_associated(c%other)) return
+    if (.not. c_associated(c%contact%other)) return
     call contact_correct(c, .true.)
   end subroutine mpm3d_f_recontact
 
@@ -63,37 +63,37 @@ contains
     real(dp) :: part(3), nv(3), un(3), qv(3), t(3), len, mt, qn, tl, fr, ft, d, fc, s(4)
     integer :: q, i, j, k, n, a, nb, ncount
     integer :: q3(3), lo(3), hi(3)
-    call c_f_pointer(c%other, c2)
-    call c_f_pointer(c%gmass, m1, [c%nnode])
-    call c_f_pointer(c2%gmass, m2, [c%nnode])
-    call c_f_pointer(c%gmom, p1, [3, c%nnode])
-    call c_f_pointer(c2%gmom, p2, [3, c%nnode])
-    call c_f_pointer(c%gforce, f1, [3, c%nnode])
-    call c_f_pointer(c2%gforce, f2, [3, c%nnode])
-    call c_f_pointer(c%gnormal, g1, [3, c%nnode])
-    call c_f_pointer(c2%gnormal, g2, [3, c%nnode])
-    call c_f_pointer(c%cpartials, cpart, [4, c%npatch])
-    nb = c%contact_normbody
-    do q = 0, c%npatch - 1
+    call c_f_pointer(c%contact%other, c2)
+    call c_f_pointer(c%grid%gmass, m1, [c%grid%nnode])
+    call c_f_pointer(c2%grid%gmass, m2, [c%grid%nnode])
+    call c_f_pointer(c%grid%gmom, p1, [3, c%grid%nnode])
+    call c_f_pointer(c2%grid%gmom, p2, [3, c%grid%nnode])
+    call c_f_pointer(c%grid%gforce, f1, [3, c%grid%nnode])
+    call c_f_pointer(c2%grid%gforce, f2, [3, c%grid%nnode])
+    call c_f_pointer(c%contact%gnormal, g1, [3, c%grid%nnode])
+    call c_f_pointer(c2%contact%gnormal, g2, [3, c%grid%nnode])
+    call c_f_pointer(c%contact%cpartials, cpart, [4, c%patch%npatch])
+    nb = c%contact%contact_normbody
+    do q = 0, c%patch%npatch - 1
       part = 0.0_dp
       ncount = 0
-      q3(1) = mod(q, c%npd(1))
-      q3(2) = mod(q / c%npd(1), c%npd(2))
-      q3(3) = q / (c%npd(1) * c%npd(2))
+      q3(1) = mod(q, c%patch%npd(1))
+      q3(2) = mod(q / c%patch%npd(1), c%patch%npd(2))
+      q3(3) = q / (c%patch%npd(1) * c%patch%npd(2))
       do a = 1, 3
-        lo(a) = q3(a) * c%patch_cells
-        if (q3(a) == c%npd(a) - 1) then
-          hi(a) = c%nn(a)
+        lo(a) = q3(a) * c%patch%patch_cells
+        if (q3(a) == c%patch%npd(a) - 1) then
+          hi(a) = c%grid%nn(a)
         else
-          hi(a) = lo(a) + c%patch_cells
+          hi(a) = lo(a) + c%patch%patch_cells
         end if
       end do
       if (patch_active(c, q3) .and. patch_active(c2, q3)) then
         do k = lo(3), hi(3) - 1
           do j = lo(2), hi(2) - 1
             do i = lo(1), hi(1) - 1
-              n = i + c%nn(1) * (j + c%nn(2) * k) + 1
-              if (.not. (m1(n) > c%mass_cutoff) .or. .not. (m2(n) > c%mass_cutoff)) then
+              n = i + c%grid%nn(1) * (j + c%grid%nn(2) * k) + 1
+              if (.not. (m1(n) > c%grid%mass_cutoff) .or. .not. (m2(n) > c%grid%mass_cutoff)) then
                 if (.not. remap) then
                   do a = 1, 3
                     g1(a, n) = 0.0_dp
@@ -140,7 +140,7 @@ contains
                 t(a) = qv(a) - (qn * un(a))
               end do
               tl = sqrt(((t(1) * t(1)) + (t(2) * t(2))) + (t(3) * t(3)))
-              fr = c%contact_mu * abs(qn)
+              fr = c%contact%contact_mu * abs(qn)
               if (tl > fr) then
                 ft = fr / tl
               else
@@ -151,7 +151,7 @@ contains
                 p1(a, n) = p1(a, n) + d
                 p2(a, n) = p2(a, n) - d
                 if (.not. remap) then
-                  fc = d / c%dt_int
+                  fc = d / c%clock%dt_int
                   f1(a, n) = f1(a, n) + fc
                   f2(a, n) = f2(a, n) - fc
                   part(a) = part(a) + fc
@@ -161,12 +161,12 @@ contains
             end do
           end do
         end do
-      else if (.not. remap .and. c%scheme == SCHEME_USF) then
+      else if (.not. remap .and. c%method%scheme == SCHEME_USF) then
         ! USF reads the marks again in the next step: no node outside the loop keeps one.
         do k = lo(3), hi(3) - 1
           do j = lo(2), hi(2) - 1
             do i = lo(1), hi(1) - 1
-              n = i + c%nn(1) * (j + c%nn(2) * k) + 1
+              n = i + c%grid%nn(1) * (j + c%grid%nn(2) * k) + 1
               do a = 1, 3
                 g1(a, n) = 0.0_dp
               end do
@@ -188,15 +188,15 @@ contains
     ! distributed run's ranks exchanged their columns.
     call rank_exchange(c, EXCHANGE_CONTACT, 0, 0)
     s = 0.0_dp
-    do q = 1, c%npatch
+    do q = 1, c%patch%npatch
       do a = 1, 4
         s(a) = s(a) + cpart(a, q)
       end do
     end do
     do a = 1, 3
-      c%result(5 + a) = s(a)
+      c%out%result(5 + a) = s(a)
     end do
-    c%ncontact = int(s(4))
+    c%contact%ncontact = int(s(4))
     call apply_bc(c, f1)
     call apply_bc(c2, f2)
   end subroutine contact_correct
@@ -208,9 +208,9 @@ contains
     integer, intent(in) :: q3(3)
     integer(c_int), pointer :: slots(:)
     integer :: ne, cx, cy, cz, px, py, pz
-    call c_f_pointer(c%patch_slot, slots, [c%npatch])
+    call c_f_pointer(c%patch%patch_slot, slots, [c%patch%npatch])
     patch_active = .false.
-    ne = 2 + c%patch_halo
+    ne = 2 + c%patch%patch_halo
     do cz = 0, ne - 1
       do cy = 0, ne - 1
         do cx = 0, ne - 1
@@ -218,8 +218,8 @@ contains
           py = q3(2) - 1 + cy
           pz = q3(3) - 1 + cz
           if (px < 0 .or. py < 0 .or. pz < 0) cycle
-          if (px >= c%npd(1) .or. py >= c%npd(2) .or. pz >= c%npd(3)) cycle
-          if (slots(px + c%npd(1) * (py + c%npd(2) * pz) + 1) >= 0) patch_active = .true.
+          if (px >= c%patch%npd(1) .or. py >= c%patch%npd(2) .or. pz >= c%patch%npd(3)) cycle
+          if (slots(px + c%patch%npd(1) * (py + c%patch%npd(2) * pz) + 1) >= 0) patch_active = .true.
         end do
       end do
     end do

@@ -21,11 +21,11 @@ contains
     type(step_context), intent(inout) :: c
     real(dp), pointer :: gmass(:), gmom(:,:), gforce(:,:)
     logical :: forces
-    forces = c%scheme /= SCHEME_USF
-    call c_f_pointer(c%gmass, gmass, [c%nnode])
-    call c_f_pointer(c%gmom, gmom, [3, c%nnode])
-    call c_f_pointer(c%gforce, gforce, [3, c%nnode])
-    if (c%family == TRANSFER_SMOOTHED_GRADIENT) then
+    forces = c%method%scheme /= SCHEME_USF
+    call c_f_pointer(c%grid%gmass, gmass, [c%grid%nnode])
+    call c_f_pointer(c%grid%gmom, gmom, [3, c%grid%nnode])
+    call c_f_pointer(c%grid%gforce, gforce, [3, c%grid%nnode])
+    if (c%method%family == TRANSFER_SMOOTHED_GRADIENT) then
       call sg_p2g(c, .true., forces)
       call apply_bc(c, gmom)
       return
@@ -43,14 +43,14 @@ contains
   subroutine mpm3d_f_forces(c) bind(C, name='mpm3d_f_forces')
     type(step_context), intent(inout) :: c
     real(dp), pointer :: gmass(:), gmom(:,:), gforce(:,:)
-    if (c%family == TRANSFER_SMOOTHED_GRADIENT) then
+    if (c%method%family == TRANSFER_SMOOTHED_GRADIENT) then
       call sg_p2g(c, .false., .true.)
       return
     end if
     call scatter_p2g(c, .false., .true.)
-    call c_f_pointer(c%gmass, gmass, [c%nnode])
-    call c_f_pointer(c%gmom, gmom, [3, c%nnode])
-    call c_f_pointer(c%gforce, gforce, [3, c%nnode])
+    call c_f_pointer(c%grid%gmass, gmass, [c%grid%nnode])
+    call c_f_pointer(c%grid%gmom, gmom, [3, c%grid%nnode])
+    call c_f_pointer(c%grid%gforce, gforce, [3, c%grid%nnode])
     call assemble(c, 4, 3, gmass, gmom, gforce)
   end subroutine mpm3d_f_forces
 
@@ -69,24 +69,24 @@ contains
     integer :: pc, qq, q, slot, idx, p, base, s, k, ln, nk
     integer :: ci(3), o(3)
     logical :: body_force, wide
-    if (c%nslot <= 0) return
-    pc = c%patch_cells
-    qq = pc + 1 + 2 * c%patch_halo
-    wide = c%family == TRANSFER_STENCIL27
-    if (c%shape == 1) call c_f_pointer(c%psize, psize, [c%np])
+    if (c%patch%nslot <= 0) return
+    pc = c%patch%patch_cells
+    qq = pc + 1 + 2 * c%patch%patch_halo
+    wide = c%method%family == TRANSFER_STENCIL27
+    if (c%method%shape == 1) call c_f_pointer(c%part%psize, psize, [c%part%np])
     call view_buffers(c, buf)
-    call c_f_pointer(c%patch_start, pstart, [c%npatch + 1])
-    call c_f_pointer(c%patch_part, ppart, [c%np])
-    call c_f_pointer(c%patch_slot, slots, [c%npatch])
-    call c_f_pointer(c%cell, cell, [c%np])
-    call c_f_pointer(c%lx, lx, [3, c%np])
-    call c_f_pointer(c%v, v, [3, c%np])
-    call c_f_pointer(c%sig, sig, [6, c%np])
-    call c_f_pointer(c%mass, mass, [c%np])
-    call c_f_pointer(c%vol, vol, [c%np])
-    body_force = c%has_body_force /= 0
-    if (c%tl /= 0) call c_f_pointer(c%pk1, pk1, [9, c%np])
-    do q = 0, c%npatch - 1
+    call c_f_pointer(c%patch%patch_start, pstart, [c%patch%npatch + 1])
+    call c_f_pointer(c%patch%patch_part, ppart, [c%part%np])
+    call c_f_pointer(c%patch%patch_slot, slots, [c%patch%npatch])
+    call c_f_pointer(c%part%cell, cell, [c%part%np])
+    call c_f_pointer(c%part%lx, lx, [3, c%part%np])
+    call c_f_pointer(c%part%v, v, [3, c%part%np])
+    call c_f_pointer(c%part%sig, sig, [6, c%part%np])
+    call c_f_pointer(c%part%mass, mass, [c%part%np])
+    call c_f_pointer(c%part%vol, vol, [c%part%np])
+    body_force = c%method%has_body_force /= 0
+    if (c%method%tl /= 0) call c_f_pointer(c%part%pk1, pk1, [9, c%part%np])
+    do q = 0, c%patch%npatch - 1
       slot = slots(q + 1)
       if (slot < 0) cycle
       buf(:, :, slot + 1) = 0.0_dp
@@ -100,7 +100,7 @@ contains
         if (with_forces) then
           volp = vol(p)
           do s = 1, 9
-            if (c%tl /= 0) then
+            if (c%method%tl /= 0) then
               vs(s) = pk1(s, p)
             else
               vs(s) = sig(VOIGT(s), p) * volp
@@ -151,25 +151,25 @@ contains
     integer :: pc, qq, hh, i, j, k, qx, qy, qz, qx_lo, qx_hi, qy_lo, qy_hi, qz_lo, qz_hi
     integer :: q, slot, ln, n, f, field
     call rank_exchange(c, EXCHANGE_BUFFERS, first, count)   ! ghost patches' buffers (ranks)
-    pc = c%patch_cells
-    hh = c%patch_halo
+    pc = c%patch%patch_cells
+    hh = c%patch%patch_halo
     qq = pc + 1 + 2 * hh
-    call c_f_pointer(c%patch_slot, slots, [c%npatch])
+    call c_f_pointer(c%patch%patch_slot, slots, [c%patch%npatch])
     nullify(buf)
-    if (c%nslot > 0) call view_buffers(c, buf)
-    do k = 0, c%nn(3) - 1
-      call patch_range(k, pc, hh, c%npd(3), qz_lo, qz_hi)
-      do j = 0, c%nn(2) - 1
-        call patch_range(j, pc, hh, c%npd(2), qy_lo, qy_hi)
-        do i = 0, c%nn(1) - 1
-          call patch_range(i, pc, hh, c%npd(1), qx_lo, qx_hi)
+    if (c%patch%nslot > 0) call view_buffers(c, buf)
+    do k = 0, c%grid%nn(3) - 1
+      call patch_range(k, pc, hh, c%patch%npd(3), qz_lo, qz_hi)
+      do j = 0, c%grid%nn(2) - 1
+        call patch_range(j, pc, hh, c%patch%npd(2), qy_lo, qy_hi)
+        do i = 0, c%grid%nn(1) - 1
+          call patch_range(i, pc, hh, c%patch%npd(1), qx_lo, qx_hi)
           do f = 1, count
             acc(f) = 0.0_dp
           end do
           do qz = qz_lo, qz_hi
             do qy = qy_lo, qy_hi
               do qx = qx_lo, qx_hi
-                q = qx + c%npd(1) * (qy + c%npd(2) * qz)
+                q = qx + c%patch%npd(1) * (qy + c%patch%npd(2) * qz)
                 slot = slots(q + 1)
                 if (slot < 0) cycle
                 ln = (i - qx * pc + hh) + qq * ((j - qy * pc + hh) + qq * (k - qz * pc + hh))
@@ -179,7 +179,7 @@ contains
               end do
             end do
           end do
-          n = i + c%nn(1) * (j + c%nn(2) * k) + 1
+          n = i + c%grid%nn(1) * (j + c%grid%nn(2) * k) + 1
           do f = 1, count
             field = first + f - 1
             if (field == 0) then
@@ -220,23 +220,23 @@ contains
     integer :: pc, qq, pn, q, slot, idx, p, base, k, ln, nk
     integer :: ci(3), o(3)
     logical :: wide
-    pc = c%patch_cells
-    qq = pc + 1 + 2 * c%patch_halo
+    pc = c%patch%patch_cells
+    qq = pc + 1 + 2 * c%patch%patch_halo
     pn = qq * qq * qq
-    wide = c%family == TRANSFER_STENCIL27
-    call c_f_pointer(c%gmass, gmass, [c%nnode])
-    call c_f_pointer(c%gmom, gmom, [3, c%nnode])
-    call c_f_pointer(c%gnormal, gnormal, [3, c%nnode])
-    if (c%nslot > 0) then
+    wide = c%method%family == TRANSFER_STENCIL27
+    call c_f_pointer(c%grid%gmass, gmass, [c%grid%nnode])
+    call c_f_pointer(c%grid%gmom, gmom, [3, c%grid%nnode])
+    call c_f_pointer(c%contact%gnormal, gnormal, [3, c%grid%nnode])
+    if (c%patch%nslot > 0) then
       call view_buffers(c, buf)
-      call c_f_pointer(c%patch_start, pstart, [c%npatch + 1])
-      call c_f_pointer(c%patch_part, ppart, [c%np])
-      call c_f_pointer(c%patch_slot, slots, [c%npatch])
-      call c_f_pointer(c%cell, cell, [c%np])
-      call c_f_pointer(c%lx, lx, [3, c%np])
-      call c_f_pointer(c%mass, mass, [c%np])
-      if (c%shape == 1) call c_f_pointer(c%psize, psize, [c%np])
-      do q = 0, c%npatch - 1
+      call c_f_pointer(c%patch%patch_start, pstart, [c%patch%npatch + 1])
+      call c_f_pointer(c%patch%patch_part, ppart, [c%part%np])
+      call c_f_pointer(c%patch%patch_slot, slots, [c%patch%npatch])
+      call c_f_pointer(c%part%cell, cell, [c%part%np])
+      call c_f_pointer(c%part%lx, lx, [3, c%part%np])
+      call c_f_pointer(c%part%mass, mass, [c%part%np])
+      if (c%method%shape == 1) call c_f_pointer(c%part%psize, psize, [c%part%np])
+      do q = 0, c%patch%npatch - 1
         slot = slots(q + 1)
         if (slot < 0) cycle
         do ln = 1, pn

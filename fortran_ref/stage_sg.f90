@@ -3,7 +3,7 @@
 ! same operations in the same order: the particles exchange with the cell centres (trilinear
 ! weights of the auxiliary cell around the nearest node), the cell centres with the corners
 ! of their cells (1/8 each; one-point gradients at the centre for forces and strain rates).
-! The stages call it when c%family == TRANSFER_SMOOTHED_GRADIENT. aux(AUX_FIELDS, ncell)
+! The stages call it when c%method%family == TRANSFER_SMOOTHED_GRADIENT. aux(AUX_FIELDS, ncell)
 ! holds the cells' fields, 1-based field f + 1 for the C++ field f.
 module mpm3d_stage_sg
   use, intrinsic :: iso_c_binding
@@ -36,9 +36,9 @@ contains
     integer :: ci(3), lo(3), hi(3), ijk(3), a, al, near, last, k
     real(dp) :: w0(3), w1(3), wk(3), s, x, xn
     logical :: held
-    ci(1) = mod(cl, c%nc(1))
-    ci(2) = mod(cl / c%nc(1), c%nc(2))
-    ci(3) = cl / (c%nc(1) * c%nc(2))
+    ci(1) = mod(cl, c%grid%nc(1))
+    ci(2) = mod(cl / c%grid%nc(1), c%grid%nc(2))
+    ci(3) = cl / (c%grid%nc(1) * c%grid%nc(2))
     do a = 1, 3
       s = lxp(a)
       if (s < 0.5_dp) then
@@ -49,7 +49,7 @@ contains
         x = 2.0_dp * (s - 1.0_dp)
       end if
       near = al + 1
-      held = (c%fix(2 * a - 1) /= 0 .and. near <= 1) .or. (c%fix(2 * a) /= 0 .and. near >= c%nn(a) - 2)
+      held = (c%grid%fix(2 * a - 1) /= 0 .and. near <= 1) .or. (c%grid%fix(2 * a) /= 0 .and. near >= c%grid%nn(a) - 2)
       if (held) then
         if (g2p) then
           xn = 2.0_dp * s - 1.0_dp
@@ -70,7 +70,7 @@ contains
       end if
       w0(a) = 0.5_dp * (1.0_dp - x)
       w1(a) = 0.5_dp * (1.0_dp + x)
-      last = c%nc(a) - 1
+      last = c%grid%nc(a) - 1
       if (al < 0) then
         lo(a) = 0
       else if (al > last) then
@@ -94,7 +94,7 @@ contains
           wk(a) = w0(a)
         end if
       end do
-      idx(k + 1) = ijk(1) + c%nc(1) * (ijk(2) + c%nc(2) * ijk(3))
+      idx(k + 1) = ijk(1) + c%grid%nc(1) * (ijk(2) + c%grid%nc(2) * ijk(3))
       w(k + 1) = (wk(1) * wk(2)) * wk(3)
     end do
   end subroutine sg_weights
@@ -102,7 +102,7 @@ contains
   subroutine view_aux(c, aux)
     type(step_context), intent(in) :: c
     real(dp), pointer, intent(out) :: aux(:,:)
-    call c_f_pointer(c%aux, aux, [AUX_FIELDS, c%nc(1) * c%nc(2) * c%nc(3)])
+    call c_f_pointer(c%sgmp%aux, aux, [AUX_FIELDS, c%grid%nc(1) * c%grid%nc(2) * c%grid%nc(3)])
   end subroutine view_aux
 
   ! P2G: particles -> cell centres (serial, patches in index order, each list in order),
@@ -120,20 +120,20 @@ contains
     if (with_forces) aux(AUX_FB + 1:AUX_FB + 12, :) = 0.0_dp
     ! TLmp: V0 P (9 entries) in place of sigma V (6).
     ns = 6
-    if (c%tl /= 0) then
-      call c_f_pointer(c%pk1, pk1, [9, c%np])
+    if (c%method%tl /= 0) then
+      call c_f_pointer(c%part%pk1, pk1, [9, c%part%np])
       ns = 9
     end if
-    call c_f_pointer(c%patch_start, pstart, [c%npatch + 1])
-    call c_f_pointer(c%patch_part, ppart, [c%np])
-    call c_f_pointer(c%cell, cell, [c%np])
-    call c_f_pointer(c%lx, lx, [3, c%np])
-    call c_f_pointer(c%v, v, [3, c%np])
-    call c_f_pointer(c%sig, sig, [6, c%np])
-    call c_f_pointer(c%mass, mass, [c%np])
-    call c_f_pointer(c%vol, vol, [c%np])
-    with_body = c%has_body_force /= 0
-    do q = 0, c%npatch - 1
+    call c_f_pointer(c%patch%patch_start, pstart, [c%patch%npatch + 1])
+    call c_f_pointer(c%patch%patch_part, ppart, [c%part%np])
+    call c_f_pointer(c%part%cell, cell, [c%part%np])
+    call c_f_pointer(c%part%lx, lx, [3, c%part%np])
+    call c_f_pointer(c%part%v, v, [3, c%part%np])
+    call c_f_pointer(c%part%sig, sig, [6, c%part%np])
+    call c_f_pointer(c%part%mass, mass, [c%part%np])
+    call c_f_pointer(c%part%vol, vol, [c%part%np])
+    with_body = c%method%has_body_force /= 0
+    do q = 0, c%patch%npatch - 1
       do idx = pstart(q + 1), pstart(q + 2) - 1
         p = ppart(idx + 1) + 1
         cl = cell(p)
@@ -142,7 +142,7 @@ contains
         vs = 0.0_dp
         fb = 0.0_dp
         if (with_forces) then
-          if (c%tl /= 0) then
+          if (c%method%tl /= 0) then
             vs = pk1(:, p)
           else
             volp = vol(p)
@@ -187,25 +187,25 @@ contains
     real(dp), pointer :: gmass(:), gmom(:,:), gforce(:,:)
     real(dp) :: m, pm(3), f(3), gs, gx, gy, gz, fx, fy, fz
     integer :: i, j, k, cx, cy, cz, cell, n, d
-    call c_f_pointer(c%gmass, gmass, [c%nnode])
-    call c_f_pointer(c%gmom, gmom, [3, c%nnode])
-    call c_f_pointer(c%gforce, gforce, [3, c%nnode])
-    gs = 0.25_dp * c%inv_h
-    do k = 0, c%nn(3) - 1
-      do j = 0, c%nn(2) - 1
-        do i = 0, c%nn(1) - 1
+    call c_f_pointer(c%grid%gmass, gmass, [c%grid%nnode])
+    call c_f_pointer(c%grid%gmom, gmom, [3, c%grid%nnode])
+    call c_f_pointer(c%grid%gforce, gforce, [3, c%grid%nnode])
+    gs = 0.25_dp * c%grid%inv_h
+    do k = 0, c%grid%nn(3) - 1
+      do j = 0, c%grid%nn(2) - 1
+        do i = 0, c%grid%nn(1) - 1
           m = 0.0_dp
           pm = 0.0_dp
           f = 0.0_dp
           do cz = k - 1, k
-            if (cz < 0 .or. cz >= c%nc(3)) cycle
+            if (cz < 0 .or. cz >= c%grid%nc(3)) cycle
             do cy = j - 1, j
-              if (cy < 0 .or. cy >= c%nc(2)) cycle
+              if (cy < 0 .or. cy >= c%grid%nc(2)) cycle
               do cx = i - 1, i
-                if (cx < 0 .or. cx >= c%nc(1)) cycle
-                cell = cx + c%nc(1) * (cy + c%nc(2) * cz) + 1
+                if (cx < 0 .or. cx >= c%grid%nc(1)) cycle
+                cell = cx + c%grid%nc(1) * (cy + c%grid%nc(2) * cz) + 1
                 if (iand(what, GATHER_MASS_MOM) /= 0) then
-                  if (aux(AUX_M + 1, cell) > c%mass_cutoff) then
+                  if (aux(AUX_M + 1, cell) > c%grid%mass_cutoff) then
                     m = m + (0.125_dp * aux(AUX_M + 1, cell))
                     do d = 1, 3
                       pm(d) = pm(d) + (0.125_dp * aux(AUX_P + d, cell))
@@ -221,7 +221,7 @@ contains
                   gx = merge(gs, -gs, cx == i - 1)
                   gy = merge(gs, -gs, cy == j - 1)
                   gz = merge(gs, -gs, cz == k - 1)
-                  if (c%tl /= 0) then  ! V0 P: row a gives force component a
+                  if (c%method%tl /= 0) then  ! V0 P: row a gives force component a
                     fx = -(((aux(AUX_S + 1, cell) * gx) + (aux(AUX_S + 2, cell) * gy)) + (aux(AUX_S + 3, cell) * gz))
                     fy = -(((aux(AUX_S + 4, cell) * gx) + (aux(AUX_S + 5, cell) * gy)) + (aux(AUX_S + 6, cell) * gz))
                     fz = -(((aux(AUX_S + 7, cell) * gx) + (aux(AUX_S + 8, cell) * gy)) + (aux(AUX_S + 9, cell) * gz))
@@ -237,7 +237,7 @@ contains
               end do
             end do
           end do
-          n = i + c%nn(1) * (j + c%nn(2) * k) + 1
+          n = i + c%grid%nn(1) * (j + c%grid%nn(2) * k) + 1
           if (iand(what, GATHER_MASS_MOM) /= 0) gmass(n) = m
           if (iand(what, GATHER_MASS_MOM + GATHER_REMAP) /= 0) gmom(:, n) = pm
           if (iand(what, GATHER_FORCES) /= 0) gforce(:, n) = f
@@ -250,7 +250,7 @@ contains
   pure integer function corner_node(c, i, j, l, k)
     type(step_context), intent(in) :: c
     integer, intent(in) :: i, j, l, k
-    corner_node = (i + iand(k, 1)) + c%nn(1) * ((j + iand(ishft(k, -1), 1)) + c%nn(2) * (l + iand(ishft(k, -2), 1))) + 1
+    corner_node = (i + iand(k, 1)) + c%grid%nn(1) * ((j + iand(ishft(k, -1), 1)) + c%grid%nn(2) * (l + iand(ishft(k, -2), 1))) + 1
   end function corner_node
 
   ! G2P: cell-centre velocities and accelerations, the particles' update, and with remap the
@@ -264,28 +264,28 @@ contains
     integer :: ijk(3), i, j, l, cl, corner, n, a, d, p, k, q, idx, idx8(8)
     logical :: face
     call view_aux(c, aux)
-    call c_f_pointer(c%gmass, gmass, [c%nnode])
-    call c_f_pointer(c%gmom, gmom, [3, c%nnode])
-    call c_f_pointer(c%gforce, gforce, [3, c%nnode])
-    do l = 0, c%nc(3) - 1
-      do j = 0, c%nc(2) - 1
-        do i = 0, c%nc(1) - 1
+    call c_f_pointer(c%grid%gmass, gmass, [c%grid%nnode])
+    call c_f_pointer(c%grid%gmom, gmom, [3, c%grid%nnode])
+    call c_f_pointer(c%grid%gforce, gforce, [3, c%grid%nnode])
+    do l = 0, c%grid%nc(3) - 1
+      do j = 0, c%grid%nc(2) - 1
+        do i = 0, c%grid%nc(1) - 1
           ijk = [i, j, l]
           cxx = 0.0_dp
           face = .false.
           do a = 1, 3
-            if (c%nc(a) == 1) cycle
+            if (c%grid%nc(a) == 1) cycle
             if (ijk(a) == 0) cxx(a) = 1.0_dp
-            if (ijk(a) == c%nc(a) - 1) cxx(a) = -1.0_dp
-            face = face .or. (ijk(a) == 0 .and. c%fix(2 * a - 1) /= 0) .or. &
-                   (ijk(a) == c%nc(a) - 1 .and. c%fix(2 * a) /= 0)
+            if (ijk(a) == c%grid%nc(a) - 1) cxx(a) = -1.0_dp
+            face = face .or. (ijk(a) == 0 .and. c%grid%fix(2 * a - 1) /= 0) .or. &
+                   (ijk(a) == c%grid%nc(a) - 1 .and. c%grid%fix(2 * a) /= 0)
           end do
           vel = 0.0_dp
           acc = 0.0_dp
           do corner = 0, 7
             n = corner_node(c, i, j, l, corner)
             m = gmass(n)
-            if (.not. (m > c%mass_cutoff)) cycle
+            if (.not. (m > c%grid%mass_cutoff)) cycle
             wc = 0.125_dp
             if (face) then
               wc = 1.0_dp
@@ -303,18 +303,18 @@ contains
               acc(d) = acc(d) + (gforce(d, n) * r)
             end do
           end do
-          cl = i + c%nc(1) * (j + c%nc(2) * l) + 1
+          cl = i + c%grid%nc(1) * (j + c%grid%nc(2) * l) + 1
           aux(AUX_V + 1:AUX_V + 3, cl) = vel
           aux(AUX_A + 1:AUX_A + 3, cl) = acc
         end do
       end do
     end do
-    call c_f_pointer(c%cell, cell, [c%np])
-    call c_f_pointer(c%lx, lx, [3, c%np])
-    call c_f_pointer(c%v, v, [3, c%np])
-    call c_f_pointer(c%x, x, [3, c%np])
-    call c_f_pointer(c%mass, mass, [c%np])
-    do p = 1, c%np
+    call c_f_pointer(c%part%cell, cell, [c%part%np])
+    call c_f_pointer(c%part%lx, lx, [3, c%part%np])
+    call c_f_pointer(c%part%v, v, [3, c%part%np])
+    call c_f_pointer(c%part%x, x, [3, c%part%np])
+    call c_f_pointer(c%part%mass, mass, [c%part%np])
+    do p = 1, c%part%np
       if (cell(p) < 0) cycle
       call sg_weights(c, cell(p), lx(:, p), .true., idx8, w8)
       ax = 0.0_dp
@@ -332,18 +332,18 @@ contains
         uy = uy + (w8(k) * aux(AUX_V + 2, cl))
         uz = uz + (w8(k) * aux(AUX_V + 3, cl))
       end do
-      v(1, p) = v(1, p) + (ax * c%dt_int)
-      v(2, p) = v(2, p) + (ay * c%dt_int)
-      v(3, p) = v(3, p) + (az * c%dt_int)
-      x(1, p) = x(1, p) + (ux * c%dt)
-      x(2, p) = x(2, p) + (uy * c%dt)
-      x(3, p) = x(3, p) + (uz * c%dt)
+      v(1, p) = v(1, p) + (ax * c%clock%dt_int)
+      v(2, p) = v(2, p) + (ay * c%clock%dt_int)
+      v(3, p) = v(3, p) + (az * c%clock%dt_int)
+      x(1, p) = x(1, p) + (ux * c%clock%dt)
+      x(2, p) = x(2, p) + (uy * c%clock%dt)
+      x(3, p) = x(3, p) + (uz * c%clock%dt)
     end do
     if (.not. remap) return
     aux(AUX_RP + 1:AUX_RP + 3, :) = 0.0_dp
-    call c_f_pointer(c%patch_start, pstart, [c%npatch + 1])
-    call c_f_pointer(c%patch_part, ppart, [c%np])
-    do q = 0, c%npatch - 1
+    call c_f_pointer(c%patch%patch_start, pstart, [c%patch%npatch + 1])
+    call c_f_pointer(c%patch%patch_part, ppart, [c%part%np])
+    do q = 0, c%patch%npatch - 1
       do idx = pstart(q + 1), pstart(q + 2) - 1
         p = ppart(idx + 1) + 1
         call sg_weights(c, cell(p), lx(:, p), .false., idx8, w8)
@@ -368,17 +368,17 @@ contains
     real(dp) :: lg(0:8), g(3), gs, m, va
     integer :: i, j, l, corner, n, a, b
     call view_aux(c, aux)
-    call c_f_pointer(c%gmass, gmass, [c%nnode])
-    call c_f_pointer(c%gmom, gmom, [3, c%nnode])
-    gs = 0.25_dp * c%inv_h
-    do l = 0, c%nc(3) - 1
-      do j = 0, c%nc(2) - 1
-        do i = 0, c%nc(1) - 1
+    call c_f_pointer(c%grid%gmass, gmass, [c%grid%nnode])
+    call c_f_pointer(c%grid%gmom, gmom, [3, c%grid%nnode])
+    gs = 0.25_dp * c%grid%inv_h
+    do l = 0, c%grid%nc(3) - 1
+      do j = 0, c%grid%nc(2) - 1
+        do i = 0, c%grid%nc(1) - 1
           lg = 0.0_dp
           do corner = 0, 7
             n = corner_node(c, i, j, l, corner)
             m = gmass(n)
-            if (.not. (m > c%mass_cutoff)) cycle
+            if (.not. (m > c%grid%mass_cutoff)) cycle
             do a = 1, 3
               g(a) = merge(gs, -gs, iand(ishft(corner, -(a - 1)), 1) /= 0)
             end do
@@ -389,7 +389,7 @@ contains
               end do
             end do
           end do
-          aux(AUX_L + 1:AUX_L + 9, i + c%nc(1) * (j + c%nc(2) * l) + 1) = lg
+          aux(AUX_L + 1:AUX_L + 9, i + c%grid%nc(1) * (j + c%grid%nc(2) * l) + 1) = lg
         end do
       end do
     end do

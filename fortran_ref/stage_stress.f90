@@ -27,43 +27,43 @@ contains
     integer :: p, cl, base, k, n, a, b, nk
     integer :: ci(3), o(3)
     logical :: has_temp, has_tl, has_q, wide, filter, neoh
-    dt = c%dt
-    wide = c%family == TRANSFER_STENCIL27
-    if (c%shape == 1) call c_f_pointer(c%psize, psize, [c%np])
+    dt = c%clock%dt
+    wide = c%method%family == TRANSFER_STENCIL27
+    if (c%method%shape == 1) call c_f_pointer(c%part%psize, psize, [c%part%np])
     call view_components(c, filter, body, bcomp)
-    call c_f_pointer(c%lx, lx, [3, c%np])
-    call c_f_pointer(c%sig, sig, [6, c%np])
-    call c_f_pointer(c%mass, mass, [c%np])
-    call c_f_pointer(c%vol, vol, [c%np])
-    call c_f_pointer(c%epeff, epeff, [c%np])
-    call c_f_pointer(c%ie, ie, [c%np])
-    call c_f_pointer(c%cell, cell, [c%np])
-    call c_f_pointer(c%mat, mat, [c%np])
-    call c_f_pointer(c%gmass, gmass, [c%nnode])
-    call c_f_pointer(c%gmom, gmom, [3, c%nnode])
-    call c_f_pointer(c%mats, mats, [c%nmat])
-    has_temp = c_associated(c%temp)
+    call c_f_pointer(c%part%lx, lx, [3, c%part%np])
+    call c_f_pointer(c%part%sig, sig, [6, c%part%np])
+    call c_f_pointer(c%part%mass, mass, [c%part%np])
+    call c_f_pointer(c%part%vol, vol, [c%part%np])
+    call c_f_pointer(c%part%epeff, epeff, [c%part%np])
+    call c_f_pointer(c%part%ie, ie, [c%part%np])
+    call c_f_pointer(c%part%cell, cell, [c%part%np])
+    call c_f_pointer(c%part%mat, mat, [c%part%np])
+    call c_f_pointer(c%grid%gmass, gmass, [c%grid%nnode])
+    call c_f_pointer(c%grid%gmom, gmom, [3, c%grid%nnode])
+    call c_f_pointer(c%part%mats, mats, [c%part%nmat])
+    has_temp = c_associated(c%part%temp)
     if (has_temp) then
-      call c_f_pointer(c%temp, temp, [c%np])
+      call c_f_pointer(c%part%temp, temp, [c%part%np])
     else
       nullify(temp)
     end if
-    has_tl = c_associated(c%tlight)
-    if (has_tl) call c_f_pointer(c%tlight, tlight, [c%np])
-    has_q = c_associated(c%qv)
-    if (has_q) call c_f_pointer(c%qv, qv, [c%np])
-    if (c_associated(c%defgrad)) call c_f_pointer(c%defgrad, defgrad, [9, c%np])
-    if (c%tl /= 0) call c_f_pointer(c%pk1, pk1, [9, c%np])
+    has_tl = c_associated(c%part%tlight)
+    if (has_tl) call c_f_pointer(c%part%tlight, tlight, [c%part%np])
+    has_q = c_associated(c%part%qv)
+    if (has_q) call c_f_pointer(c%part%qv, qv, [c%part%np])
+    if (c_associated(c%part%defgrad)) call c_f_pointer(c%part%defgrad, defgrad, [9, c%part%np])
+    if (c%method%tl /= 0) call c_f_pointer(c%part%pk1, pk1, [9, c%part%np])
     tdummy = 0.0_dp
     qdummy = 0.0_dp
-    if (c%family == TRANSFER_SMOOTHED_GRADIENT) call sg_cell_gradients(c)
-    do p = 1, c%np
+    if (c%method%family == TRANSFER_SMOOTHED_GRADIENT) call sg_cell_gradients(c)
+    do p = 1, c%part%np
       cl = cell(p)
       if (cl < 0) cycle
       if (filter) then
         if (other_component(c, p, body, bcomp)) cycle
       end if
-      if (c%family == TRANSFER_SMOOTHED_GRADIENT) then
+      if (c%method%family == TRANSFER_SMOOTHED_GRADIENT) then
         call sg_velocity_gradient(c, cl, lx(:, p), lg)
       else
         call particle_shape(c, wide, p, cl, lx, psize, ci, o, sn, sg, nk)
@@ -72,7 +72,7 @@ contains
         do k = 0, nk - 1
           n = stencil_node(c, wide, base, k)
           m = gmass(n)
-          if (.not. (m > c%mass_cutoff)) cycle
+          if (.not. (m > c%grid%mass_cutoff)) cycle
           do a = 0, 2
             va = gmom(a + 1, n) / m
             do b = 0, 2
@@ -91,7 +91,7 @@ contains
       dw(2) = (0.5_dp * (lg(2) - lg(6))) * dt
       dw(3) = (0.5_dp * (lg(1) - lg(3))) * dt
       vol_old = vol(p)
-      if (c%tl /= 0) then   ! TLmp (neoh only): lg is the gradient in the reference configuration
+      if (c%method%tl /= 0) then   ! TLmp (neoh only): lg is the gradient in the reference configuration
         do k = 0, 8
           dl(k) = lg(k) * dt
         end do
@@ -99,7 +99,7 @@ contains
         cycle
       end if
       neoh = mats(mat(p) + 1)%type == MAT_NEOH
-      if (c%uvf /= 0 .or. neoh) then
+      if (c%method%uvf /= 0 .or. neoh) then
         ! UVFp and neoh: the volume from the deformation, det(I + L dt)
         do k = 0, 8
           dl(k) = lg(k) * dt
@@ -111,28 +111,28 @@ contains
       if (neoh) then
         if (has_q) then
           call neo_hookean(mats(mat(p) + 1), dl, de, defgrad(:, p), vol_old, vol_new, sig(:, p), ie(p), &
-                           .true., qv(p), mass(p), dt, c%bulk_q1, c%bulk_q2, c%h)
+                           .true., qv(p), mass(p), dt, c%method%bulk_q1, c%method%bulk_q2, c%grid%h)
         else
           call neo_hookean(mats(mat(p) + 1), dl, de, defgrad(:, p), vol_old, vol_new, sig(:, p), ie(p), &
-                           .false., qdummy, mass(p), dt, c%bulk_q1, c%bulk_q2, c%h)
+                           .false., qdummy, mass(p), dt, c%method%bulk_q1, c%method%bulk_q2, c%grid%h)
         end if
         vol(p) = vol_new
         cycle
       end if
       burn = 1.0_dp
-      if (has_tl) burn = burn_fraction(mats(mat(p) + 1), tlight(p), c%time)
+      if (has_tl) burn = burn_fraction(mats(mat(p) + 1), tlight(p), c%clock%time)
       if (has_temp .and. has_q) then
         call stress_update(mats(mat(p) + 1), de, dw, dt, mass(p), vol_old, vol_new, sig(:, p), &
-                           epeff(p), ie(p), .true., temp(p), .true., qv(p), burn, c%bulk_q1, c%bulk_q2, c%h)
+                           epeff(p), ie(p), .true., temp(p), .true., qv(p), burn, c%method%bulk_q1, c%method%bulk_q2, c%grid%h)
       else if (has_temp) then
         call stress_update(mats(mat(p) + 1), de, dw, dt, mass(p), vol_old, vol_new, sig(:, p), &
-                           epeff(p), ie(p), .true., temp(p), .false., qdummy, burn, c%bulk_q1, c%bulk_q2, c%h)
+                           epeff(p), ie(p), .true., temp(p), .false., qdummy, burn, c%method%bulk_q1, c%method%bulk_q2, c%grid%h)
       else if (has_q) then
         call stress_update(mats(mat(p) + 1), de, dw, dt, mass(p), vol_old, vol_new, sig(:, p), &
-                           epeff(p), ie(p), .false., tdummy, .true., qv(p), burn, c%bulk_q1, c%bulk_q2, c%h)
+                           epeff(p), ie(p), .false., tdummy, .true., qv(p), burn, c%method%bulk_q1, c%method%bulk_q2, c%grid%h)
       else
         call stress_update(mats(mat(p) + 1), de, dw, dt, mass(p), vol_old, vol_new, sig(:, p), &
-                           epeff(p), ie(p), .false., tdummy, .false., qdummy, burn, c%bulk_q1, c%bulk_q2, c%h)
+                           epeff(p), ie(p), .false., tdummy, .false., qdummy, burn, c%method%bulk_q1, c%method%bulk_q2, c%grid%h)
       end if
       vol(p) = vol_new
     end do

@@ -195,8 +195,8 @@ TEST(Adaptive, ElasticBenchDeckIsTheTaylorGeometry) {
 TEST(Adaptive, PatchRunsHoldEqualParticleShares) {
   std::vector<int> start = {0, 100, 100, 130, 131, 231, 331, 431, 531, 561, 601};
   StepContext c{};
-  c.npatch = int(start.size()) - 1;
-  c.patch_start = start.data();
+  c.patch.npatch = int(start.size()) - 1;
+  c.patch.patch_start = start.data();
   int lo, hi;
   mpm3d::thread_patches(&c, 0, 2, lo, hi);
   EXPECT_EQ(lo, 0);
@@ -226,8 +226,8 @@ TEST(Adaptive, ListChunksCoverEveryEntryOnce) {
   omp_set_num_threads(3);
   std::vector<int> start = {0, 100, 100, 130, 131, 231, 331, 431, 531, 561, 601};
   StepContext c{};
-  c.npatch = int(start.size()) - 1;
-  c.patch_start = start.data();
+  c.patch.npatch = int(start.size()) - 1;
+  c.patch.patch_start = start.data();
   ASSERT_EQ(mpm3d::kListChunk, 64);
   std::vector<int> hits(601);
   for (int rep = 0; rep < 50; ++rep) {

@@ -496,12 +496,12 @@ TEST(Solver, DynamicRelaxationStopsTheParticlesWhenKineticEnergyFalls) {
 TEST(Solver, BoundaryConditionsHoldOneOrTwoNodeLayers) {
   for (int layers : {1, 2}) {
     StepContext c{};
-    c.nn[0] = 5;
-    c.nn[1] = 4;
-    c.nn[2] = 6;
+    c.grid.nn[0] = 5;
+    c.grid.nn[1] = 4;
+    c.grid.nn[2] = 6;
     const int fix[6] = {1, 0, 0, 2, 0, 0};  // x0 fixed, yn symmetric
-    for (int f = 0; f < 6; ++f) c.fix[f] = fix[f];
-    c.fix_layers = layers;
+    for (int f = 0; f < 6; ++f) c.grid.fix[f] = fix[f];
+    c.grid.fix_layers = layers;
     const int nnode = 5 * 4 * 6;
     std::vector<double> a(3 * size_t(nnode), 1.0);
     mpm3d::apply_bc(&c, a.data());

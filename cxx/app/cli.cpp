@@ -405,7 +405,7 @@ int run_main(int argc, char** argv, Ranks* ranks) {
         // contact) the nodes' contact marks from their owners: the file of one process.
         Particles all;
         ranks->gather(sim.model.particles, all);
-        if (m.contact && m.scheme == SCHEME_USF) ranks->share_owned_nodes(sim.ctx, sim.ctx.gnormal, 3);
+        if (m.contact && m.scheme == SCHEME_USF) ranks->share_owned_nodes(sim.ctx, sim.ctx.contact.gnormal, 3);
         std::string error;
         if (root) {
           try {

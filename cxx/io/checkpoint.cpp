@@ -131,7 +131,7 @@ void write_checkpoint(const std::string& path, const Simulation& sim, const Outp
       // USF with contact: the nodes in contact at the end of the last step (their unit
       // normals, zero elsewhere), which the next step's recontact stage reads.
       if (m.contact && m.scheme == SCHEME_USF)
-        put_array(path, s.id, "contact_marks", H5T_NATIVE_DOUBLE, sim.ctx.gnormal, hsize_t(sim.grid.nnode()), 3);
+        put_array(path, s.id, "contact_marks", H5T_NATIVE_DOUBLE, sim.ctx.contact.gnormal, hsize_t(sim.grid.nnode()), 3);
 
       Id g{H5Gcreate2(f.id, "/particles", H5P_DEFAULT, H5Untimed().group, H5P_DEFAULT), H5Gclose};
       if (g.id < 0) fail(path, "cannot create /particles");
@@ -321,7 +321,7 @@ void read_checkpoint(const std::string& path, Simulation& sim, OutputSchedule& o
   sim.set_grid(origin, h, nc, pc, woff, wnc);
   if (marks) {
     if (contact_marks.size() != 3 * size_t(sim.grid.nnode())) fail(path, "contact_marks do not fit the grid");
-    std::copy(contact_marks.begin(), contact_marks.end(), sim.ctx.gnormal);
+    std::copy(contact_marks.begin(), contact_marks.end(), sim.ctx.contact.gnormal);
   }
   size_t kd = 0, ki = 0;
   for (const ParticleField& fd : fields) {

@@ -85,10 +85,10 @@ class MpiRanks final : public Ranks {
 
   // StepContext::exchange.
   static void exchange(const StepContext* c, int kind, int first, int count) {
-    auto* self = static_cast<MpiRanks*>(c->exchange_data);
+    auto* self = static_cast<MpiRanks*>(c->ranks.exchange_data);
     if (kind == EXCHANGE_BUFFERS) self->exchange_buffers(c, first, count);
-    else if (kind == EXCHANGE_PARTIALS) self->exchange_columns(c->partials, kReduceFields, true);
-    else self->exchange_columns(c->cpartials, kContactFields, false);
+    else if (kind == EXCHANGE_PARTIALS) self->exchange_columns(c->out.partials, kReduceFields, true);
+    else self->exchange_columns(c->contact.cpartials, kContactFields, false);
   }
 
  private:
@@ -145,10 +145,10 @@ class MpiRanks final : public Ranks {
     return comp == 2 ? counts_[np1 + size_t(q)] : counts_[size_t(q)] - counts_[np1 + size_t(q)];
   }
   // True when particle p is of contact component 2.
-  bool second(const StepContext& c, int p) const { return contact_ && c.body_comp[c.body[p]] == 2; }
+  bool second(const StepContext& c, int p) const { return contact_ && c.contact.body_comp[c.part.body[p]] == 2; }
   bool same_window(const StepContext& c) const {
     for (int a = 0; a < 3; ++a)
-      if (window_[a] != c.cell_off[a] || window_[3 + a] != c.nc[a]) return false;
+      if (window_[a] != c.grid.cell_off[a] || window_[3 + a] != c.grid.nc[a]) return false;
     return true;
   }
   // The ranks' first patches by the rule above, from counts_.

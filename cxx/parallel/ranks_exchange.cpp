@@ -8,7 +8,7 @@ namespace mpm3d {
 
 void MpiRanks::exchange_buffers(const StepContext* c, int first, int nfield) {
   const size_t pn = size_t(patch_nodes(c));
-  const int comp = c->only_comp;
+  const int comp = c->contact.only_comp;
   // The values of the non-empty ones among patches qs (node lists start).
   auto values = [&](const std::vector<int>& qs, const std::vector<int>& start) {
     size_t n = 0;
@@ -16,7 +16,7 @@ void MpiRanks::exchange_buffers(const StepContext* c, int first, int nfield) {
       if (count(qs[i], comp) > 0) n += size_t(start[i + 1] - start[i]);
     return n * size_t(nfield);
   };
-  auto buffer = [&](int q) { return c->patch_buf + size_t(c->patch_slot[q]) * pn * kNodeFields + size_t(first); };
+  auto buffer = [&](int q) { return c->patch.patch_buf + size_t(c->patch.patch_slot[q]) * pn * kNodeFields + size_t(first); };
   std::vector<MPI_Request> req;
   req.reserve(2 * neighbours_.size());
   for (Neighbour& n : neighbours_) {

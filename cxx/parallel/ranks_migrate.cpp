@@ -41,17 +41,17 @@ void MpiRanks::distribute(Simulation& sim) {
   }
   // Every rank holds every particle here: the counts need no communication.
   const StepContext& c = sim.ctx;
-  contact_ = c.other != nullptr;
-  counts_.assign(size_t(c.npatch) + 1 + (contact_ ? size_t(c.npatch) : 0), 0);
+  contact_ = c.contact.other != nullptr;
+  counts_.assign(size_t(c.patch.npatch) + 1 + (contact_ ? size_t(c.patch.npatch) : 0), 0);
   bin_rows(c, 0, P.np);  // every particle's patch, in pscratch
-  const int* patch = c.pscratch;
+  const int* patch = c.patch.pscratch;
   for (int p = 0; p < P.np; ++p) {
     const int q = patch[p];
     if (q < 0) continue;
     ++counts_[size_t(q)];
-    if (second(c, p)) ++counts_[size_t(c.npatch) + 1 + size_t(q)];
+    if (second(c, p)) ++counts_[size_t(c.patch.npatch) + 1 + size_t(q)];
   }
-  partition(sim, draw(c.npatch));
+  partition(sim, draw(c.patch.npatch));
   std::vector<int> keep;
   for (int p = 0; p < P.np; ++p) {
     const int q = patch[p];
@@ -74,10 +74,10 @@ void MpiRanks::distribute(Simulation& sim) {
   perm_.resize(gidx_.size());
   std::iota(perm_.begin(), perm_.end(), 0);
   // Before the rebinding, which copies the context into component 2's (contact).
-  sim.ctx.exchange = &MpiRanks::exchange;
-  sim.ctx.exchange_data = this;
-  sim.ctx.order = perm_.data();
-  sim.ctx.prebinned = 1;
+  sim.ctx.ranks.exchange = &MpiRanks::exchange;
+  sim.ctx.ranks.exchange_data = this;
+  sim.ctx.ranks.order = perm_.data();
+  sim.ctx.ranks.prebinned = 1;
   sim.particles_changed();
   bin_rows(sim.ctx, 0, P.np);
 }
@@ -85,7 +85,7 @@ void MpiRanks::distribute(Simulation& sim) {
 void MpiRanks::migrate(Simulation& sim) {
   Particles& P = sim.model.particles;
   const StepContext& c = sim.ctx;
-  const int npatch = c.npatch;
+  const int npatch = c.patch.npatch;
   const int ncount = npatch + 1 + (contact_ ? npatch : 0);
   std::vector<int> local(size_t(ncount), 0);
   dest_.resize(size_t(P.np));
@@ -95,7 +95,7 @@ void MpiRanks::migrate(Simulation& sim) {
   const bool new_window = !same_window(c);
   // The bin stage's binning, done here (prebinned): it tells which particles move.
   bin_rows(c, 0, P.np);
-  const int* patch = c.pscratch;
+  const int* patch = c.patch.pscratch;
   for (int p = 0; p < P.np; ++p) {
     const int q = patch[p];
     if (q >= 0) {
@@ -132,7 +132,7 @@ void MpiRanks::migrate(Simulation& sim) {
       // USF contact reads the last step's contact marks at the nodes its particles read,
       // which after the redraw include nodes this rank did not assemble: every node's from
       // its old owner first.
-      if (contact_ && c.scheme == SCHEME_USF) share_owned_nodes(c, c.gnormal, 3);
+      if (contact_ && c.method.scheme == SCHEME_USF) share_owned_nodes(c, c.contact.gnormal, 3);
       partition(sim, std::move(first));
       imbalance_ = shares();
       ++rebalances_;
@@ -193,9 +193,9 @@ void MpiRanks::migrate(Simulation& sim) {
     for_arrays([&](auto& vec, size_t nc) {
       std::memcpy(vec.data() + nc * size_t(i), vec.data() + nc * (size_t(n) - 1), nc * sizeof(vec[0]));
     });
-    for (int a = 0; a < 3; ++a) c.lx[3 * size_t(i) + size_t(a)] = c.lx[3 * (size_t(n) - 1) + size_t(a)];
-    c.cell[i] = c.cell[n - 1];
-    c.pscratch[i] = c.pscratch[n - 1];
+    for (int a = 0; a < 3; ++a) c.part.lx[3 * size_t(i) + size_t(a)] = c.part.lx[3 * (size_t(n) - 1) + size_t(a)];
+    c.part.cell[i] = c.part.cell[n - 1];
+    c.patch.pscratch[i] = c.patch.pscratch[n - 1];
     newidx_[size_t(i)] = -1;
     newidx_[size_t(n) - 1] = i;
     gidx_[size_t(i)] = gidx_[size_t(n) - 1];
@@ -230,7 +230,7 @@ void MpiRanks::migrate(Simulation& sim) {
   std::merge(perm_.begin(), perm_.end(), arrived.begin(), arrived.end(), perm_next_.begin(), by_storage);
   perm_.swap(perm_next_);
   P.np = total;
-  sim.ctx.order = perm_.data();  // before the rebinding, which copies it into component 2's context
+  sim.ctx.ranks.order = perm_.data();  // before the rebinding, which copies it into component 2's context
   sim.particles_changed();
   bin_rows(sim.ctx, n, total);  // the arrivals' binning
 }
@@ -242,17 +242,17 @@ void MpiRanks::add_ghost_slots(Simulation& sim) {
     // This rank's particles (of the context's component) must be exactly those binned
     // into its patches.
     long mine = 0;
-    for (int q = lo; q < hi; ++q) mine += count(q, c->only_comp);
-    if (c->patch_start[c->npatch] != mine || c->patch_start[lo] != 0 || c->patch_start[hi] != mine)
+    for (int q = lo; q < hi; ++q) mine += count(q, c->contact.only_comp);
+    if (c->patch.patch_start[c->patch.npatch] != mine || c->patch.patch_start[lo] != 0 || c->patch.patch_start[hi] != mine)
       throw std::logic_error("ranks: a particle is binned into another rank's patch");
     for (const Neighbour& n : neighbours_)
       for (int q : n.recv)
-        if (count(q, c->only_comp) > 0) c->patch_slot[q] = c->nslot++;
+        if (count(q, c->contact.only_comp) > 0) c->patch.patch_slot[q] = c->patch.nslot++;
   }
   // The patch statistics of the whole run (with contact, component 1's, as on one rank).
   const StepContext& c = sim.ctx;
-  std::vector<int> start(size_t(c.npatch) + 1, 0);
-  for (int q = 0; q < c.npatch; ++q) start[size_t(q) + 1] = start[size_t(q)] + count(q, c.only_comp);
+  std::vector<int> start(size_t(c.patch.npatch) + 1, 0);
+  for (int q = 0; q < c.patch.npatch; ++q) start[size_t(q) + 1] = start[size_t(q)] + count(q, c.contact.only_comp);
   sim.stats = patch_stats(sim.grid, start.data());
 }
 

@@ -9,9 +9,9 @@ namespace mpm3d {
 // The bin stage's own kernel (transfer_lanes.hpp, bin_range), so both always agree.
 void MpiRanks::bin_rows(const StepContext& c, int lo, int hi) {
   StepContext all = c;
-  all.only_comp = 0;  // the patches of both contact components
-  if (lanes_use_avx2()) bin_range_avx2(&all, lo, hi, all.pscratch);
-  else bin_range<VectorLane<kLanes>>(&all, lo, hi, all.pscratch);
+  all.contact.only_comp = 0;  // the patches of both contact components
+  if (lanes_use_avx2()) bin_range_avx2(&all, lo, hi, all.patch.pscratch);
+  else bin_range<VectorLane<kLanes>>(&all, lo, hi, all.patch.pscratch);
 }
 
 // The ranks' patch runs from counts_ (thread_patches' rule over ranks: rank u starts at
@@ -32,23 +32,23 @@ std::vector<int> MpiRanks::draw(int npatch) const {
 
 void MpiRanks::partition(const Simulation& sim, std::vector<int> first) {
   const StepContext& c = sim.ctx;
-  const int npatch = c.npatch;
+  const int npatch = c.patch.npatch;
   first_ = std::move(first);
   for (int a = 0; a < 3; ++a) {
-    window_[a] = c.cell_off[a];
-    window_[3 + a] = c.nc[a];
+    window_[a] = c.grid.cell_off[a];
+    window_[3 + a] = c.grid.nc[a];
   }
   owner_.assign(size_t(npatch), 0);
   for (int u = 0; u < size_; ++u)
     for (int q = first_[size_t(u)]; q < first_[size_t(u) + 1]; ++q) owner_[size_t(q)] = u;
   std::vector<std::vector<int>> send(static_cast<size_t>(size_)), recv(static_cast<size_t>(size_));
-  const int n0 = c.npd[0], n1 = c.npd[1], n2 = c.npd[2];
+  const int n0 = c.patch.npd[0], n1 = c.patch.npd[1], n2 = c.patch.npd[2];
   // The patches whose buffers add into a node this rank's particles read, along one axis:
   // a particle of patch q reads nodes q P - H .. (q + 1) P + H (H the halo of the wide
   // stencils), and patch r's buffer holds nodes r P - H .. (r + 1) P + H, so r lies within
   // q -+ (1 + floor(2 H / P)): one patch each way for the trilinear stencil, and for the
   // 27-node ones when P >= 3.
-  const int R = 1 + (2 * c.patch_halo) / c.patch_cells;
+  const int R = 1 + (2 * c.patch.patch_halo) / c.patch.patch_cells;
   for (int q = first_[size_t(rank_)]; q < first_[size_t(rank_) + 1]; ++q) {
     const int qx = q % n0, qy = (q / n0) % n1, qz = q / (n0 * n1);
     for (int dz = -R; dz <= R; ++dz)
@@ -93,8 +93,8 @@ void MpiRanks::partition(const Simulation& sim, std::vector<int> first) {
 // (o - q) P .. (o - q) P + P + 2 H. The patches whose span meets q's lie within R of it.
 void MpiRanks::shared_nodes(const StepContext& c, int q, int reader, std::vector<unsigned char>& mark,
                             std::vector<int>& out) const {
-  const int P = c.patch_cells, H = c.patch_halo, Q = P + 1 + 2 * H, R = 1 + (2 * H) / P;
-  const int n0 = c.npd[0], n1 = c.npd[1], n2 = c.npd[2];
+  const int P = c.patch.patch_cells, H = c.patch.patch_halo, Q = P + 1 + 2 * H, R = 1 + (2 * H) / P;
+  const int n0 = c.patch.npd[0], n1 = c.patch.npd[1], n2 = c.patch.npd[2];
   const int q3[3] = {q % n0, (q / n0) % n1, q / (n0 * n1)};
   mark.assign(size_t(Q) * size_t(Q) * size_t(Q), 0);
   for (int dz = -R; dz <= R; ++dz)

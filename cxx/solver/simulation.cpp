@@ -41,13 +41,13 @@ constexpr int kMovingWork = 8;
 // its velocity and stress are zero (either sign) and, an explosive, it is unlit at time t.
 inline bool particle_quiet(const StepContext* c, const unsigned char* still, int p, double t) {
   if (still[p] != 3) return false;
-  const double* v = c->v + 3 * p;
+  const double* v = c->part.v + 3 * p;
   if (v[0] != 0.0 || v[1] != 0.0 || v[2] != 0.0) return false;
-  const double* s = c->sig + 6 * size_t(p);
+  const double* s = c->part.sig + 6 * size_t(p);
   for (int k = 0; k < 6; ++k)
     if (s[k] != 0.0) return false;
-  const MaterialParams& mp = c->mats[c->mat[p]];
-  return !(c->tlight && mp.type == MAT_HIEX) || burn_fraction(mp, c->tlight[p], t) == 0.0;
+  const MaterialParams& mp = c->part.mats[c->part.mat[p]];
+  return !(c->part.tlight && mp.type == MAT_HIEX) || burn_fraction(mp, c->part.tlight[p], t) == 0.0;
 }
 
 }  // namespace
@@ -112,22 +112,22 @@ namespace {
 
 // The context's grid arrays and patch buffers are those of grid g.
 void point_at_grid(StepContext& c, Grid& g) {
-  c.gmass = g.mass.data();
-  c.gmom = g.mom.data();
-  c.gforce = g.force.data();
-  c.patch_start = g.patch_start.data();
-  c.patch_part = g.patch_part.data();
-  c.patch_slot = g.patch_slot.data();
-  c.patch_buf = g.patch_buf.data();
+  c.grid.gmass = g.mass.data();
+  c.grid.gmom = g.mom.data();
+  c.grid.gforce = g.force.data();
+  c.patch.patch_start = g.patch_start.data();
+  c.patch.patch_part = g.patch_part.data();
+  c.patch.patch_slot = g.patch_slot.data();
+  c.patch.patch_buf = g.patch_buf.data();
 }
 
-// Room in g's patch buffers for the patches binned into c.nslot slots (a quarter more, so
+// Room in g's patch buffers for the patches binned into c.patch.nslot slots (a quarter more, so
 // that a slowly growing count does not reallocate every step).
 void ensure_patch_buffer(StepContext& c, Grid& g) {
-  const size_t need = size_t(c.nslot) * size_t(g.patch_nodes) * kNodeFields;
+  const size_t need = size_t(c.patch.nslot) * size_t(g.patch_nodes) * kNodeFields;
   if (g.patch_buf.size() < need) {
     g.patch_buf.resize(need + need / 4);
-    c.patch_buf = g.patch_buf.data();
+    c.patch.patch_buf = g.patch_buf.data();
   }
 }
 
@@ -136,73 +136,79 @@ void ensure_patch_buffer(StepContext& c, Grid& g) {
 void Simulation::bind() {
   Particles& P = model.particles;
   StepContext& c = ctx;
-  c.x = P.x.data();
-  c.v = P.v.data();
-  c.sig = P.sig.data();
-  c.mass = P.mass.data();
-  c.vol = P.vol.data();
-  c.epeff = P.epeff.data();
-  c.ie = P.ie.data();
-  c.temp = P.temp.empty() ? nullptr : P.temp.data();
-  c.fext = P.fext.empty() ? nullptr : P.fext.data();
-  c.tlight = P.tlight.empty() ? nullptr : P.tlight.data();
-  c.qv = P.qv.empty() ? nullptr : P.qv.data();
-  c.bulk_q1 = model.bulk_q1;
-  c.bulk_q2 = model.bulk_q2;
-  c.lx = lx_.data();
-  c.mat = P.mat.data();
-  c.body = P.body.data();
-  c.cell = cell_.data();
+  auto or_null = [](std::vector<double>& v) { return v.empty() ? nullptr : v.data(); };
+  // The particles: the model's arrays, the bin stage's cell and lx, the bodies' gravity.
   pscratch_.resize(size_t(P.np), 0);  // written by the bin stage (or the ranks) before it is read
-  c.pscratch = pscratch_.data();
-  std::vector<double>& grav = gravity_;
-  grav.assign(3 * model.bodies.size(), 0.0);
+  gravity_.assign(3 * model.bodies.size(), 0.0);
   for (size_t b = 0; b < model.bodies.size(); ++b)
-    for (int a = 0; a < 3; ++a) grav[3 * b + a] = model.bodies[b].gravity[a];
-  c.gravity = grav.data();
-  c.mats = model.mats.data();
-  c.h = grid.h;
-  c.inv_h = 1.0 / grid.h;
-  c.dt = model.dt;
-  c.dt_int = model.dt;
-  c.mass_cutoff = grid.mass_cutoff;
-  c.np = P.np;
-  c.nbody = int(model.bodies.size());
-  c.nmat = int(model.mats.size());
-  c.patch_cells = grid.patch_cells;
-  for (int f = 0; f < 6; ++f) c.fix[f] = grid.fix[f];
-  c.scheme = model.scheme;
-  c.has_body_force = (model.has_gravity || model.has_loads || model.damping > 0.0) ? 1 : 0;
-  c.load_ramp_time = model.load_ramp_time;
-  c.damping = model.damping;
-  // GIMP and B-spline: 27-node stencils, patch buffers with a halo of one node layer.
-  c.psize = model.gimp ? P.psize.data() : nullptr;
-  c.shape = model.shape();
-  c.fix_layers = model.fix_layers();
-  c.patch_halo = grid.patch_halo;
-  c.body_comp = nullptr;
-  c.other = nullptr;
-  c.gnormal = nullptr;
-  c.cpartials = nullptr;
-  c.only_comp = 0;
-  c.defgrad = P.defgrad.empty() ? nullptr : P.defgrad.data();
-  c.tl = model.tl ? 1 : 0;
-  c.xbin = model.tl ? P.x0.data() : P.x.data();  // TLmp: the particles stay in their reference cells
-  c.pk1 = model.tl ? P.pk1.data() : nullptr;
-  c.uvf = model.uvf ? 1 : 0;
-  // sgmp: the cell centres' scratch fields (the grid window is the whole box: no regrid).
-  if (model.sg) aux_.assign(size_t(kAuxFields) * size_t(grid.nc[0]) * size_t(grid.nc[1]) * size_t(grid.nc[2]), 0.0);
-  c.aux = model.sg ? aux_.data() : nullptr;
+    for (int a = 0; a < 3; ++a) gravity_[3 * b + a] = model.bodies[b].gravity[a];
+  StepParticles& pt = c.part;
+  pt.x = P.x.data();
+  pt.v = P.v.data();
+  pt.sig = P.sig.data();
+  pt.mass = P.mass.data();
+  pt.vol = P.vol.data();
+  pt.epeff = P.epeff.data();
+  pt.ie = P.ie.data();
+  pt.temp = or_null(P.temp);
+  pt.fext = or_null(P.fext);
+  pt.tlight = or_null(P.tlight);
+  pt.qv = or_null(P.qv);
+  pt.lx = lx_.data();
+  pt.mat = P.mat.data();
+  pt.body = P.body.data();
+  pt.cell = cell_.data();
+  pt.gravity = gravity_.data();
+  pt.mats = model.mats.data();
+  pt.np = P.np;
+  pt.nbody = int(model.bodies.size());
+  pt.nmat = int(model.mats.size());
+  pt.psize = model.gimp ? P.psize.data() : nullptr;
+  pt.defgrad = or_null(P.defgrad);
+  pt.xbin = model.tl ? P.x0.data() : P.x.data();  // TLmp: the particles stay in their reference cells
+  pt.pk1 = model.tl ? P.pk1.data() : nullptr;
+  // The grid's constants (its arrays: bind_grid) and the patches' size.
+  c.grid.h = grid.h;
+  c.grid.inv_h = 1.0 / grid.h;
+  c.grid.mass_cutoff = grid.mass_cutoff;
+  for (int f = 0; f < 6; ++f) c.grid.fix[f] = grid.fix[f];
+  c.grid.fix_layers = model.fix_layers();
+  c.patch.pscratch = pscratch_.data();
+  c.patch.patch_cells = grid.patch_cells;
+  c.patch.patch_halo = grid.patch_halo;  // GIMP, B-spline, sgmp: one node layer beyond the cells
+  c.clock.dt = model.dt;
+  c.clock.dt_int = model.dt;
+  // What the deck asks of the step, and its shape-function family (transfer/transfer.hpp).
+  StepMethod& me = c.method;
+  me.scheme = model.scheme;
+  me.has_body_force = (model.has_gravity || model.has_loads || model.damping > 0.0) ? 1 : 0;
+  me.load_ramp_time = model.load_ramp_time;
+  me.damping = model.damping;
+  me.bulk_q1 = model.bulk_q1;
+  me.bulk_q2 = model.bulk_q2;
+  me.shape = model.shape();
+  me.tl = model.tl ? 1 : 0;
+  me.uvf = model.uvf ? 1 : 0;
+  me.sg = model.sg ? 1 : 0;
+  me.family = model.sg ? TRANSFER_SMOOTHED_GRADIENT : me.shape != 0 ? TRANSFER_STENCIL27 : TRANSFER_TRILINEAR;
+  // Contact: set below when the deck has it.
+  c.contact.body_comp = nullptr;
+  c.contact.other = nullptr;
+  c.contact.gnormal = nullptr;
+  c.contact.cpartials = nullptr;
+  c.contact.only_comp = 0;
+  // sgmp: the cell centres' scratch fields (the grid window is the whole box: no regrid) and
+  // the C++ kernels' per-entry weights.
   if (model.sg) {
+    aux_.assign(size_t(kAuxFields) * size_t(grid.nc[0]) * size_t(grid.nc[1]) * size_t(grid.nc[2]), 0.0);
     sg_w_.assign(size_t(kSgWeights) * size_t(P.np), 0.0);
     sg_cell_.assign(8 * size_t(P.np), 0);
     sg_reach_.assign(size_t(P.np), 0);
   }
-  c.sg_w = model.sg ? sg_w_.data() : nullptr;
-  c.sg_cell = model.sg ? sg_cell_.data() : nullptr;
-  c.sg_reach = model.sg ? sg_reach_.data() : nullptr;
-  c.sg = model.sg ? 1 : 0;
-  c.family = model.sg ? TRANSFER_SMOOTHED_GRADIENT : c.shape != 0 ? TRANSFER_STENCIL27 : TRANSFER_TRILINEAR;
+  c.sgmp.aux = model.sg ? aux_.data() : nullptr;
+  c.sgmp.sg_w = model.sg ? sg_w_.data() : nullptr;
+  c.sgmp.sg_cell = model.sg ? sg_cell_.data() : nullptr;
+  c.sgmp.sg_reach = model.sg ? sg_reach_.data() : nullptr;
   forget_rest();  // new arrays: nothing is known still
   bind_grid();  // before the contact copy: ctx2 starts as a copy of ctx
   if (model.contact) {
@@ -215,16 +221,16 @@ void Simulation::bind() {
     if (gnormal1_.size() != 3 * size_t(grid.nnode())) gnormal1_.assign(3 * size_t(grid.nnode()), 0.0);
     if (gnormal2_.size() != 3 * size_t(grid.nnode())) gnormal2_.assign(3 * size_t(grid.nnode()), 0.0);
     cpartials_.assign(size_t(kContactFields) * size_t(grid.npatch), 0.0);
-    c.body_comp = body_comp_.data();
-    c.contact_mu = model.contact_mu;
-    c.contact_normbody = model.contact_normbody;
-    c.cpartials = cpartials_.data();
+    c.contact.body_comp = body_comp_.data();
+    c.contact.contact_mu = model.contact_mu;
+    c.contact.contact_normbody = model.contact_normbody;
+    c.contact.cpartials = cpartials_.data();
     ctx2 = c;
-    c.only_comp = 1;
-    c.gnormal = gnormal1_.data();
-    c.other = &ctx2;
-    ctx2.only_comp = 2;
-    ctx2.gnormal = gnormal2_.data();
+    c.contact.only_comp = 1;
+    c.contact.gnormal = gnormal1_.data();
+    c.contact.other = &ctx2;
+    ctx2.contact.only_comp = 2;
+    ctx2.contact.gnormal = gnormal2_.data();
     point_at_grid(ctx2, grid2);
   }
 }
@@ -233,18 +239,18 @@ void Simulation::bind_grid() {
   StepContext& c = ctx;
   point_at_grid(c, grid);
   for (int a = 0; a < 3; ++a) {
-    c.origin[a] = grid.origin[a];
-    c.nc[a] = grid.nc[a];
-    c.nn[a] = grid.nn[a];
-    c.npd[a] = grid.npd[a];
-    c.cell_off[a] = grid.off[a];
+    c.grid.origin[a] = grid.origin[a];
+    c.grid.nc[a] = grid.nc[a];
+    c.grid.nn[a] = grid.nn[a];
+    c.patch.npd[a] = grid.npd[a];
+    c.grid.cell_off[a] = grid.off[a];
   }
-  c.nnode = grid.nnode();
-  c.npatch = grid.npatch;
+  c.grid.nnode = grid.nnode();
+  c.patch.npatch = grid.npatch;
   // The energy stage's columns: one per patch and one for the particles outside the grid.
   const size_t ncolumn_values = size_t(kReduceFields) * (size_t(grid.npatch) + 1);
   if (partials_.size() != ncolumn_values) partials_.assign(ncolumn_values, 0.0);
-  c.partials = partials_.data();
+  c.out.partials = partials_.data();
 }
 
 void Simulation::regrid(int escaped) {
@@ -299,12 +305,12 @@ void Simulation::set_grid(const double origin[3], double h, const int deck_nc[3]
 
 void Simulation::bin_particles() {
   forget_rest();  // the particles may have been replaced (a restart)
-  ctx.sg_cached = ctx2.sg_cached = 0;
+  ctx.sgmp.sg_cached = ctx2.sgmp.sg_cached = 0;
   stages_.fn[ST_BIN](&ctx);
   if (model.contact) stages_.fn[ST_BIN](&ctx2);
   lists_binned_ = true;
   reference_bin_holds_ = model.tl && !ranks;
-  stats = patch_stats(grid, ctx.patch_start);
+  stats = patch_stats(grid, ctx.patch.patch_start);
   // The patch buffers for these lists now, with the set-up, rather than in the first step:
   // their zero-filling and first touch (1.5 MB on taylor_coarse, 22 us a step averaged over
   // 200 steps at 1 thread) is no part of a step's cost.
@@ -319,7 +325,7 @@ void Simulation::distribute(Ranks& r) {
 void Simulation::particles_changed() {
   // This step's time step and clock (Simulation::step sets them before the bin stage, where
   // the particles move between ranks) outlive the rebinding.
-  const double dt = ctx.dt, dt_int = ctx.dt_int, t = ctx.time;
+  const double dt = ctx.clock.dt, dt_int = ctx.clock.dt_int, t = ctx.clock.time;
   // The per-particle scratch keeps its rows (the ranks may have binned them already, moving
   // them with the particles: StepContext::prebinned).
   const size_t np = size_t(model.particles.np);
@@ -330,9 +336,9 @@ void Simulation::particles_changed() {
   if (model.contact) grid2.patch_part.resize(np, 0);
   bind();
   for (StepContext* c : {&ctx, &ctx2}) {
-    c->dt = dt;
-    c->dt_int = dt_int;
-    c->time = t;
+    c->clock.dt = dt;
+    c->clock.dt_int = dt_int;
+    c->clock.time = t;
   }
 }
 
@@ -344,21 +350,21 @@ void Simulation::ensure_patch_buffers() {
 void Simulation::step() {
   StepContext* c = &ctx;
   const double kinetic_before = kinetic;
-  c->dt = model.dt;
-  c->dt_int = steps == 0 ? 0.5 * model.dt : model.dt;  // first step: momentum with dt/2
-  c->time = time + model.dt;  // the end of this step (programmed burn)
+  c->clock.dt = model.dt;
+  c->clock.dt_int = steps == 0 ? 0.5 * model.dt : model.dt;  // first step: momentum with dt/2
+  c->clock.time = time + model.dt;  // the end of this step (programmed burn)
   const bool contact = model.contact;
   if (contact) {
-    ctx2.dt = c->dt;
-    ctx2.dt_int = c->dt_int;
-    ctx2.time = c->time;
+    ctx2.clock.dt = c->clock.dt;
+    ctx2.clock.dt_int = c->clock.dt_int;
+    ctx2.clock.time = c->clock.time;
   }
   // The scheme's row of the step table (step_order.c), walked as the Fortran driver does.
   int order[MPM3D_MAX_STEP_STAGES];
-  const int nstage = mpm3d_step_order(c->scheme, order);
-  if (nstage < 0) throw std::logic_error("unknown update scheme " + std::to_string(c->scheme));
-  c->sg_rest = nullptr;  // the bin stage shares the patches by their particles
-  c->patch_work = nullptr;
+  const int nstage = mpm3d_step_order(c->method.scheme, order);
+  if (nstage < 0) throw std::logic_error("unknown update scheme " + std::to_string(c->method.scheme));
+  c->rest.sg_rest = nullptr;  // the bin stage shares the patches by their particles
+  c->patch.patch_work = nullptr;
   for (int k = 0; k < nstage; ++k) {
     const int s = order[k];
     if (mpm3d_stage_needs_contact(s) && !contact) continue;
@@ -374,21 +380,21 @@ void Simulation::step() {
     }
     run_stage(s);
     if (s == ST_CONTACT) {  // both grids integrated: the pair's momenta and forces corrected
-      for (int a = 0; a < 3; ++a) contact_force[a] = c->result[5 + a];
-      contact_nodes = c->ncontact;
+      for (int a = 0; a < 3; ++a) contact_force[a] = c->out.result[5 + a];
+      contact_nodes = c->contact.ncontact;
     }
   }
   if (rest_on_) timed(ST_BIN, [&] { quiet_patches(quiet_before_); });  // this step's lists, for the next
-  outside = c->noutside + (contact ? ctx2.noutside : 0);
+  outside = c->out.noutside + (contact ? ctx2.out.noutside : 0);
   if (ranks) outside = int(ranks->sum(outside));
-  kinetic = c->result[0];
-  internal = c->result[1];
-  for (int a = 0; a < 3; ++a) momentum[a] = c->result[2 + a];
+  kinetic = c->out.result[0];
+  internal = c->out.result[1];
+  for (int a = 0; a < 3; ++a) momentum[a] = c->out.result[2 + a];
   ++steps;
   time += model.dt;
   // The bound of the work of gravity and loads: the energy stage's sum of |f . v| with the
   // end-of-step velocities (0 without body forces), times this step's dt.
-  external_work += c->result[8] * model.dt;
+  external_work += c->out.result[8] * model.dt;
   if (model.dt_per_step) model.dt = velocity_time_step();
   if (model.dynamic_relaxation && kinetic - kinetic_before <= 0.0) {
     std::fill(model.particles.v.begin(), model.particles.v.end(), 0.0);
@@ -424,43 +430,43 @@ bool Simulation::rest_possible() const {
 void Simulation::forget_rest() {
   still_.assign(model.sg ? size_t(model.particles.np) : 0, 0);
   quiet_before_.clear();
-  ctx.sg_still = nullptr;
-  ctx.sg_rest = nullptr;
-  ctx.patch_work = nullptr;
+  ctx.rest.sg_still = nullptr;
+  ctx.rest.sg_rest = nullptr;
+  ctx.patch.patch_work = nullptr;
   rest_on_ = false;
 }
 
 void Simulation::quiet_patches(std::vector<unsigned char>& quiet) const {
   const StepContext* c = &ctx;
-  const int npatch = c->npatch;
+  const int npatch = c->patch.npatch;
   quiet.assign(size_t(npatch), 0);
   const unsigned char* still = still_.data();
   unsigned char* out = quiet.data();
-  const double t = c->time;
+  const double t = c->clock.time;
 #pragma omp parallel for schedule(static)
   for (int q = 0; q < npatch; ++q) {
     bool all = true;
-    for (int e = c->patch_start[q]; all && e < c->patch_start[q + 1]; ++e)
-      all = particle_quiet(c, still, c->patch_part[e], t);
+    for (int e = c->patch.patch_start[q]; all && e < c->patch.patch_start[q + 1]; ++e)
+      all = particle_quiet(c, still, c->patch.patch_part[e], t);
     out[q] = all ? 1 : 0;
   }
 }
 
 void Simulation::mark_rest() {
   StepContext* c = &ctx;
-  const int npatch = c->npatch;
+  const int npatch = c->patch.npatch;
   quiet_patches(quiet_);
   // Quiet now over this step's lists and at the end of the step before over its lists: a
   // particle that moved out of a patch's reach in that step was still listed there.
   if (quiet_before_.size() != size_t(npatch)) quiet_before_.assign(size_t(npatch), 0);
   for (int q = 0; q < npatch; ++q) quiet_[size_t(q)] = quiet_[size_t(q)] & quiet_before_[size_t(q)];
   // At rest: every patch within kRestReachCells quiet, one axis at a time.
-  const int r = (kRestReachCells + c->patch_cells - 1) / c->patch_cells;
+  const int r = (kRestReachCells + c->patch.patch_cells - 1) / c->patch.patch_cells;
   rest_ = quiet_;
   ring_.assign(size_t(npatch), 0);
   long stride = 1;
   for (int a = 0; a < 3; ++a) {
-    const int len = c->npd[a];
+    const int len = c->patch.npd[a];
     for (int q = 0; q < npatch; ++q) {
       const int i = int((q / stride) % len);
       const int lo = i - r < 0 ? 0 : i - r, hi = i + r >= len ? len - 1 : i + r;
@@ -473,13 +479,13 @@ void Simulation::mark_rest() {
   }
   patch_work_.assign(size_t(npatch) + 1, 0);
   for (int q = 0; q < npatch; ++q) {
-    const int n = c->patch_start[q + 1] - c->patch_start[q];
+    const int n = c->patch.patch_start[q + 1] - c->patch.patch_start[q];
     if (rest_[size_t(q)]) rest_particle_steps += n;
     patch_work_[size_t(q) + 1] = patch_work_[size_t(q)] + n * (rest_[size_t(q)] ? 1 : kMovingWork);
   }
-  c->sg_still = still_.data();
-  c->sg_rest = rest_.data();
-  c->patch_work = patch_work_.data();
+  c->rest.sg_still = still_.data();
+  c->rest.sg_rest = rest_.data();
+  c->patch.patch_work = patch_work_.data();
 }
 
 void Simulation::run_stage(int s) {
@@ -493,7 +499,7 @@ void Simulation::bin_stage() {
   // those of the last bin, its cells, local coordinates, lists and slots are this step's,
   // bit for bit (one process: ranks bin in their migration).
   if (reference_bin_holds_) return;  // and so do the sgmp weights cached from it
-  ctx.sg_cached = ctx2.sg_cached = 0;  // the particles are binned again below
+  ctx.sgmp.sg_cached = ctx2.sgmp.sg_cached = 0;  // the particles are binned again below
   // The adaptive window: a scheduled regrid before binning; a regrid and a second binning
   // when a particle inside the deck's box has left the window, so that the window never
   // freezes a particle the box would not have frozen.
@@ -507,7 +513,7 @@ void Simulation::bin_stage() {
   lists_binned_ = true;
   int escaped = 0;
   if (!grid.window_is_box()) {
-    if (c->noutside > 0) escaped = count_escaped(grid, c->x, c->cell, c->np);
+    if (c->out.noutside > 0) escaped = count_escaped(grid, c->part.x, c->part.cell, c->part.np);
     if (ranks) escaped = int(ranks->sum(escaped));
     if (escaped > 0) {
       timed(ST_BIN, [&] { regrid(escaped); });
@@ -515,7 +521,7 @@ void Simulation::bin_stage() {
       run_stage(ST_BIN);
     }
   }
-  stats = patch_stats(grid, c->patch_start);
+  stats = patch_stats(grid, c->patch.patch_start);
   reference_bin_holds_ = model.tl && !ranks;
   if (ranks) ranks->add_ghost_slots(*this);  // also the patch statistics of every rank's particles
   if (scheduled || escaped > 0) note_regrid(escaped);
@@ -526,9 +532,9 @@ void Simulation::measure() {
   // The sums are folded over the patch lists: they must come from a bin of these particles.
   if (!lists_binned_) throw std::logic_error("Simulation::measure: the particles are not binned");
   stages_.fn[ST_ENERGY](&ctx);
-  kinetic = ctx.result[0];
-  internal = ctx.result[1];
-  for (int a = 0; a < 3; ++a) momentum[a] = ctx.result[2 + a];
+  kinetic = ctx.out.result[0];
+  internal = ctx.out.result[1];
+  for (int a = 0; a < 3; ++a) momentum[a] = ctx.out.result[2 + a];
 }
 
 }  // namespace mpm3d

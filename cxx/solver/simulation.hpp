@@ -49,7 +49,7 @@ class Simulation {
 
   Model model;
   Grid grid;
-  StepContext ctx{};  // every particle; with contact: component 1 (ctx.other = &ctx2)
+  StepContext ctx{};  // every particle; with contact: component 1 (ctx.contact.other = &ctx2)
   Grid grid2;         // contact only: component 2's grid
   StepContext ctx2{};  // contact only: component 2's context
   double contact_force[3] = {0, 0, 0};  // contact: force on component 1 in the last step

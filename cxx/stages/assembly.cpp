@@ -18,8 +18,8 @@ namespace {
 // constant, so the per-node loops unroll.
 template <int first, int count>
 void assemble_fields(const StepContext* c, double* dst_mass, double* dst_mom, double* dst_force) {
-  const int P = c->patch_cells, Q = P + 1;
-  const int npd0 = c->npd[0], npd1 = c->npd[1], npd2 = c->npd[2];
+  const int P = c->patch.patch_cells, Q = P + 1;
+  const int npd0 = c->patch.npd[0], npd1 = c->patch.npd[1], npd2 = c->patch.npd[2];
   const int pn = Q * Q * Q;
   for_patches(c, [&](int q) {
     const int qx = q % npd0, qy = (q / npd0) % npd1, qz = q / (npd0 * npd1);
@@ -32,17 +32,17 @@ void assemble_fields(const StepContext* c, double* dst_mass, double* dst_mom, do
           const int px = qx - 1 + cx, py = qy - 1 + cy, pz = qz - 1 + cz;
           const double* b = nullptr;
           if (px >= 0 && py >= 0 && pz >= 0) {
-            const int slot = c->patch_slot[px + npd0 * (py + npd1 * pz)];
-            if (slot >= 0) b = c->patch_buf + size_t(slot) * size_t(pn) * kNodeFields;
+            const int slot = c->patch.patch_slot[px + npd0 * (py + npd1 * pz)];
+            if (slot >= 0) b = c->patch.patch_buf + size_t(slot) * size_t(pn) * kNodeFields;
           }
           nb[cz][cy][cx] = b;
           any = any || b;
         }
     if (!any) return;  // inactive: no stage reads these nodes
     const int i0 = qx * P, j0 = qy * P, k0 = qz * P;
-    const int i1 = qx == npd0 - 1 ? c->nn[0] : i0 + P;
-    const int j1 = qy == npd1 - 1 ? c->nn[1] : j0 + P;
-    const int k1 = qz == npd2 - 1 ? c->nn[2] : k0 + P;
+    const int i1 = qx == npd0 - 1 ? c->grid.nn[0] : i0 + P;
+    const int j1 = qy == npd1 - 1 ? c->grid.nn[1] : j0 + P;
+    const int k1 = qz == npd2 - 1 ? c->grid.nn[2] : k0 + P;
     for (int k = k0; k < k1; ++k)
       for (int j = j0; j < j1; ++j) {
         // Row pointers of the contributing buffers, in ascending patch order: (cz, cy)
@@ -61,7 +61,7 @@ void assemble_fields(const StepContext* c, double* dst_mass, double* dst_mom, do
               row[nrow] = b + std::ptrdiff_t(Q * (lj + Q * lk) - (qx - 1 + cx) * P) * kNodeFields;
               cxs[nrow++] = cx;
             }
-        const int nbase = c->nn[0] * (j + c->nn[1] * k);
+        const int nbase = c->grid.nn[0] * (j + c->grid.nn[1] * k);
         for (int i = i0; i < i1; ++i) {
           const bool lower_x = (i == i0 && qx > 0);
           double sum[kNodeFields] = {0, 0, 0, 0, 0, 0, 0};
@@ -91,13 +91,13 @@ inline void patch_range(int n, int P, int H, int npd, int& lo, int& hi) {
 // order as a node-by-node gather, at a fraction of its index arithmetic.
 void assemble_wide(const StepContext* c, int first, int count, double* dst_mass, double* dst_mom,
                    double* dst_force) {
-  const int P = c->patch_cells, H = c->patch_halo, Q = P + 1 + 2 * H;
+  const int P = c->patch.patch_cells, H = c->patch.patch_halo, Q = P + 1 + 2 * H;
   const size_t pn = size_t(Q) * size_t(Q) * size_t(Q);
 #pragma omp parallel
   {
     std::vector<double> acc;
 #pragma omp for schedule(dynamic, 1)
-    for (int q = 0; q < c->npatch; ++q) {
+    for (int q = 0; q < c->patch.npatch; ++q) {
       const OwnedNodes o = owned_nodes(c, q);
       if (!o.active) continue;
       const int ex = o.hi[0] - o.lo[0], ey = o.hi[1] - o.lo[1], ez = o.hi[2] - o.lo[2];
@@ -105,15 +105,15 @@ void assemble_wide(const StepContext* c, int first, int count, double* dst_mass,
       int rlo[3], rhi[3];
       for (int a = 0; a < 3; ++a) {
         int l0, h0, l1, h1;
-        patch_range(o.lo[a], P, H, c->npd[a], l0, h0);
-        patch_range(o.hi[a] - 1, P, H, c->npd[a], l1, h1);
+        patch_range(o.lo[a], P, H, c->patch.npd[a], l0, h0);
+        patch_range(o.hi[a] - 1, P, H, c->patch.npd[a], l1, h1);
         rlo[a] = l0;
         rhi[a] = h1;
       }
       for (int rz = rlo[2]; rz <= rhi[2]; ++rz)
         for (int ry = rlo[1]; ry <= rhi[1]; ++ry)
           for (int rx = rlo[0]; rx <= rhi[0]; ++rx) {
-            const int slot = c->patch_slot[rx + c->npd[0] * (ry + c->npd[1] * rz)];
+            const int slot = c->patch.patch_slot[rx + c->patch.npd[0] * (ry + c->patch.npd[1] * rz)];
             if (slot < 0) continue;
             const int r3[3] = {rx, ry, rz};
             int b0[3], b1[3];  // the overlap of the owned block and the buffer's nodes
@@ -121,7 +121,7 @@ void assemble_wide(const StepContext* c, int first, int count, double* dst_mass,
               b0[a] = std::max(o.lo[a], r3[a] * P - H);
               b1[a] = std::min(o.hi[a], r3[a] * P + P + H + 1);
             }
-            const double* buf = c->patch_buf + size_t(slot) * pn * kNodeFields;
+            const double* buf = c->patch.patch_buf + size_t(slot) * pn * kNodeFields;
             for (int k = b0[2]; k < b1[2]; ++k)
               for (int j = b0[1]; j < b1[1]; ++j) {
                 const int ln0 = (b0[0] - rx * P + H) + Q * ((j - ry * P + H) + Q * (k - rz * P + H));
@@ -137,7 +137,7 @@ void assemble_wide(const StepContext* c, int first, int count, double* dst_mass,
         for (int j = o.lo[1]; j < o.hi[1]; ++j)
           for (int i = o.lo[0]; i < o.hi[0]; ++i) {
             const size_t a = size_t((k - o.lo[2]) * ey + (j - o.lo[1])) * size_t(ex) + size_t(i - o.lo[0]);
-            store_node_fields(first, count, acc.data() + a * size_t(count), i + c->nn[0] * (j + c->nn[1] * k),
+            store_node_fields(first, count, acc.data() + a * size_t(count), i + c->grid.nn[0] * (j + c->grid.nn[1] * k),
                               dst_mass, dst_mom, dst_force);
           }
     }
@@ -148,8 +148,8 @@ void assemble_wide(const StepContext* c, int first, int count, double* dst_mass,
 
 void assemble(const StepContext* c, int first, int count, double* dst_mass, double* dst_mom,
               double* dst_force) {
-  if (c->exchange) c->exchange(c, EXCHANGE_BUFFERS, first, count);  // ghost patches' buffers
-  if (c->patch_halo > 0)
+  if (c->ranks.exchange) c->ranks.exchange(c, EXCHANGE_BUFFERS, first, count);  // ghost patches' buffers
+  if (c->patch.patch_halo > 0)
     assemble_wide(c, first, count, dst_mass, dst_mom, dst_force);
   else if (first == 0 && count == 7)
     assemble_fields<0, 7>(c, dst_mass, dst_mom, dst_force);

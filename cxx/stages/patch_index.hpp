@@ -27,7 +27,7 @@ struct CellDecoder {
   FastDiv div0, div1;
   int nc0, nc1;
   explicit CellDecoder(const StepContext* c)
-      : div0(uint32_t(c->nc[0])), div1(uint32_t(c->nc[1])), nc0(c->nc[0]), nc1(c->nc[1]) {}
+      : div0(uint32_t(c->grid.nc[0])), div1(uint32_t(c->grid.nc[1])), nc0(c->grid.nc[0]), nc1(c->grid.nc[1]) {}
   void operator()(int cell, int& i, int& j, int& k) const {
     const int r = int(div0(uint32_t(cell)));
     i = cell - r * nc0;
@@ -40,36 +40,36 @@ struct CellDecoder {
 inline int base_node(const StepContext* c, const CellDecoder& dec, int cell) {
   int i, j, k;
   dec(cell, i, j, k);
-  return i + c->nn[0] * (j + c->nn[1] * k);
+  return i + c->grid.nn[0] * (j + c->grid.nn[1] * k);
 }
 
 // Global node index of local node k (offsets a, b, c) relative to a base node.
 inline int node_of(const StepContext* c, int base, int k) {
-  return base + (k & 1) + c->nn[0] * (((k >> 1) & 1) + c->nn[1] * ((k >> 2) & 1));
+  return base + (k & 1) + c->grid.nn[0] * (((k >> 1) & 1) + c->grid.nn[1] * ((k >> 2) & 1));
 }
 
 // Nodes in one patch buffer: (patch_cells + 1 + 2 halo)^3.
 inline int patch_nodes(const StepContext* c) {
-  const int Q = c->patch_cells + 1 + 2 * c->patch_halo;
+  const int Q = c->patch.patch_cells + 1 + 2 * c->patch.patch_halo;
   return Q * Q * Q;
 }
 
 inline double* patch_buffer(const StepContext* c, int slot) {
-  return c->patch_buf + size_t(slot) * size_t(patch_nodes(c)) * kNodeFields;
+  return c->patch.patch_buf + size_t(slot) * size_t(patch_nodes(c)) * kNodeFields;
 }
 
 // Local node index, in the buffer of patch (qx, qy, qz), of the base node of a cell.
 inline int patch_base(const StepContext* c, const CellDecoder& dec, const int q3[3], int cell) {
-  const int P = c->patch_cells, Q = P + 1;
+  const int P = c->patch.patch_cells, Q = P + 1;
   int i, j, k;
   dec(cell, i, j, k);
   return (i - q3[0] * P) + Q * ((j - q3[1] * P) + Q * (k - q3[2] * P));
 }
 
 inline void patch_coords(const StepContext* c, int q, int q3[3]) {
-  q3[0] = q % c->npd[0];
-  q3[1] = (q / c->npd[0]) % c->npd[1];
-  q3[2] = q / (c->npd[0] * c->npd[1]);
+  q3[0] = q % c->patch.npd[0];
+  q3[1] = (q / c->patch.npd[0]) % c->patch.npd[1];
+  q3[2] = q / (c->patch.npd[0] * c->patch.npd[1]);
 }
 
 inline int patch_local(int P, int k) {
@@ -88,21 +88,21 @@ struct OwnedNodes {
 
 inline OwnedNodes owned_nodes(const StepContext* c, int q) {
   OwnedNodes o;
-  const int P = c->patch_cells;
+  const int P = c->patch.patch_cells;
   int q3[3];
   patch_coords(c, q, q3);
   for (int a = 0; a < 3; ++a) {
     o.lo[a] = q3[a] * P;
-    o.hi[a] = q3[a] == c->npd[a] - 1 ? c->nn[a] : o.lo[a] + P;
+    o.hi[a] = q3[a] == c->patch.npd[a] - 1 ? c->grid.nn[a] : o.lo[a] + P;
   }
   o.active = false;
-  const int ne = 2 + c->patch_halo;
+  const int ne = 2 + c->patch.patch_halo;
   for (int cz = 0; cz < ne && !o.active; ++cz)
     for (int cy = 0; cy < ne && !o.active; ++cy)
       for (int cx = 0; cx < ne && !o.active; ++cx) {
         const int px = q3[0] - 1 + cx, py = q3[1] - 1 + cy, pz = q3[2] - 1 + cz;
-        if (px >= 0 && py >= 0 && pz >= 0 && px < c->npd[0] && py < c->npd[1] && pz < c->npd[2] &&
-            c->patch_slot[px + c->npd[0] * (py + c->npd[1] * pz)] >= 0)
+        if (px >= 0 && py >= 0 && pz >= 0 && px < c->patch.npd[0] && py < c->patch.npd[1] && pz < c->patch.npd[2] &&
+            c->patch.patch_slot[px + c->patch.npd[0] * (py + c->patch.npd[1] * pz)] >= 0)
           o.active = true;
       }
   return o;
@@ -113,7 +113,7 @@ template <class F>
 inline void for_owned_nodes(const StepContext* c, const OwnedNodes& o, F&& f) {
   for (int k = o.lo[2]; k < o.hi[2]; ++k)
     for (int j = o.lo[1]; j < o.hi[1]; ++j)
-      for (int i = o.lo[0]; i < o.hi[0]; ++i) f(i + c->nn[0] * (j + c->nn[1] * k));
+      for (int i = o.lo[0]; i < o.hi[0]; ++i) f(i + c->grid.nn[0] * (j + c->grid.nn[1] * k));
 }
 
 // 27-node stencil of one particle (shape 1 GIMP, 2 B-spline): its cell (i, j, k), the
@@ -126,25 +126,25 @@ struct GimpStencil {
 
 // gradients false: the weights alone (G left unset).
 inline void gimp_stencil(const StepContext* c, const CellDecoder& dec, int p, GimpStencil& s, bool gradients = true) {
-  dec(c->cell[p], s.ci[0], s.ci[1], s.ci[2]);
-  const double* lx = c->lx + 3 * p;
-  if (c->shape == 2) {
+  dec(c->part.cell[p], s.ci[0], s.ci[1], s.ci[2]);
+  const double* lx = c->part.lx + 3 * p;
+  if (c->method.shape == 2) {
     for (int a = 0; a < 3; ++a) s.o[a] = bspline_offset(s.ci[a]);
-    shape_bspline(lx, s.o, c->inv_h, s.N, gradients ? s.G : nullptr);
+    shape_bspline(lx, s.o, c->grid.inv_h, s.N, gradients ? s.G : nullptr);
     return;
   }
-  for (int a = 0; a < 3; ++a) s.o[a] = gimp_offset(lx[a], s.ci[a], c->nc[a]);
-  shape_gimp(lx, s.o, c->psize[p] * c->inv_h, c->inv_h, s.N, gradients ? s.G : nullptr);
+  for (int a = 0; a < 3; ++a) s.o[a] = gimp_offset(lx[a], s.ci[a], c->grid.nc[a]);
+  shape_gimp(lx, s.o, c->part.psize[p] * c->grid.inv_h, c->grid.inv_h, s.N, gradients ? s.G : nullptr);
 }
 
 // Global node index of the stencil's first node (a = b = c = 0).
 inline int gimp_corner(const StepContext* c, const GimpStencil& s) {
-  return (s.ci[0] + s.o[0]) + c->nn[0] * ((s.ci[1] + s.o[1]) + c->nn[1] * (s.ci[2] + s.o[2]));
+  return (s.ci[0] + s.o[0]) + c->grid.nn[0] * ((s.ci[1] + s.o[1]) + c->grid.nn[1] * (s.ci[2] + s.o[2]));
 }
 
 // Buffer node index, in the buffer of patch q3 (halo 1), of the stencil's first node.
 inline int gimp_patch_corner(const StepContext* c, const int q3[3], const GimpStencil& s) {
-  const int P = c->patch_cells, H = c->patch_halo, Q = P + 1 + 2 * H;
+  const int P = c->patch.patch_cells, H = c->patch.patch_halo, Q = P + 1 + 2 * H;
   return (s.ci[0] + s.o[0] - q3[0] * P + H) +
          Q * ((s.ci[1] + s.o[1] - q3[1] * P + H) + Q * (s.ci[2] + s.o[2] - q3[2] * P + H));
 }

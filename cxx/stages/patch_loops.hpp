@@ -40,8 +40,8 @@ inline void team_position(int& t, int& T) {
 // thread's equal share of the binned particles, up to the next thread's (with patches at
 // rest, of the work: StepContext::patch_work).
 inline void thread_patches(const StepContext* c, int t, int T, int& lo, int& hi) {
-  const int n = c->npatch;
-  const int* start = c->patch_work ? c->patch_work : c->patch_start;
+  const int n = c->patch.npatch;
+  const int* start = c->patch.patch_work ? c->patch.patch_work : c->patch.patch_start;
   const int64_t total = start[n];
   auto first = [&](int u) -> int {
     if (u >= T) return n;
@@ -65,13 +65,13 @@ inline void for_patches(const StepContext* c, F&& f) {
 }
 
 // Patch q is at rest this step (StepContext::sg_rest): no stage touches it.
-inline bool patch_at_rest(const StepContext* c, int q) { return c->sg_rest && c->sg_rest[q]; }
+inline bool patch_at_rest(const StepContext* c, int q) { return c->rest.sg_rest && c->rest.sg_rest[q]; }
 
 // f(first, count) for every chunk of kListChunk entries of the patch lists (the last one
 // shorter); the static schedule gives each thread one contiguous run of chunks.
 template <class F>
 inline void for_list_chunks(const StepContext* c, F&& f) {
-  const int total = c->patch_start[c->npatch];
+  const int total = c->patch.patch_start[c->patch.npatch];
   const int nchunk = (total + kListChunk - 1) / kListChunk;
 #pragma omp parallel for schedule(static)
   for (int k = 0; k < nchunk; ++k) f(k * kListChunk, std::min(kListChunk, total - k * kListChunk));

@@ -17,8 +17,8 @@
 using namespace mpm3d;
 
 extern "C" void mpm3d_cxx_bin(StepContext* c) {
-  const int npatch = c->npatch;
-  int* patch_of = c->pscratch;  // patch of each particle, -1 outside
+  const int npatch = c->patch.npatch;
+  int* patch_of = c->patch.pscratch;  // patch of each particle, -1 outside
   int outside = 0, nslot = 0;
   int team = 1;
 #ifdef _OPENMP
@@ -32,8 +32,8 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
   };
   std::vector<RunSums> run_sums(static_cast<size_t>(team), RunSums{0, 0});
   const bool avx2 = lanes_use_avx2();
-  const bool pre = c->prebinned != 0;
-  const bool filter = c->only_comp > 0;
+  const bool pre = c->ranks.prebinned != 0;
+  const bool filter = c->contact.only_comp > 0;
   // One team for the whole stage: each thread bins an equal run of particles and counts
   // them by patch; then a stable counting sort with those runs as its chunks. The runs are
   // consecutive and ascending, so each patch lists its particles in ascending index
@@ -42,16 +42,16 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
   {
     int t, T;
     team_position(t, T);
-    const int lo = int(int64_t(c->np) * t / T), hi = int(int64_t(c->np) * (t + 1) / T);
+    const int lo = int(int64_t(c->part.np) * t / T), hi = int(int64_t(c->part.np) * (t + 1) / T);
     int* cnt = counts.get() + size_t(t) * size_t(npatch);
     std::fill(cnt, cnt + npatch, 0);
     // Cells, local coordinates, patches (transfer_lanes.hpp), unless prebinned.
     if (!pre)
       outside += avx2 ? bin_range_avx2(c, lo, hi, patch_of) : bin_range<VectorLane<kLanes>>(c, lo, hi, patch_of);
     // Each thread counts (and below fills) a run of the particles in their canonical order:
-    // the arrays' own, or c->order's (every particle binned first). The patch of particle p
+    // the arrays' own, or c->ranks.order's (every particle binned first). The patch of particle p
     // in this context: prebinned patches are those of every particle, of either component.
-    const int* order = c->order;
+    const int* order = c->ranks.order;
     auto particle = [&](int i) { return order ? order[i] : i; };
     auto patch = [&](int p) { return pre && filter && other_component(c, p) ? -1 : patch_of[p]; };
     if (order) {
@@ -60,7 +60,7 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
     for (int i = lo; i < hi; ++i) {
       const int p = particle(i), q = patch(p);
       if (q >= 0) ++cnt[q];
-      else if (pre && c->cell[p] < 0 && !(filter && other_component(c, p))) ++outside;
+      else if (pre && c->part.cell[p] < 0 && !(filter && other_component(c, p))) ++outside;
     }
 #pragma omp barrier
     // Patch starts, buffer slots, and each run's fill pointer into every patch's list: a
@@ -88,7 +88,7 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
         slot += run_sums[size_t(u)].nonempty;
       }
       for (int q = q0; q < q1; ++q) {
-        c->patch_start[q] = offset;
+        c->patch.patch_start[q] = offset;
         int total = 0;
         for (int u = 0; u < T; ++u) {
           int& n = count_of(u, q);
@@ -96,20 +96,20 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
           n = offset + total;
           total += here;
         }
-        c->patch_slot[q] = total > 0 ? slot++ : -1;
+        c->patch.patch_slot[q] = total > 0 ? slot++ : -1;
         offset += total;
       }
       if (t == T - 1) {
-        c->patch_start[npatch] = offset;
+        c->patch.patch_start[npatch] = offset;
         nslot = slot;
       }
     }
 #pragma omp barrier
     for (int i = lo; i < hi; ++i) {
       const int p = particle(i), q = patch(p);
-      if (q >= 0) c->patch_part[cnt[q]++] = p;
+      if (q >= 0) c->patch.patch_part[cnt[q]++] = p;
     }
   }
-  c->nslot = nslot;
-  c->noutside = outside;
+  c->patch.nslot = nslot;
+  c->out.noutside = outside;
 }

@@ -27,7 +27,7 @@ namespace {
 
 // True when particle p belongs to another component than the context's (contact).
 inline bool other_component(const StepContext* c, int p) {
-  return c->only_comp > 0 && c->body_comp[c->body[p]] != c->only_comp;
+  return c->contact.only_comp > 0 && c->contact.body_comp[c->part.body[p]] != c->contact.only_comp;
 }
 
 // Fields first..first+count-1 of the pn nodes of a patch buffer set to zero.
@@ -53,8 +53,8 @@ __attribute__((always_inline)) inline void store_node_fields(int first, int coun
 template <class F>
 inline void for_filled_patches(const StepContext* c, F&& f) {
 #pragma omp parallel for schedule(dynamic, 1)
-  for (int q = 0; q < c->npatch; ++q) {
-    const int slot = c->patch_slot[q];
+  for (int q = 0; q < c->patch.npatch; ++q) {
+    const int slot = c->patch.patch_slot[q];
     if (slot < 0) continue;
     int q3[3];
     patch_coords(c, q, q3);
@@ -65,23 +65,23 @@ inline void for_filled_patches(const StepContext* c, F&& f) {
 // The body force of particle p: the point load (ramped with QuLo), the damping (Damp),
 // gravity, in the current version's order when either of the first two is on.
 __attribute__((always_inline)) inline void particle_body_force(const StepContext* c, int p, double fb[3]) {
-  const double mp = c->mass[p];
-  const double* vp = c->v + 3 * p;
-  const double* g = c->gravity + 3 * c->body[p];
-  if (c->load_ramp_time > 0.0 || c->damping > 0.0) {
+  const double mp = c->part.mass[p];
+  const double* vp = c->part.v + 3 * p;
+  const double* g = c->part.gravity + 3 * c->part.body[p];
+  if (c->method.load_ramp_time > 0.0 || c->method.damping > 0.0) {
     // Quasi-static loading, in the current version's order: the load (ramped until
-    // load_ramp_time, c->time being the end of this step), the damping, gravity.
-    const bool ramp = c->load_ramp_time > 0.0 && c->time < c->load_ramp_time;
+    // load_ramp_time, c->clock.time being the end of this step), the damping, gravity.
+    const bool ramp = c->method.load_ramp_time > 0.0 && c->clock.time < c->method.load_ramp_time;
     for (int a = 0; a < 3; ++a) {
       double f = 0.0;
-      if (c->fext) f = ramp ? (c->fext[3 * p + a] / c->load_ramp_time) * c->time : c->fext[3 * p + a];
-      if (c->damping > 0.0) f = f - (c->damping * mp) * vp[a];
+      if (c->part.fext) f = ramp ? (c->part.fext[3 * p + a] / c->method.load_ramp_time) * c->clock.time : c->part.fext[3 * p + a];
+      if (c->method.damping > 0.0) f = f - (c->method.damping * mp) * vp[a];
       fb[a] = f + mp * g[a];
     }
   } else {
     for (int a = 0; a < 3; ++a) {
       fb[a] = mp * g[a];
-      if (c->fext) fb[a] = fb[a] + c->fext[3 * p + a];
+      if (c->part.fext) fb[a] = fb[a] + c->part.fext[3 * p + a];
     }
   }
 }
@@ -95,14 +95,14 @@ template <int kNodes, class NodeOf>
 __attribute__((always_inline)) inline void p2g_particle(const StepContext* c, int p, const double* N,
                                                         const double* G, bool with_mass_mom, bool with_forces,
                                                         bool with_body, NodeOf node) {
-  const double mp = c->mass[p];
-  const double* vp = c->v + 3 * p;
+  const double mp = c->part.mass[p];
+  const double* vp = c->part.v + 3 * p;
   // sigma V (Voigt), or under TLmp V0 P (pk, a 3x3 matrix, row i giving force component i).
   double vs[6] = {0, 0, 0, 0, 0, 0}, fb[3] = {0, 0, 0};
-  const double* pk = c->pk1 ? c->pk1 + 9 * size_t(p) : nullptr;
+  const double* pk = c->part.pk1 ? c->part.pk1 + 9 * size_t(p) : nullptr;
   if (with_forces) {
-    const double volp = c->vol[p];
-    for (int s = 0; s < 6; ++s) vs[s] = c->sig[6 * p + s] * volp;
+    const double volp = c->part.vol[p];
+    for (int s = 0; s < 6; ++s) vs[s] = c->part.sig[6 * p + s] * volp;
     if (with_body) particle_body_force(c, p, fb);
   }
   for (int k = 0; k < kNodes; ++k) {
@@ -142,9 +142,9 @@ __attribute__((always_inline)) inline void p2g_particle(const StepContext* c, in
 // interpolated acceleration and grid velocity.
 __attribute__((always_inline)) inline void advance_particle(StepContext* c, int p, double ax, double ay, double az,
                                                             double ux, double uy, double uz) {
-  const double dt = c->dt, dt_int = c->dt_int;
-  double* vp = c->v + 3 * p;
-  double* xp = c->x + 3 * p;
+  const double dt = c->clock.dt, dt_int = c->clock.dt_int;
+  double* vp = c->part.v + 3 * p;
+  double* xp = c->part.x + 3 * p;
   vp[0] = vp[0] + ax * dt_int;
   vp[1] = vp[1] + ay * dt_int;
   vp[2] = vp[2] + az * dt_int;
@@ -159,15 +159,15 @@ __attribute__((always_inline)) inline void advance_particle(StepContext* c, int 
 // the same sums in lanes (g2p_values, transfer_lanes.hpp).
 template <int kNodes, class NodeOf>
 __attribute__((always_inline)) inline void g2p_particle(StepContext* c, int p, const double* N, NodeOf node) {
-  const double cutoff = c->mass_cutoff;
+  const double cutoff = c->grid.mass_cutoff;
   double ax = 0.0, ay = 0.0, az = 0.0, ux = 0.0, uy = 0.0, uz = 0.0;
   for (int k = 0; k < kNodes; ++k) {
     const int n = node(k);
-    const double m = c->gmass[n];
+    const double m = c->grid.gmass[n];
     if (!(m > cutoff)) continue;
     const double r = N[k] / m;
-    const double* f = c->gforce + 3 * n;
-    const double* pm = c->gmom + 3 * n;
+    const double* f = c->grid.gforce + 3 * n;
+    const double* pm = c->grid.gmom + 3 * n;
     ax += f[0] * r;
     ay += f[1] * r;
     az += f[2] * r;
@@ -182,8 +182,8 @@ __attribute__((always_inline)) inline void g2p_particle(StepContext* c, int p, c
 template <int kNodes, class NodeOf>
 __attribute__((always_inline)) inline void remap_particle(const StepContext* c, int p, const double* N,
                                                           NodeOf node) {
-  const double mp = c->mass[p];
-  const double* vp = c->v + 3 * p;
+  const double mp = c->part.mass[p];
+  const double* vp = c->part.v + 3 * p;
   for (int k = 0; k < kNodes; ++k) {
     double* b = node(k);
     const double mn = mp * N[k];

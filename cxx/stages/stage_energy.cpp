@@ -34,20 +34,20 @@ template <bool kWork, class L>
 inline void add_particles(const StepContext* c, const int* p, Sums& s) {
   int i3[L::W];
   for (int k = 0; k < L::W; ++k) i3[k] = 3 * p[k];
-  const auto m = L::gather(c->mass, p);
-  const auto vx = L::gather(c->v, i3), vy = L::gather(c->v + 1, i3), vz = L::gather(c->v + 2, i3);
+  const auto m = L::gather(c->part.mass, p);
+  const auto vx = L::gather(c->part.v, i3), vy = L::gather(c->part.v + 1, i3), vz = L::gather(c->part.v + 2, i3);
   const auto ke = (0.5 * m) * ((vx * vx + vy * vy) + vz * vz);
-  const auto e = L::gather(c->ie, p);
+  const auto e = L::gather(c->part.ie, p);
   const auto mx = m * vx, my = m * vy, mz = m * vz;
   decltype(L::splat(0.0)) work = L::splat(0.0);
   if (kWork) {
     int g3[L::W];
-    for (int k = 0; k < L::W; ++k) g3[k] = 3 * c->body[p[k]];
-    const double* fext = c->fext;
+    for (int k = 0; k < L::W; ++k) g3[k] = 3 * c->part.body[p[k]];
+    const double* fext = c->part.fext;
     const auto zero = L::splat(0.0);
-    const auto fx = m * L::gather(c->gravity, g3) + (fext ? L::gather(fext, i3) : zero);
-    const auto fy = m * L::gather(c->gravity + 1, g3) + (fext ? L::gather(fext + 1, i3) : zero);
-    const auto fz = m * L::gather(c->gravity + 2, g3) + (fext ? L::gather(fext + 2, i3) : zero);
+    const auto fx = m * L::gather(c->part.gravity, g3) + (fext ? L::gather(fext, i3) : zero);
+    const auto fy = m * L::gather(c->part.gravity + 1, g3) + (fext ? L::gather(fext + 1, i3) : zero);
+    const auto fz = m * L::gather(c->part.gravity + 2, g3) + (fext ? L::gather(fext + 2, i3) : zero);
     const auto pw = ((zero + fx * vx) + fy * vy) + fz * vz;
     for (int k = 0; k < L::W; ++k) L::set(work, k, std::fabs(L::get(pw, k)));
   }
@@ -70,42 +70,42 @@ inline void add_list(const StepContext* c, const int* list, int n, const int* li
   for (; i + kEnergyLanes <= n; i += kEnergyLanes) {
     if (kPrefetchAhead > 0 && list + i + kPrefetchAhead + 1 < list_end) {
       const int a = list[i + kPrefetchAhead], b = list[i + kPrefetchAhead + 1];
-      __builtin_prefetch(c->v + 3 * size_t(a));
-      __builtin_prefetch(c->v + 3 * size_t(b) + 2);
-      __builtin_prefetch(c->mass + a);
-      __builtin_prefetch(c->ie + a);
+      __builtin_prefetch(c->part.v + 3 * size_t(a));
+      __builtin_prefetch(c->part.v + 3 * size_t(b) + 2);
+      __builtin_prefetch(c->part.mass + a);
+      __builtin_prefetch(c->part.ie + a);
     }
     add_particles<kWork, VL>(c, list + i, s);
   }
   for (; i < n; ++i) add_particles<kWork, ScalarLane>(c, list + i, s);
 }
 
-// Every column of c->partials: column q < npatch sums patch q's list, then (contact)
+// Every column of c->out.partials: column q < npatch sums patch q's list, then (contact)
 // component 2's list of the same patch; column npatch the particles outside the grid in
-// ascending index (c->order's, when set; one pass over the cells, only when there are any). Each column is one
+// ascending index (c->ranks.order's, when set; one pass over the cells, only when there are any). Each column is one
 // serial sum, whichever thread computes it; each thread takes its run of patches
 // (for_patches: the particles it updated in the stress stage).
 template <bool kWork>
 void compute_columns(StepContext* c) {
-  const int npatch = c->npatch;
-  const StepContext* c2 = c->other;
-  const bool any_outside = c->noutside + (c2 ? c2->noutside : 0) > 0;
-  const int* end1 = c->patch_part + c->patch_start[npatch];
+  const int npatch = c->patch.npatch;
+  const StepContext* c2 = c->contact.other;
+  const bool any_outside = c->out.noutside + (c2 ? c2->out.noutside : 0) > 0;
+  const int* end1 = c->patch.patch_part + c->patch.patch_start[npatch];
   for_patches(c, [&](int q) {
     Sums s;
-    add_list<kWork>(c, c->patch_part + c->patch_start[q], c->patch_start[q + 1] - c->patch_start[q], end1, s);
+    add_list<kWork>(c, c->patch.patch_part + c->patch.patch_start[q], c->patch.patch_start[q + 1] - c->patch.patch_start[q], end1, s);
     if (c2)
-      add_list<kWork>(c, c2->patch_part + c2->patch_start[q], c2->patch_start[q + 1] - c2->patch_start[q],
-                      c2->patch_part + c2->patch_start[npatch], s);
-    for (int f = 0; f < kReduceFields; ++f) c->partials[size_t(kReduceFields) * q + f] = s.f[f];
+      add_list<kWork>(c, c2->patch.patch_part + c2->patch.patch_start[q], c2->patch.patch_start[q + 1] - c2->patch.patch_start[q],
+                      c2->patch.patch_part + c2->patch.patch_start[npatch], s);
+    for (int f = 0; f < kReduceFields; ++f) c->out.partials[size_t(kReduceFields) * q + f] = s.f[f];
   });
   Sums s;
   if (any_outside)  // the cell array is shared by both contact components
-    for (int i = 0; i < c->np; ++i) {
-      const int p = c->order ? c->order[i] : i;
-      if (c->cell[p] < 0) add_particles<kWork, ScalarLane>(c, &p, s);
+    for (int i = 0; i < c->part.np; ++i) {
+      const int p = c->ranks.order ? c->ranks.order[i] : i;
+      if (c->part.cell[p] < 0) add_particles<kWork, ScalarLane>(c, &p, s);
     }
-  for (int f = 0; f < kReduceFields; ++f) c->partials[size_t(kReduceFields) * npatch + f] = s.f[f];
+  for (int f = 0; f < kReduceFields; ++f) c->out.partials[size_t(kReduceFields) * npatch + f] = s.f[f];
 }
 
 }  // namespace
@@ -116,14 +116,14 @@ void compute_columns(StepContext* c) {
 // columns depend on the patch lists only, so the sums are the same for any thread count and
 // (folding gathered columns) for any split of the patches among ranks.
 extern "C" void mpm3d_cxx_energy(StepContext* c) {
-  if (c->has_body_force)
+  if (c->method.has_body_force)
     compute_columns<true>(c);
   else
     compute_columns<false>(c);
-  if (c->exchange) c->exchange(c, EXCHANGE_PARTIALS, 0, 0);  // other ranks' columns
+  if (c->ranks.exchange) c->ranks.exchange(c, EXCHANGE_PARTIALS, 0, 0);  // other ranks' columns
   double sum[kReduceFields] = {0, 0, 0, 0, 0, 0};
-  for (int q = 0; q <= c->npatch; ++q)
-    for (int f = 0; f < kReduceFields; ++f) sum[f] += c->partials[size_t(kReduceFields) * q + f];
-  for (int f = 0; f < 5; ++f) c->result[f] = sum[f];
-  c->result[8] = sum[5];
+  for (int q = 0; q <= c->patch.npatch; ++q)
+    for (int f = 0; f < kReduceFields; ++f) sum[f] += c->out.partials[size_t(kReduceFields) * q + f];
+  for (int f = 0; f < 5; ++f) c->out.result[f] = sum[f];
+  c->out.result[8] = sum[5];
 }

@@ -11,7 +11,7 @@ using namespace mpm3d;
 // the mass cut-off; MUSL: p_i = sum_p m_p v_p N_ip again (patch buffers, assembly) and the
 // boundary conditions on the momenta.
 extern "C" void mpm3d_cxx_g2p(StepContext* c) {
-  const bool remap = c->scheme == SCHEME_MUSL;
+  const bool remap = c->method.scheme == SCHEME_MUSL;
   transfer_of(c).g2p(c, remap);
-  if (remap) apply_bc(c, c->gmom);
+  if (remap) apply_bc(c, c->grid.gmom);
 }

@@ -19,8 +19,8 @@ namespace mpm3d {
 constexpr long kParallelBcNodes = 16384;
 
 void apply_bc(const StepContext* c, double* a) {
-  const int layers = c->fix_layers > 1 ? c->fix_layers : 1;  // 0 (unset) means 1
-  const long stride[3] = {1, c->nn[0], long(c->nn[0]) * c->nn[1]};
+  const int layers = c->grid.fix_layers > 1 ? c->grid.fix_layers : 1;  // 0 (unset) means 1
+  const long stride[3] = {1, c->grid.nn[0], long(c->grid.nn[0]) * c->grid.nn[1]};
   // A face's node plane as rows: the outer of the two other axes over the inner (the one
   // of smaller stride), each row a run of nodes `stride[inner]` apart. Clearing is the same
   // in any order: only the loop's shape differs between the team and one thread.
@@ -30,11 +30,11 @@ void apply_bc(const StepContext* c, double* a) {
   };
   auto plane = [&](int face) {
     const int axis = face / 2, o1 = axis == 0 ? 1 : 0, o2 = axis == 2 ? 1 : 2;
-    return Plane{c->fix[face], axis, c->nn[o2], c->nn[o1], stride[o2], stride[o1]};
+    return Plane{c->grid.fix[face], axis, c->grid.nn[o2], c->grid.nn[o1], stride[o2], stride[o1]};
   };
   auto layer_base = [&](int face, int layer) {
     const int axis = face / 2;
-    return stride[axis] * ((face % 2 == 0) ? layer : c->nn[axis] - 1 - layer);
+    return stride[axis] * ((face % 2 == 0) ? layer : c->grid.nn[axis] - 1 - layer);
   };
   auto clear_row = [&](const Plane& f, long first) {
     if (f.kind == 1) {
@@ -50,7 +50,7 @@ void apply_bc(const StepContext* c, double* a) {
   };
   long held = 0;
   for (int face = 0; face < 6; ++face) {
-    if (c->fix[face] == 0) continue;
+    if (c->grid.fix[face] == 0) continue;
     const Plane f = plane(face);
     held += layers * long(f.n_outer) * f.n_inner;
   }
@@ -63,8 +63,8 @@ void apply_bc(const StepContext* c, double* a) {
     // writes another's nodes, so no barrier between the faces (clearing twice is clearing).
     unsigned comps[6];  // the components face f holds: all (fixed) or its normal one
     for (int face = 0; face < 6; ++face)
-      comps[face] = c->fix[face] == 0 ? 0u : (c->fix[face] == 1 ? 7u : 1u << (face / 2));
-    const int n0 = c->nn[0], n1 = c->nn[1], n2 = c->nn[2];
+      comps[face] = c->grid.fix[face] == 0 ? 0u : (c->grid.fix[face] == 1 ? 7u : 1u << (face / 2));
+    const int n0 = c->grid.nn[0], n1 = c->grid.nn[1], n2 = c->grid.nn[2];
     const long nodes = long(n0) * n1 * n2;
     auto clear = [&](double* v, unsigned m) {
       for (int d = 0; d < 3; ++d)
@@ -97,7 +97,7 @@ void apply_bc(const StepContext* c, double* a) {
     return;
   }
   for (int face = 0; face < 6; ++face) {
-    if (c->fix[face] == 0) continue;
+    if (c->grid.fix[face] == 0) continue;
     const Plane f = plane(face);
     for (int layer = 0; layer < layers; ++layer) {
       const long base = layer_base(face, layer);
@@ -114,11 +114,11 @@ namespace {
 // deck's shape-function family's (transfer/transfer.hpp).
 void scatter_mass_gradient(StepContext* c) {
   transfer_of(c).mass_gradient(c);
-  assemble(c, 4, 3, c->gmass, c->gmom, c->gnormal);
+  assemble(c, 4, 3, c->grid.gmass, c->grid.gmom, c->contact.gnormal);
 }
 
 // Multi-velocity contact (Bardenhagen et al. 2000, 2001; Huang et al. 2011) between
-// component 1 (this context) and component 2 (c->other). At a node where both components
+// component 1 (this context) and component 2 (c->contact.other). At a node where both components
 // have mass above the cut-off:
 // - the unit normal n points from component 1 into component 2; it is g1 (normbody 1),
 //   -g2 (2) or g1 - g2 (0), normalised, where g_k = sum_p m_p grad N_i(x_p) over the
@@ -149,10 +149,10 @@ void scatter_mass_gradient(StepContext* c) {
 // is marked); the contact force on component 1 is added to part. True when corrected.
 template <bool kRemap>
 inline bool contact_node(StepContext* c, StepContext* c2, int n, double part[3]) {
-  const double cutoff = c->mass_cutoff, mu = c->contact_mu, dt_int = c->dt_int;
-  const int nb = c->contact_normbody;
-  const double m1 = c->gmass[n], m2 = c2->gmass[n];
-  double* g1 = c->gnormal + 3 * n;
+  const double cutoff = c->grid.mass_cutoff, mu = c->contact.contact_mu, dt_int = c->clock.dt_int;
+  const int nb = c->contact.contact_normbody;
+  const double m1 = c->grid.gmass[n], m2 = c2->grid.gmass[n];
+  double* g1 = c->contact.gnormal + 3 * n;
   if (!(m1 > cutoff) || !(m2 > cutoff)) {
     if (!kRemap) g1[0] = g1[1] = g1[2] = 0.0;
     return false;
@@ -162,7 +162,7 @@ inline bool contact_node(StepContext* c, StepContext* c2, int n, double part[3])
     if (g1[0] == 0.0 && g1[1] == 0.0 && g1[2] == 0.0) return false;  // not in contact
     for (int a = 0; a < 3; ++a) un[a] = g1[a];
   } else {
-    const double* g2 = c2->gnormal + 3 * n;
+    const double* g2 = c2->contact.gnormal + 3 * n;
     double nv[3];
     for (int a = 0; a < 3; ++a) nv[a] = nb == 1 ? g1[a] : (nb == 2 ? -g2[a] : g1[a] - g2[a]);
     for (int a = 0; a < 3; ++a) g1[a] = 0.0;
@@ -170,8 +170,8 @@ inline bool contact_node(StepContext* c, StepContext* c2, int n, double part[3])
     if (!(len > 0.0)) return false;
     for (int a = 0; a < 3; ++a) un[a] = nv[a] / len;
   }
-  double* p1 = c->gmom + 3 * n;
-  double* p2 = c2->gmom + 3 * n;
+  double* p1 = c->grid.gmom + 3 * n;
+  double* p2 = c2->grid.gmom + 3 * n;
   const double mt = m1 + m2;
   for (int a = 0; a < 3; ++a) qv[a] = (m2 * p1[a] - m1 * p2[a]) / mt;
   const double qn = (qv[0] * un[0] + qv[1] * un[1]) + qv[2] * un[2];
@@ -184,8 +184,8 @@ inline bool contact_node(StepContext* c, StepContext* c2, int n, double part[3])
   const double tl = std::sqrt((t[0] * t[0] + t[1] * t[1]) + t[2] * t[2]);
   const double fr = mu * std::fabs(qn);
   const double ft = tl > fr ? fr / tl : 1.0;
-  double* f1 = c->gforce + 3 * n;
-  double* f2 = c2->gforce + 3 * n;
+  double* f1 = c->grid.gforce + 3 * n;
+  double* f2 = c2->grid.gforce + 3 * n;
   for (int a = 0; a < 3; ++a) {
     const double d = -(qn * un[a] + ft * t[a]);
     p1[a] = p1[a] + d;
@@ -204,39 +204,39 @@ inline bool contact_node(StepContext* c, StepContext* c2, int n, double part[3])
 // patch; the contact stage's force partials and count, and the boundary conditions.
 template <bool kRemap>
 void contact_correct(StepContext* c) {
-  StepContext* c2 = c->other;
+  StepContext* c2 = c->contact.other;
 #pragma omp parallel for schedule(dynamic, 1)
-  for (int q = 0; q < c->npatch; ++q) {
+  for (int q = 0; q < c->patch.npatch; ++q) {
     double part[3] = {0.0, 0.0, 0.0};
     int count = 0;
     const OwnedNodes o = owned_nodes(c, q);
     if (o.active && owned_nodes(c2, q).active) {
       for_owned_nodes(c, o, [&](int n) { count += contact_node<kRemap>(c, c2, n, part); });
-    } else if (!kRemap && c->scheme == SCHEME_USF) {
+    } else if (!kRemap && c->method.scheme == SCHEME_USF) {
       // USF reads the marks again in the next step (recontact before the stresses): no
       // node outside this loop keeps a mark or a mass gradient.
       for_owned_nodes(c, o, [&](int n) {
-        double* g1 = c->gnormal + 3 * n;
+        double* g1 = c->contact.gnormal + 3 * n;
         g1[0] = g1[1] = g1[2] = 0.0;
       });
     }
     if (!kRemap) {
-      double* col = c->cpartials + size_t(kContactFields) * size_t(q);
+      double* col = c->contact.cpartials + size_t(kContactFields) * size_t(q);
       for (int a = 0; a < 3; ++a) col[a] = part[a];
       col[3] = double(count);
     }
   }
-  apply_bc(c, c->gmom);
-  apply_bc(c2, c2->gmom);
+  apply_bc(c, c->grid.gmom);
+  apply_bc(c2, c2->grid.gmom);
   if (kRemap) return;
-  if (c->exchange) c->exchange(c, EXCHANGE_CONTACT, 0, 0);  // other ranks' columns
+  if (c->ranks.exchange) c->ranks.exchange(c, EXCHANGE_CONTACT, 0, 0);  // other ranks' columns
   double s[kContactFields] = {0.0, 0.0, 0.0, 0.0};
-  for (int q = 0; q < c->npatch; ++q)
-    for (int a = 0; a < kContactFields; ++a) s[a] += c->cpartials[size_t(kContactFields) * size_t(q) + size_t(a)];
-  for (int a = 0; a < 3; ++a) c->result[5 + a] = s[a];
-  c->ncontact = int(s[3]);
-  apply_bc(c, c->gforce);
-  apply_bc(c2, c2->gforce);
+  for (int q = 0; q < c->patch.npatch; ++q)
+    for (int a = 0; a < kContactFields; ++a) s[a] += c->contact.cpartials[size_t(kContactFields) * size_t(q) + size_t(a)];
+  for (int a = 0; a < 3; ++a) c->out.result[5 + a] = s[a];
+  c->contact.ncontact = int(s[3]);
+  apply_bc(c, c->grid.gforce);
+  apply_bc(c2, c2->grid.gforce);
 }
 
 }  // namespace
@@ -247,9 +247,9 @@ using namespace mpm3d;
 // p_i += f_i dt_int at the nodes of the active patches; then the boundary conditions on
 // momenta and forces (G2P reads both).
 extern "C" void mpm3d_cxx_integrate(StepContext* c) {
-  const double dt = c->dt_int;
-  double* mom = c->gmom;
-  const double* f = c->gforce;
+  const double dt = c->clock.dt_int;
+  double* mom = c->grid.gmom;
+  const double* f = c->grid.gforce;
   for_patches(c, [&](int q) {
     if (patch_at_rest(c, q)) return;  // p = 0 + 0 dt there
     const OwnedNodes o = owned_nodes(c, q);
@@ -257,22 +257,22 @@ extern "C" void mpm3d_cxx_integrate(StepContext* c) {
     // One node row as one run of 3 (hi - lo) values, which vectorises.
     for (int k = o.lo[2]; k < o.hi[2]; ++k)
       for (int j = o.lo[1]; j < o.hi[1]; ++j) {
-        const int row = 3 * (c->nn[0] * (j + c->nn[1] * k));
+        const int row = 3 * (c->grid.nn[0] * (j + c->grid.nn[1] * k));
         for (int i = row + 3 * o.lo[0]; i < row + 3 * o.hi[0]; ++i) mom[i] = mom[i] + f[i] * dt;
       }
   });
-  apply_bc(c, c->gmom);
-  apply_bc(c, c->gforce);
+  apply_bc(c, c->grid.gmom);
+  apply_bc(c, c->grid.gforce);
 }
 
 extern "C" void mpm3d_cxx_contact(StepContext* c) {
-  if (!c->other) return;
+  if (!c->contact.other) return;
   scatter_mass_gradient(c);
-  scatter_mass_gradient(c->other);
+  scatter_mass_gradient(c->contact.other);
   contact_correct<false>(c);
 }
 
 extern "C" void mpm3d_cxx_recontact(StepContext* c) {
-  if (!c->other) return;
+  if (!c->contact.other) return;
   contact_correct<true>(c);
 }

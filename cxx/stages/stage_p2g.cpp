@@ -10,8 +10,8 @@ using namespace mpm3d;
 // update), f_i = sum_p (-V_p sigma_p G_ip + N_ip (m_p g + f_ext,p)); then the boundary
 // conditions on the momenta.
 extern "C" void mpm3d_cxx_p2g(StepContext* c) {
-  transfer_of(c).p2g(c, true, c->scheme != SCHEME_USF);
-  apply_bc(c, c->gmom);
+  transfer_of(c).p2g(c, true, c->method.scheme != SCHEME_USF);
+  apply_bc(c, c->grid.gmom);
 }
 
 // USF: f_i with the updated stresses.

@@ -15,16 +15,16 @@ namespace {
 // which no stage reads again before the next p2g or forces stage overwrites it (USF:
 // stress runs before forces).
 double* node_velocities(StepContext* c) {
-  const double cutoff = c->mass_cutoff;
-  double* gvel = c->gforce;
+  const double cutoff = c->grid.mass_cutoff;
+  double* gvel = c->grid.gforce;
   for_patches(c, [&](int q) {
     if (patch_at_rest(c, q)) return;
     const OwnedNodes o = owned_nodes(c, q);
     if (!o.active) return;
     for_owned_nodes(c, o, [&](int n) {
-      const double m = c->gmass[n];
+      const double m = c->grid.gmass[n];
       if (!(m > cutoff)) return;
-      for (int a = 0; a < 3; ++a) gvel[3 * n + a] = c->gmom[3 * n + a] / m;
+      for (int a = 0; a < 3; ++a) gvel[3 * n + a] = c->grid.gmom[3 * n + a] / m;
     });
   });
   return gvel;

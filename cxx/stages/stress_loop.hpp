@@ -14,8 +14,8 @@ namespace {
 
 // What the constitutive update takes from the context besides the particles.
 inline StressBlockArgs stress_args(const StepContext* c) {
-  return StressBlockArgs{c->dt, c->temp != nullptr, c->qv != nullptr, c->bulk_q1, c->bulk_q2, c->h, c->uvf != 0,
-                         c->tl != 0};
+  return StressBlockArgs{c->clock.dt, c->part.temp != nullptr, c->part.qv != nullptr, c->method.bulk_q1, c->method.bulk_q2, c->grid.h, c->method.uvf != 0,
+                         c->method.tl != 0};
 }
 
 // The constitutive update of the particles list[i] (i where list is null), i in
@@ -25,23 +25,23 @@ inline StressBlockArgs stress_args(const StepContext* c) {
 template <class Gradient>
 void stress_run(StepContext* c, const CellDecoder& dec, const StressBlockArgs& args, const int* list, int first,
                 int count, Gradient& gradient) {
-  const bool filter = c->only_comp > 0;
+  const bool filter = c->contact.only_comp > 0;
   StressBlock b;
   int part[kStressLanes];
   int n = 0, mat = -1;
   auto flush = [&]() {
-    const MaterialParams& mp = c->mats[mat];
+    const MaterialParams& mp = c->part.mats[mat];
     if (n == kStressLanes)
       stress_block(mp, b, args);
     else
       for (int i = 0; i < n; ++i) stress_block_lane(mp, b, i, args);
-    if (c->sg_still) {
+    if (c->rest.sg_still) {
       // Still bit 0: the update changed no bit of the stress state (and an explosive is
       // unlit, so that the next step's burn fraction is the same zero).
       const bool unlit_or_inert = mp.type != MAT_HIEX;
       for (int i = 0; i < n; ++i) {
         const bool same = stress_state_same(c, part[i], i, b) && (unlit_or_inert || b.burn[i] == 0.0);
-        c->sg_still[part[i]] = static_cast<unsigned char>((c->sg_still[part[i]] & 2u) | (same ? 1u : 0u));
+        c->rest.sg_still[part[i]] = static_cast<unsigned char>((c->rest.sg_still[part[i]] & 2u) | (same ? 1u : 0u));
       }
     }
     for (int i = 0; i < n; ++i) stress_block_store(c, part[i], i, b);
@@ -49,14 +49,14 @@ void stress_run(StepContext* c, const CellDecoder& dec, const StressBlockArgs& a
   };
   for (int i = first; i < first + count; ++i) {
     const int p = list ? list[i] : i;
-    if (c->cell[p] < 0) continue;
+    if (c->part.cell[p] < 0) continue;
     if (filter && other_component(c, p)) continue;
-    if (n > 0 && c->mat[p] != mat) flush();
-    mat = c->mat[p];
+    if (n > 0 && c->part.mat[p] != mat) flush();
+    mat = c->part.mat[p];
     double L[9];
     gradient(dec, i, p, L);
     for (int r = 0; r < 9; ++r) b.L[r][n] = L[r];
-    stress_block_load(c, c->mats[mat], p, n, b);
+    stress_block_load(c, c->part.mats[mat], p, n, b);
     part[n++] = p;
     if (n == kStressLanes) flush();
   }
@@ -69,10 +69,10 @@ void stress_particles(StepContext* c, Gradient&& gradient) {
   const CellDecoder dec(c);
   const StressBlockArgs args = stress_args(c);
   constexpr int kChunk = 256;
-  const int nchunk = (c->np + kChunk - 1) / kChunk;
+  const int nchunk = (c->part.np + kChunk - 1) / kChunk;
 #pragma omp parallel for schedule(dynamic, 1)
   for (int ch = 0; ch < nchunk; ++ch)
-    stress_run(c, dec, args, nullptr, ch * kChunk, std::min(c->np, (ch + 1) * kChunk) - ch * kChunk, gradient);
+    stress_run(c, dec, args, nullptr, ch * kChunk, std::min(c->part.np, (ch + 1) * kChunk) - ch * kChunk, gradient);
 }
 
 }  // namespace

@@ -41,24 +41,24 @@ namespace {
 // f(cell, i, j, k) for the cells of the active patches (the ones the particles reach).
 template <class F>
 void for_active_cells(const StepContext* c, F&& f) {
-  const int P = c->patch_cells;
+  const int P = c->patch.patch_cells;
   for_patches(c, [&](int q) {
     if (patch_at_rest(c, q) || !owned_nodes(c, q).active) return;
     int q3[3], lo[3], hi[3];
     patch_coords(c, q, q3);
     for (int a = 0; a < 3; ++a) {
       lo[a] = q3[a] * P;
-      hi[a] = lo[a] + P < c->nc[a] ? lo[a] + P : c->nc[a];
+      hi[a] = lo[a] + P < c->grid.nc[a] ? lo[a] + P : c->grid.nc[a];
     }
     for (int k = lo[2]; k < hi[2]; ++k)
       for (int j = lo[1]; j < hi[1]; ++j)
-        for (int i = lo[0]; i < hi[0]; ++i) f(i + c->nc[0] * (j + c->nc[1] * k), i, j, k);
+        for (int i = lo[0]; i < hi[0]; ++i) f(i + c->grid.nc[0] * (j + c->grid.nc[1] * k), i, j, k);
   });
 }
 
 // Corner k = a + 2 b + 4 c of cell (i, j, k): its node index.
 inline int corner_node(const StepContext* c, int i, int j, int k, int corner) {
-  return (i + (corner & 1)) + c->nn[0] * ((j + ((corner >> 1) & 1)) + c->nn[1] * (k + ((corner >> 2) & 1)));
+  return (i + (corner & 1)) + c->grid.nn[0] * ((j + ((corner >> 1) & 1)) + c->grid.nn[1] * (k + ((corner >> 2) & 1)));
 }
 
 // The scatters to the cell centres, in parallel with the bits of one thread. The canonical
@@ -75,11 +75,11 @@ inline int corner_node(const StepContext* c, int i, int j, int k, int corner) {
 
 // The centres of patch q: [lo, hi) per axis.
 inline void patch_centres(const StepContext* c, int q, int q3[3], int lo[3], int hi[3]) {
-  const int P = c->patch_cells;
+  const int P = c->patch.patch_cells;
   patch_coords(c, q, q3);
   for (int a = 0; a < 3; ++a) {
     lo[a] = q3[a] * P;
-    hi[a] = lo[a] + P < c->nc[a] ? lo[a] + P : c->nc[a];
+    hi[a] = lo[a] + P < c->grid.nc[a] ? lo[a] + P : c->grid.nc[a];
   }
 }
 
@@ -93,8 +93,8 @@ inline void for_patches_around(const StepContext* c, int q, F&& f) {
     for (int dy = -1; dy <= 1; ++dy)
       for (int dx = -1; dx <= 1; ++dx) {
         const int x = q3[0] + dx, y = q3[1] + dy, z = q3[2] + dz;
-        if (x < 0 || y < 0 || z < 0 || x >= c->npd[0] || y >= c->npd[1] || z >= c->npd[2]) continue;
-        f(x + c->npd[0] * (y + c->npd[1] * z), (dx + 1) + 3 * (dy + 1) + 9 * (dz + 1));
+        if (x < 0 || y < 0 || z < 0 || x >= c->patch.npd[0] || y >= c->patch.npd[1] || z >= c->patch.npd[2]) continue;
+        f(x + c->patch.npd[0] * (y + c->patch.npd[1] * z), (dx + 1) + 3 * (dy + 1) + 9 * (dz + 1));
       }
 }
 
@@ -107,7 +107,7 @@ inline bool rest_around(const StepContext* c, int q) {
   return all;
 }
 
-// Every patch-list entry's weights (both rules) and centres into c->sg_w, sg_cell; with
+// Every patch-list entry's weights (both rules) and centres into c->sgmp.sg_w, sg_cell; with
 // kReach also which neighbour patches its corners fall in, into c->sg_reach (the scatters
 // of several threads).
 template <bool kReach>
@@ -117,14 +117,14 @@ void cache_weights(const StepContext* c) {
     if (rest_around(c, q)) return;  // no stage reads these entries' weights
     int q3[3], lo[3], hi[3];
     patch_centres(c, q, q3, lo, hi);
-    for (int e = c->patch_start[q]; e < c->patch_start[q + 1]; ++e) {
+    for (int e = c->patch.patch_start[q]; e < c->patch.patch_start[q + 1]; ++e) {
       int r[6];  // the corners' cells per axis: lo[3], hi[3]
-      sg_corner_weights(c, dec, c->patch_part[e], r, r + 3, sg_p2g_weights(c, e), sg_g2p_weights(c, e));
-      for (int k = 0; k < 8; ++k) c->sg_cell[8 * size_t(e) + k] = sg_corner_cell(c, r, r + 3, k);
+      sg_corner_weights(c, dec, c->patch.patch_part[e], r, r + 3, sg_p2g_weights(c, e), sg_g2p_weights(c, e));
+      for (int k = 0; k < 8; ++k) c->sgmp.sg_cell[8 * size_t(e) + k] = sg_corner_cell(c, r, r + 3, k);
       if (!kReach) continue;
       unsigned reach = 0;
       for (int a = 0; a < 3; ++a) reach |= (r[a] < lo[a] ? 1u : 0u) << (2 * a) | (r[3 + a] >= hi[a] ? 2u : 0u) << (2 * a);
-      c->sg_reach[e] = static_cast<unsigned char>(reach);
+      c->sgmp.sg_reach[e] = static_cast<unsigned char>(reach);
     }
   });
 }
@@ -157,7 +157,7 @@ void zero_centres(const StepContext* c, int lo, int hi, int first, int count) {
     for (int k = clo[2]; k < chi[2]; ++k)
       for (int j = clo[1]; j < chi[1]; ++j)
         for (int i = clo[0]; i < chi[0]; ++i) {
-          double* a = aux_cell(c, i + c->nc[0] * (j + c->nc[1] * k));
+          double* a = aux_cell(c, i + c->grid.nc[0] * (j + c->grid.nc[1] * k));
           for (int f = first; f < first + count; ++f) a[f] = 0.0;
         }
   }
@@ -169,7 +169,7 @@ template <class F>
 __attribute__((always_inline)) inline void visit_entry(const StepContext* c, int e, unsigned mask, F& f) {
   double w[8];
   for (int k = 0; k < 8; ++k) w[k] = sg_p2g_weights(c, e)[k];
-  f(c->patch_part[e], c->sg_cell + 8 * size_t(e), w, mask & nonzero_corners(w));
+  f(c->patch.patch_part[e], c->sgmp.sg_cell + 8 * size_t(e), w, mask & nonzero_corners(w));
 }
 
 // Fields first..first+count-1 of this thread's centres set to zero (no other thread adds
@@ -189,19 +189,19 @@ void for_contributions_in_order(const StepContext* c, int first_field, int nfiel
     zero_centres(c, lo, hi, first_field, nfield);
     // The run and every patch next to one of its patches lie within one layer of patches
     // (and one row and one patch) of it in index order.
-    const int layer = 1 + c->npd[0] + c->npd[0] * c->npd[1];
+    const int layer = 1 + c->patch.npd[0] + c->patch.npd[0] * c->patch.npd[1];
     const int first = lo - layer > 0 ? lo - layer : 0;
-    const int last = hi + layer < c->npatch ? hi + layer : c->npatch;
+    const int last = hi + layer < c->patch.npatch ? hi + layer : c->patch.npatch;
     for (int r = lo < hi ? first : last; r < last; ++r) {
-      if (c->patch_start[r] == c->patch_start[r + 1]) continue;
+      if (c->patch.patch_start[r] == c->patch.patch_start[r + 1]) continue;
       uint32_t mine = 0;  // bit k: neighbour k of r is one of this thread's patches
       for_patches_around(c, r, [&](int n, int k) {
         if (n >= lo && n < hi && !patch_at_rest(c, n)) mine |= 1u << k;
       });
       if (mine == 0) continue;
       const bool own = (mine >> 13 & 1u) != 0;  // r itself is this thread's
-      for (int e = c->patch_start[r]; e < c->patch_start[r + 1]; ++e) {
-        const unsigned reach = c->sg_reach[e];
+      for (int e = c->patch.patch_start[r]; e < c->patch.patch_start[r + 1]; ++e) {
+        const unsigned reach = c->sgmp.sg_reach[e];
         unsigned mask = 0;
         if (reach == 0) {
           if (!own) continue;
@@ -225,14 +225,14 @@ void scatter_in_order(StepContext* c, int first_field, int nfield, F&& add) {
 #ifdef _OPENMP
   threads = omp_get_max_threads();
 #endif
-  const bool masked = threads > 1 || c->sg_rest;  // one thread's pass skips no centre
+  const bool masked = threads > 1 || c->rest.sg_rest;  // one thread's pass skips no centre
   sg_ensure_weights(c, masked);
   if (masked) {
     for_contributions_in_order(c, first_field, nfield, add);
     return;
   }
-  zero_centres(c, 0, c->npatch, first_field, nfield);
-  const int total = c->patch_start[c->npatch];
+  zero_centres(c, 0, c->patch.npatch, first_field, nfield);
+  const int total = c->patch.patch_start[c->patch.npatch];
   for (int e = 0; e < total; ++e) visit_entry(c, e, 0xFFu, add);
 }
 
@@ -244,20 +244,20 @@ void scatter_in_order(StepContext* c, int first_field, int nfield, F&& add) {
 template <bool kMassMom, bool kForces, int kNs>
 void scatter_fields(StepContext* c) {
   static_assert(AUX_P == AUX_M + 1 && AUX_FB == AUX_M + 4 && AUX_S == AUX_FB + 3, "one run of fields");
-  const bool with_body = c->has_body_force != 0;
+  const bool with_body = c->method.has_body_force != 0;
   // The fields summed: mass and momentum (4), body force and stress (12), or both.
   scatter_in_order(c, kMassMom ? AUX_M : AUX_FB, (kMassMom ? 4 : 0) + (kForces ? 12 : 0), [&](int p, const int* cell, const double* w, unsigned mask) {
-    const double mp = c->mass[p];
-    const double* vp = c->v + 3 * p;
+    const double mp = c->part.mass[p];
+    const double* vp = c->part.v + 3 * p;
     const double vx = vp[0], vy = vp[1], vz = vp[2];  // (an array built here and read in
                                                       // vector lanes stalls the loads)
     double vs[kNs > 0 ? kNs : 1], fb[3] = {0, 0, 0};
     if (kForces) {
       if (kNs == 9) {
-        for (int s = 0; s < 9; ++s) vs[s] = c->pk1[9 * size_t(p) + size_t(s)];
+        for (int s = 0; s < 9; ++s) vs[s] = c->part.pk1[9 * size_t(p) + size_t(s)];
       } else {
-        const double volp = c->vol[p];
-        for (int s = 0; s < kNs; ++s) vs[s] = c->sig[6 * p + s] * volp;
+        const double volp = c->part.vol[p];
+        for (int s = 0; s < kNs; ++s) vs[s] = c->part.sig[6 * p + s] * volp;
       }
       if (with_body) particle_body_force(c, p, fb);
     }
@@ -283,7 +283,7 @@ void scatter_fields(StepContext* c) {
 }
 
 void scatter_to_centres(StepContext* c, bool with_mass_mom, bool with_forces) {
-  const bool pk1 = c->pk1 != nullptr;
+  const bool pk1 = c->part.pk1 != nullptr;
   if (with_mass_mom && with_forces)
     pk1 ? scatter_fields<true, true, 9>(c) : scatter_fields<true, true, 6>(c);
   else if (with_forces)
@@ -300,7 +300,7 @@ enum GatherWhat { GATHER_MASS_MOM = 1, GATHER_FORCES = 2, GATHER_REMAP = 4 };
 // One instance per field set and stress layout (the per-cell tests then fold away).
 template <int what, bool pk1>
 void gather_to_nodes(StepContext* c) {
-  const double cutoff = c->mass_cutoff, gs = 0.25 * c->inv_h;
+  const double cutoff = c->grid.mass_cutoff, gs = 0.25 * c->grid.inv_h;
   for_patches(c, [&](int q) {
     if (patch_at_rest(c, q)) return;
     const OwnedNodes o = owned_nodes(c, q);
@@ -310,12 +310,12 @@ void gather_to_nodes(StepContext* c) {
         for (int i = o.lo[0]; i < o.hi[0]; ++i) {
           double m = 0.0, pm[3] = {0, 0, 0}, f[3] = {0, 0, 0};
           for (int cz = k - 1; cz <= k; ++cz) {
-            if (cz < 0 || cz >= c->nc[2]) continue;
+            if (cz < 0 || cz >= c->grid.nc[2]) continue;
             for (int cy = j - 1; cy <= j; ++cy) {
-              if (cy < 0 || cy >= c->nc[1]) continue;
+              if (cy < 0 || cy >= c->grid.nc[1]) continue;
               for (int cx = i - 1; cx <= i; ++cx) {
-                if (cx < 0 || cx >= c->nc[0]) continue;
-                const double* a = aux_cell(c, cx + c->nc[0] * (cy + c->nc[1] * cz));
+                if (cx < 0 || cx >= c->grid.nc[0]) continue;
+                const double* a = aux_cell(c, cx + c->grid.nc[0] * (cy + c->grid.nc[1] * cz));
                 if ((what & GATHER_MASS_MOM) && a[AUX_M] > cutoff) {
                   m += 0.125 * a[AUX_M];
                   for (int d = 0; d < 3; ++d) pm[d] += 0.125 * a[AUX_P + d];
@@ -344,12 +344,12 @@ void gather_to_nodes(StepContext* c) {
               }
             }
           }
-          const int n = i + c->nn[0] * (j + c->nn[1] * k);
-          if (what & GATHER_MASS_MOM) c->gmass[n] = m;
+          const int n = i + c->grid.nn[0] * (j + c->grid.nn[1] * k);
+          if (what & GATHER_MASS_MOM) c->grid.gmass[n] = m;
           if (what & (GATHER_MASS_MOM | GATHER_REMAP))
-            for (int d = 0; d < 3; ++d) c->gmom[3 * n + d] = pm[d];
+            for (int d = 0; d < 3; ++d) c->grid.gmom[3 * n + d] = pm[d];
           if (what & GATHER_FORCES)
-            for (int d = 0; d < 3; ++d) c->gforce[3 * n + d] = f[d];
+            for (int d = 0; d < 3; ++d) c->grid.gforce[3 * n + d] = f[d];
         }
   });
 }
@@ -358,17 +358,17 @@ void gather_to_nodes(StepContext* c) {
 
 void sg_ensure_weights(StepContext* c, bool with_reach) {
   const int need = with_reach ? 2 : 1;
-  if (c->sg_cached >= need) return;
+  if (c->sgmp.sg_cached >= need) return;
   if (with_reach)
     cache_weights<true>(c);
   else
     cache_weights<false>(c);
-  c->sg_cached = need;
+  c->sgmp.sg_cached = need;
 }
 
 void sg_p2g(StepContext* c, bool with_mass_mom, bool with_forces) {
   scatter_to_centres(c, with_mass_mom, with_forces);
-  const bool pk1 = c->pk1 != nullptr;
+  const bool pk1 = c->part.pk1 != nullptr;
   if (with_mass_mom && with_forces)
     pk1 ? gather_to_nodes<GATHER_MASS_MOM | GATHER_FORCES, true>(c)
         : gather_to_nodes<GATHER_MASS_MOM | GATHER_FORCES, false>(c);
@@ -379,7 +379,7 @@ void sg_p2g(StepContext* c, bool with_mass_mom, bool with_forces) {
 }
 
 void sg_g2p(StepContext* c, bool remap) {
-  const double cutoff = c->mass_cutoff;
+  const double cutoff = c->grid.mass_cutoff;
   // Cell centres: the corners' velocities and accelerations, each 1/8 (a cell on a held
   // face: the weights of the cell's point at natural coordinates cxx).
   for_active_cells(c, [&](int cell, int i, int j, int k) {
@@ -387,15 +387,15 @@ void sg_g2p(StepContext* c, bool remap) {
     double cxx[3] = {0, 0, 0};
     bool face = false;
     for (int a = 0; a < 3; ++a) {
-      if (c->nc[a] == 1) continue;
+      if (c->grid.nc[a] == 1) continue;
       if (ijk[a] == 0) cxx[a] = 1.0;
-      if (ijk[a] == c->nc[a] - 1) cxx[a] = -1.0;
-      face = face || (ijk[a] == 0 && c->fix[2 * a] != 0) || (ijk[a] == c->nc[a] - 1 && c->fix[2 * a + 1] != 0);
+      if (ijk[a] == c->grid.nc[a] - 1) cxx[a] = -1.0;
+      face = face || (ijk[a] == 0 && c->grid.fix[2 * a] != 0) || (ijk[a] == c->grid.nc[a] - 1 && c->grid.fix[2 * a + 1] != 0);
     }
     double v[3] = {0, 0, 0}, acc[3] = {0, 0, 0};
     for (int corner = 0; corner < 8; ++corner) {
       const int n = corner_node(c, i, j, k, corner);
-      const double m = c->gmass[n];
+      const double m = c->grid.gmass[n];
       if (!(m > cutoff)) continue;
       double w = 0.125;
       if (face) {
@@ -404,8 +404,8 @@ void sg_g2p(StepContext* c, bool remap) {
       }
       const double r = w / m;
       for (int d = 0; d < 3; ++d) {
-        v[d] += c->gmom[3 * n + d] * r;
-        acc[d] += c->gforce[3 * n + d] * r;
+        v[d] += c->grid.gmom[3 * n + d] * r;
+        acc[d] += c->grid.gforce[3 * n + d] * r;
       }
     }
     double* a = aux_cell(c, cell);
@@ -417,7 +417,7 @@ void sg_g2p(StepContext* c, bool remap) {
   // Particles: each its own update, with its entry's weights of this step.
   sg_ensure_weights(c, false);
   auto update = [&](int e) __attribute__((always_inline)) {  // inlined in both loops below
-    const int* cell = c->sg_cell + 8 * size_t(e);
+    const int* cell = c->sgmp.sg_cell + 8 * size_t(e);
     const double* w = sg_g2p_weights(c, e);
     double ax = 0.0, ay = 0.0, az = 0.0, ux = 0.0, uy = 0.0, uz = 0.0;
     for (int k = 0; k < 8; ++k) {
@@ -429,21 +429,21 @@ void sg_g2p(StepContext* c, bool remap) {
       uy += w[k] * a[AUX_V + 1];
       uz += w[k] * a[AUX_V + 2];
     }
-    advance_particle(c, c->patch_part[e], ax, ay, az, ux, uy, uz);
+    advance_particle(c, c->patch.patch_part[e], ax, ay, az, ux, uy, uz);
   };
-  if (c->sg_rest) {
+  if (c->rest.sg_rest) {
     // The patches not at rest, each particle's still bit 1 set when x and v kept every bit.
     for_patches(c, [&](int q) {
       if (patch_at_rest(c, q)) return;
-      for (int e = c->patch_start[q]; e < c->patch_start[q + 1]; ++e) {
-        const int p = c->patch_part[e];
+      for (int e = c->patch.patch_start[q]; e < c->patch.patch_start[q + 1]; ++e) {
+        const int p = c->patch.patch_part[e];
         double before[6];
-        std::memcpy(before, c->x + 3 * size_t(p), sizeof(double) * 3);
-        std::memcpy(before + 3, c->v + 3 * size_t(p), sizeof(double) * 3);
+        std::memcpy(before, c->part.x + 3 * size_t(p), sizeof(double) * 3);
+        std::memcpy(before + 3, c->part.v + 3 * size_t(p), sizeof(double) * 3);
         update(e);
-        const bool same = std::memcmp(before, c->x + 3 * size_t(p), sizeof(double) * 3) == 0 &&
-                          std::memcmp(before + 3, c->v + 3 * size_t(p), sizeof(double) * 3) == 0;
-        c->sg_still[p] = static_cast<unsigned char>((c->sg_still[p] & 1u) | (same ? 2u : 0u));
+        const bool same = std::memcmp(before, c->part.x + 3 * size_t(p), sizeof(double) * 3) == 0 &&
+                          std::memcmp(before + 3, c->part.v + 3 * size_t(p), sizeof(double) * 3) == 0;
+        c->rest.sg_still[p] = static_cast<unsigned char>((c->rest.sg_still[p] & 1u) | (same ? 2u : 0u));
       }
     });
   } else {
@@ -455,8 +455,8 @@ void sg_g2p(StepContext* c, bool remap) {
   // MUSL: the new particle momenta to the cell centres, then the nodes (no mass cut-off,
   // as the current program).
   scatter_in_order(c, AUX_RP, 3, [&](int p, const int* cell, const double* w, unsigned mask) {
-    const double mp = c->mass[p];
-    const double* vp = c->v + 3 * p;
+    const double mp = c->part.mass[p];
+    const double* vp = c->part.v + 3 * p;
     for (unsigned left = mask; left != 0; left &= left - 1) {  // corners in ascending order
       const int k = __builtin_ctz(left);
       double* a = aux_cell(c, cell[k]);
@@ -470,12 +470,12 @@ void sg_g2p(StepContext* c, bool remap) {
 }
 
 void sg_cell_gradients(StepContext* c, const double* gvel) {
-  const double cutoff = c->mass_cutoff, gs = 0.25 * c->inv_h;
+  const double cutoff = c->grid.mass_cutoff, gs = 0.25 * c->grid.inv_h;
   for_active_cells(c, [&](int cell, int i, int j, int k) {
     double L[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
     for (int corner = 0; corner < 8; ++corner) {
       const int n = corner_node(c, i, j, k, corner);
-      if (!(c->gmass[n] > cutoff)) continue;
+      if (!(c->grid.gmass[n] > cutoff)) continue;
       const double g[3] = {(corner & 1) ? gs : -gs, ((corner >> 1) & 1) ? gs : -gs, ((corner >> 2) & 1) ? gs : -gs};
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b) L[3 * a + b] += gvel[3 * n + a] * g[b];
@@ -494,17 +494,17 @@ void stress_sg(StepContext* c) {
   const CellDecoder dec(c);
   const StressBlockArgs args = stress_args(c);
   auto gradient = [&](const CellDecoder&, int e, int, double* L) {
-    sg_velocity_gradient(c, c->sg_cell + 8 * size_t(e), sg_p2g_weights(c, e), L);
+    sg_velocity_gradient(c, c->sgmp.sg_cell + 8 * size_t(e), sg_p2g_weights(c, e), L);
   };
-  if (c->sg_rest) {  // the patches not at rest, shared by their work
+  if (c->rest.sg_rest) {  // the patches not at rest, shared by their work
     for_patches(c, [&](int q) {
       if (patch_at_rest(c, q)) return;
-      const int first = c->patch_start[q];
-      stress_run(c, dec, args, c->patch_part, first, c->patch_start[q + 1] - first, gradient);
+      const int first = c->patch.patch_start[q];
+      stress_run(c, dec, args, c->patch.patch_part, first, c->patch.patch_start[q + 1] - first, gradient);
     });
     return;
   }
-  for_list_chunks(c, [&](int first, int count) { stress_run(c, dec, args, c->patch_part, first, count, gradient); });
+  for_list_chunks(c, [&](int first, int count) { stress_run(c, dec, args, c->patch.patch_part, first, count, gradient); });
 }
 
 void stress_smoothed_gradient(StepContext* c, const double* gvel) {

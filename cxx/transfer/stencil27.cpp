@@ -16,14 +16,14 @@ namespace {
 // One instance per flag set: constant flags, no test per node.
 template <bool kMassMom, bool kForces, bool kBody>
 void scatter_p2g_gimp(StepContext* c) {
-  const int Q = c->patch_cells + 1 + 2 * c->patch_halo;
+  const int Q = c->patch.patch_cells + 1 + 2 * c->patch.patch_halo;
   const int pn = patch_nodes(c);
   const CellDecoder dec(c);
   const StencilOffsets in_buffer(Q, Q);
   for_filled_patches(c, [&](int q, const int q3[3], double* buf) {
     std::memset(buf, 0, sizeof(double) * size_t(pn) * kNodeFields);
-    for (int idx = c->patch_start[q]; idx < c->patch_start[q + 1]; ++idx) {
-      const int p = c->patch_part[idx];
+    for (int idx = c->patch.patch_start[q]; idx < c->patch.patch_start[q + 1]; ++idx) {
+      const int p = c->patch.patch_part[idx];
       GimpStencil st;
       gimp_stencil(c, dec, p, st);
       double* corner = buf + size_t(gimp_patch_corner(c, q3, st)) * kNodeFields;
@@ -34,7 +34,7 @@ void scatter_p2g_gimp(StepContext* c) {
 }
 
 void scatter_p2g_gimp(StepContext* c, bool with_mass_mom, bool with_forces) {
-  const bool body = c->has_body_force != 0;
+  const bool body = c->method.has_body_force != 0;
   if (with_mass_mom && with_forces)
     body ? scatter_p2g_gimp<true, true, true>(c) : scatter_p2g_gimp<true, true, false>(c);
   else if (with_forces)
@@ -45,20 +45,20 @@ void scatter_p2g_gimp(StepContext* c, bool with_mass_mom, bool with_forces) {
 
 void p2g_stencil27(StepContext* c, bool with_mass_mom, bool with_forces) {
   scatter_p2g_gimp(c, with_mass_mom, with_forces);
-  assemble(c, with_mass_mom ? 0 : 4, with_mass_mom ? (with_forces ? 7 : 4) : 3, c->gmass, c->gmom, c->gforce);
+  assemble(c, with_mass_mom ? 0 : 4, with_mass_mom ? (with_forces ? 7 : 4) : 3, c->grid.gmass, c->grid.gmom, c->grid.gforce);
 }
 
 // GIMP: the 27-node stencils, one particle after the other.
 void g2p_gimp(StepContext* c, bool remap) {
-  const int Q = c->patch_cells + 1 + 2 * c->patch_halo;
+  const int Q = c->patch.patch_cells + 1 + 2 * c->patch.patch_halo;
   const int pn = patch_nodes(c);
-  const int nn0 = c->nn[0], nn1 = c->nn[1];
+  const int nn0 = c->grid.nn[0], nn1 = c->grid.nn[1];
   const CellDecoder dec(c);
   const StencilOffsets in_grid(nn0, nn1), in_buffer(Q, Q);
   for_filled_patches(c, [&](int q, const int q3[3], double* buf) {
     if (remap) zero_fields(buf, pn, 1, 3);
-    for (int idx = c->patch_start[q]; idx < c->patch_start[q + 1]; ++idx) {
-      const int p = c->patch_part[idx];
+    for (int idx = c->patch.patch_start[q]; idx < c->patch.patch_start[q + 1]; ++idx) {
+      const int p = c->patch.patch_part[idx];
       GimpStencil st;
       gimp_stencil(c, dec, p, st, false);
       const int base = gimp_corner(c, st);
@@ -73,7 +73,7 @@ void g2p_gimp(StepContext* c, bool remap) {
 
 void g2p_stencil27(StepContext* c, bool remap) {
   g2p_gimp(c, remap);
-  if (remap) assemble(c, 1, 3, c->gmass, c->gmom, c->gforce);
+  if (remap) assemble(c, 1, 3, c->grid.gmass, c->grid.gmom, c->grid.gforce);
 }
 
 // Velocity gradient L[3a+b] = d v_a / d x_b of particle p from the node velocities gvel,
@@ -87,7 +87,7 @@ inline void velocity_gradient_gimp(const StepContext* c, const CellDecoder& dec,
   const int base = gimp_corner(c, st);
   for (int k = 0; k < 27; ++k) {
     const int n = base + in_grid.of[k];
-    if (!(c->gmass[n] > c->mass_cutoff)) continue;
+    if (!(c->grid.gmass[n] > c->grid.mass_cutoff)) continue;
     const double vx = gvel[3 * n], vy = gvel[3 * n + 1], vz = gvel[3 * n + 2];
     const double gx = st.G[3 * k], gy = st.G[3 * k + 1], gz = st.G[3 * k + 2];
     l0 += vx * gx;
@@ -104,7 +104,7 @@ inline void velocity_gradient_gimp(const StepContext* c, const CellDecoder& dec,
 }
 
 void stress_stencil27(StepContext* c, const double* gvel) {
-  const StencilOffsets in_grid(c->nn[0], c->nn[1]);
+  const StencilOffsets in_grid(c->grid.nn[0], c->grid.nn[1]);
   stress_particles(c, [&](const CellDecoder& dec, int, int p, double* L) {
     velocity_gradient_gimp(c, dec, in_grid, p, gvel, L);
   });
@@ -112,15 +112,15 @@ void stress_stencil27(StepContext* c, const double* gvel) {
 
 // Contact: the mass gradients with the 27-node stencils.
 void mass_gradient_stencil27(StepContext* c) {
-  const int Q = c->patch_cells + 1 + 2 * c->patch_halo;
+  const int Q = c->patch.patch_cells + 1 + 2 * c->patch.patch_halo;
   const int pn = patch_nodes(c);
   const CellDecoder dec(c);
   const StencilOffsets in_buffer(Q, Q);
   for_filled_patches(c, [&](int q, const int q3[3], double* buf) {
     zero_fields(buf, pn, 4, 3);
-    for (int idx = c->patch_start[q]; idx < c->patch_start[q + 1]; ++idx) {
-      const int p = c->patch_part[idx];
-      const double mp = c->mass[p];
+    for (int idx = c->patch.patch_start[q]; idx < c->patch.patch_start[q + 1]; ++idx) {
+      const int p = c->patch.patch_part[idx];
+      const double mp = c->part.mass[p];
       GimpStencil st;
       gimp_stencil(c, dec, p, st);
       double* corner = buf + size_t(gimp_patch_corner(c, q3, st)) * kNodeFields;

@@ -41,7 +41,7 @@ void mass_gradient_trilinear(StepContext* c);
 inline const Transfer& transfer_of(const StepContext* c) {
   static const Transfer* const table[TRANSFER_COUNT] = {&kTrilinearTransfer, &kStencil27Transfer,
                                                         &kSmoothedGradientTransfer};
-  return *table[c->family];
+  return *table[c->method.family];
 }
 
 }  // namespace mpm3d

@@ -33,8 +33,8 @@ constexpr int kLanes = kStressLanes;
 template <class VL>
 int bin_range(const StepContext* c, int lo, int hi, int* patch_of) {
   typedef decltype(VL::splat(0.0)) T;
-  const bool filter = c->only_comp > 0;
-  const FastDiv divP{uint32_t(c->patch_cells)};
+  const bool filter = c->contact.only_comp > 0;
+  const FastDiv divP{uint32_t(c->patch.patch_cells)};
   int outside = 0;
   auto finish = [&](int p, const double* t, const double* fl) {
     if (filter && other_component(c, p)) {
@@ -43,19 +43,19 @@ int bin_range(const StepContext* c, int lo, int hi, int* patch_of) {
     }
     int idx[3];
     for (int a = 0; a < 3; ++a) {
-      const double f0 = double(c->cell_off[a]);
-      if (!(fl[a] >= f0 && fl[a] < f0 + double(c->nc[a]))) {  // also catches NaN
-        c->cell[p] = -1;
+      const double f0 = double(c->grid.cell_off[a]);
+      if (!(fl[a] >= f0 && fl[a] < f0 + double(c->grid.nc[a]))) {  // also catches NaN
+        c->part.cell[p] = -1;
         patch_of[p] = -1;
         ++outside;
         return;
       }
-      idx[a] = int(fl[a]) - c->cell_off[a];
-      c->lx[3 * p + a] = t[a] - fl[a];
+      idx[a] = int(fl[a]) - c->grid.cell_off[a];
+      c->part.lx[3 * p + a] = t[a] - fl[a];
     }
-    c->cell[p] = idx[0] + c->nc[0] * (idx[1] + c->nc[1] * idx[2]);
+    c->part.cell[p] = idx[0] + c->grid.nc[0] * (idx[1] + c->grid.nc[1] * idx[2]);
     patch_of[p] = int(divP(uint32_t(idx[0]))) +
-                  c->npd[0] * (int(divP(uint32_t(idx[1]))) + c->npd[1] * int(divP(uint32_t(idx[2]))));
+                  c->patch.npd[0] * (int(divP(uint32_t(idx[1]))) + c->patch.npd[1] * int(divP(uint32_t(idx[2]))));
   };
   int p = lo;
   for (; p + kLanes <= hi; p += kLanes) {
@@ -63,7 +63,7 @@ int bin_range(const StepContext* c, int lo, int hi, int* patch_of) {
     for (int i = 0; i < kLanes; ++i) i3[i] = 3 * (p + i);
     double t[3][kLanes], fl[3][kLanes];
     for (int a = 0; a < 3; ++a) {
-      const T ta = (VL::gather(c->xbin + a, i3) - c->origin[a]) / c->h;
+      const T ta = (VL::gather(c->part.xbin + a, i3) - c->grid.origin[a]) / c->grid.h;
       VL::store(t[a], ta);
       VL::store(fl[a], VL::floor(ta));
     }
@@ -75,7 +75,7 @@ int bin_range(const StepContext* c, int lo, int hi, int* patch_of) {
   for (; p < hi; ++p) {
     double ti[3], fi[3];
     for (int a = 0; a < 3; ++a) {
-      ti[a] = (c->xbin[3 * p + a] - c->origin[a]) / c->h;
+      ti[a] = (c->part.xbin[3 * p + a] - c->grid.origin[a]) / c->grid.h;
       fi[a] = std::floor(ti[a]);
     }
     finish(p, ti, fi);
@@ -87,7 +87,7 @@ template <class TL>
 inline void load_lx(const StepContext* c, const int* part, decltype(TL::splat(0.0)) lx[3]) {
   int i3[kLanes];
   for (int i = 0; i < TL::W; ++i) i3[i] = 3 * part[i];
-  for (int d = 0; d < 3; ++d) lx[d] = TL::gather(c->lx + d, i3);
+  for (int d = 0; d < 3; ++d) lx[d] = TL::gather(c->part.lx + d, i3);
 }
 
 // P2G of patch q into its buffer (zeroed here): mass and momentum and/or forces, one
@@ -95,26 +95,26 @@ inline void load_lx(const StepContext* c, const int* part, decltype(TL::splat(0.
 // cases are compile-time flags so the 8-node loop unrolls with nothing left to test.
 template <bool kMassMom, bool kForces, bool kBody>
 void p2g_patch_fields(const StepContext* c, const CellDecoder& dec, int q) {
-  const int P = c->patch_cells;
+  const int P = c->patch.patch_cells;
   const int pn = (P + 1) * (P + 1) * (P + 1);
   int q3[3];
   patch_coords(c, q, q3);
-  double* buf = patch_buffer(c, c->patch_slot[q]);
+  double* buf = patch_buffer(c, c->patch.patch_slot[q]);
   for (size_t i = 0; i < size_t(pn) * kNodeFields; ++i) buf[i] = 0.0;
   int local[8];
   for (int k = 0; k < 8; ++k) local[k] = patch_local(P, k) * kNodeFields;
-  for (int idx = c->patch_start[q]; idx < c->patch_start[q + 1]; ++idx) {
-    const int p = c->patch_part[idx];
+  for (int idx = c->patch.patch_start[q]; idx < c->patch.patch_start[q + 1]; ++idx) {
+    const int p = c->patch.patch_part[idx];
     double N[8], G[24];
-    shape_linear_lanes<double>(c->lx + 3 * p, c->inv_h, N, G);
-    double* pb = buf + size_t(patch_base(c, dec, q3, c->cell[p])) * kNodeFields;
+    shape_linear_lanes<double>(c->part.lx + 3 * p, c->grid.inv_h, N, G);
+    double* pb = buf + size_t(patch_base(c, dec, q3, c->part.cell[p])) * kNodeFields;
     p2g_particle<8>(c, p, N, G, kMassMom, kForces, kBody, [&](int k) { return pb + local[k]; });
   }
 }
 
 template <class VL>
 void p2g_patch(const StepContext* c, const CellDecoder& dec, int q, bool with_mass_mom, bool with_forces) {
-  const bool body = c->has_body_force != 0;
+  const bool body = c->method.has_body_force != 0;
   if (with_mass_mom && with_forces)
     body ? p2g_patch_fields<true, true, true>(c, dec, q) : p2g_patch_fields<true, true, false>(c, dec, q);
   else if (with_mass_mom)
@@ -131,37 +131,37 @@ void g2p_values(StepContext* c, const CellDecoder& dec, const int* part, bool re
   typedef decltype(TL::splat(0.0)) T;
   T lx[3], N[8], G[24];
   load_lx<TL>(c, part, lx);
-  shape_linear_lanes(lx, c->inv_h, N, G);
+  shape_linear_lanes(lx, c->grid.inv_h, N, G);
   int base[kLanes], i3[kLanes], n1[kLanes], n3[kLanes];
-  for (int i = 0; i < TL::W; ++i) base[i] = base_node(c, dec, c->cell[part[i]]), i3[i] = 3 * part[i];
-  const double cutoff = c->mass_cutoff;
+  for (int i = 0; i < TL::W; ++i) base[i] = base_node(c, dec, c->part.cell[part[i]]), i3[i] = 3 * part[i];
+  const double cutoff = c->grid.mass_cutoff;
   const T zero = TL::splat(0.0);
   T ax = zero, ay = zero, az = zero, ux = zero, uy = zero, uz = zero;
   for (int k = 0; k < 8; ++k) {
     const int off = node_of(c, 0, k);  // local node k from the base node
     for (int i = 0; i < TL::W; ++i) n1[i] = base[i] + off, n3[i] = 3 * n1[i];
-    const T m = TL::gather(c->gmass, n1);
+    const T m = TL::gather(c->grid.gmass, n1);
     const auto heavy = m > cutoff;
     const T r = N[k] / m;
-    ax = ax + TL::select(heavy, TL::gather(c->gforce, n3) * r, zero);
-    ay = ay + TL::select(heavy, TL::gather(c->gforce + 1, n3) * r, zero);
-    az = az + TL::select(heavy, TL::gather(c->gforce + 2, n3) * r, zero);
-    ux = ux + TL::select(heavy, TL::gather(c->gmom, n3) * r, zero);
-    uy = uy + TL::select(heavy, TL::gather(c->gmom + 1, n3) * r, zero);
-    uz = uz + TL::select(heavy, TL::gather(c->gmom + 2, n3) * r, zero);
+    ax = ax + TL::select(heavy, TL::gather(c->grid.gforce, n3) * r, zero);
+    ay = ay + TL::select(heavy, TL::gather(c->grid.gforce + 1, n3) * r, zero);
+    az = az + TL::select(heavy, TL::gather(c->grid.gforce + 2, n3) * r, zero);
+    ux = ux + TL::select(heavy, TL::gather(c->grid.gmom, n3) * r, zero);
+    uy = uy + TL::select(heavy, TL::gather(c->grid.gmom + 1, n3) * r, zero);
+    uz = uz + TL::select(heavy, TL::gather(c->grid.gmom + 2, n3) * r, zero);
   }
-  const double dt = c->dt, dt_int = c->dt_int;
-  const T v[3] = {TL::gather(c->v, i3) + ax * dt_int, TL::gather(c->v + 1, i3) + ay * dt_int,
-                  TL::gather(c->v + 2, i3) + az * dt_int};
-  const T x[3] = {TL::gather(c->x, i3) + ux * dt, TL::gather(c->x + 1, i3) + uy * dt,
-                  TL::gather(c->x + 2, i3) + uz * dt};
+  const double dt = c->clock.dt, dt_int = c->clock.dt_int;
+  const T v[3] = {TL::gather(c->part.v, i3) + ax * dt_int, TL::gather(c->part.v + 1, i3) + ay * dt_int,
+                  TL::gather(c->part.v + 2, i3) + az * dt_int};
+  const T x[3] = {TL::gather(c->part.x, i3) + ux * dt, TL::gather(c->part.x + 1, i3) + uy * dt,
+                  TL::gather(c->part.x + 2, i3) + uz * dt};
   for (int i = 0; i < TL::W; ++i)
     for (int d = 0; d < 3; ++d) {
-      c->v[i3[i] + d] = TL::get(v[d], i);
-      c->x[i3[i] + d] = TL::get(x[d], i);
+      c->part.v[i3[i] + d] = TL::get(v[d], i);
+      c->part.x[i3[i] + d] = TL::get(x[d], i);
     }
   if (!remap) return;
-  const T mp = TL::gather(c->mass, part);
+  const T mp = TL::gather(c->part.mass, part);
   for (int k = 0; k < 8; ++k) {
     const T mn = mp * N[k];
     for (int d = 0; d < 3; ++d) TL::store(rm[d][k] + first, mn * v[d]);
@@ -171,25 +171,25 @@ void g2p_values(StepContext* c, const CellDecoder& dec, const int* part, bool re
 // G2P of the particles of patch q; MUSL: their remapped momenta into the patch buffer.
 template <class VL>
 void g2p_patch(StepContext* c, const CellDecoder& dec, int q, bool remap) {
-  const int P = c->patch_cells;
+  const int P = c->patch.patch_cells;
   const int pn = (P + 1) * (P + 1) * (P + 1);
   int q3[3];
   patch_coords(c, q, q3);
-  double* buf = patch_buffer(c, c->patch_slot[q]);
+  double* buf = patch_buffer(c, c->patch.patch_slot[q]);
   if (remap) zero_fields(buf, pn, 1, 3);
   int local[8];
   for (int k = 0; k < 8; ++k) local[k] = patch_local(P, k);
   double rm[3][8][kLanes];
-  const int* list = c->patch_part;
-  for (int idx = c->patch_start[q]; idx < c->patch_start[q + 1];) {
-    const int n = c->patch_start[q + 1] - idx >= kLanes ? kLanes : 1;
+  const int* list = c->patch.patch_part;
+  for (int idx = c->patch.patch_start[q]; idx < c->patch.patch_start[q + 1];) {
+    const int n = c->patch.patch_start[q + 1] - idx >= kLanes ? kLanes : 1;
     if (n == kLanes)
       g2p_values<VL>(c, dec, list + idx, remap, rm, 0);
     else
       g2p_values<ScalarLane>(c, dec, list + idx, remap, rm, 0);
     if (remap)
       for (int i = 0; i < n; ++i) {
-        const int base = patch_base(c, dec, q3, c->cell[list[idx + i]]);
+        const int base = patch_base(c, dec, q3, c->part.cell[list[idx + i]]);
         for (int k = 0; k < 8; ++k) {
           double* b = buf + size_t(base + local[k]) * kNodeFields;
           b[1] += rm[0][k][i];
@@ -209,17 +209,17 @@ void gradient_values(const StepContext* c, const CellDecoder& dec, const int* pa
   typedef decltype(TL::splat(0.0)) T;
   T lx[3], N[8], G[24];
   load_lx<TL>(c, part, lx);
-  shape_linear_lanes(lx, c->inv_h, N, G);
+  shape_linear_lanes(lx, c->grid.inv_h, N, G);
   int base[kLanes], n1[kLanes], n3[kLanes];
-  for (int i = 0; i < TL::W; ++i) base[i] = base_node(c, dec, c->cell[part[i]]);
-  const double cutoff = c->mass_cutoff;
+  for (int i = 0; i < TL::W; ++i) base[i] = base_node(c, dec, c->part.cell[part[i]]);
+  const double cutoff = c->grid.mass_cutoff;
   const T zero = TL::splat(0.0);
   T l[9];
   for (int r = 0; r < 9; ++r) l[r] = zero;
   for (int k = 0; k < 8; ++k) {
     const int off = node_of(c, 0, k);  // local node k from the base node
     for (int i = 0; i < TL::W; ++i) n1[i] = base[i] + off, n3[i] = 3 * n1[i];
-    const auto heavy = TL::gather(c->gmass, n1) > cutoff;
+    const auto heavy = TL::gather(c->grid.gmass, n1) > cutoff;
     const T v[3] = {TL::gather(gvel, n3), TL::gather(gvel + 1, n3), TL::gather(gvel + 2, n3)};
     for (int a = 0; a < 3; ++a)
       for (int d = 0; d < 3; ++d) l[3 * a + d] = l[3 * a + d] + TL::select(heavy, v[a] * G[3 * k + d], zero);
@@ -229,45 +229,45 @@ void gradient_values(const StepContext* c, const CellDecoder& dec, const int* pa
 
 // Particle p's state into lane i of a stress batch, and back.
 inline void stress_block_load(const StepContext* c, const MaterialParams& mp, int p, int i, StressBlock& b) {
-  b.mass[i] = c->mass[p];
-  b.vol[i] = c->vol[p];
-  for (int s = 0; s < 6; ++s) b.sig[s][i] = c->sig[6 * p + s];
-  b.epeff[i] = c->epeff[p];
-  b.ie[i] = c->ie[p];
-  b.temp[i] = c->temp ? c->temp[p] : 0.0;
-  b.qv[i] = c->qv ? c->qv[p] : 0.0;
-  b.burn[i] = c->tlight ? burn_fraction(mp, c->tlight[p], c->time) : 1.0;
-  if (c->defgrad)
-    for (int r = 0; r < 9; ++r) b.H[r][i] = c->defgrad[9 * size_t(p) + size_t(r)];
-  if (c->pk1)
-    for (int r = 0; r < 9; ++r) b.pk1[r][i] = c->pk1[9 * size_t(p) + size_t(r)];
+  b.mass[i] = c->part.mass[p];
+  b.vol[i] = c->part.vol[p];
+  for (int s = 0; s < 6; ++s) b.sig[s][i] = c->part.sig[6 * p + s];
+  b.epeff[i] = c->part.epeff[p];
+  b.ie[i] = c->part.ie[p];
+  b.temp[i] = c->part.temp ? c->part.temp[p] : 0.0;
+  b.qv[i] = c->part.qv ? c->part.qv[p] : 0.0;
+  b.burn[i] = c->part.tlight ? burn_fraction(mp, c->part.tlight[p], c->clock.time) : 1.0;
+  if (c->part.defgrad)
+    for (int r = 0; r < 9; ++r) b.H[r][i] = c->part.defgrad[9 * size_t(p) + size_t(r)];
+  if (c->part.pk1)
+    for (int r = 0; r < 9; ++r) b.pk1[r][i] = c->part.pk1[9 * size_t(p) + size_t(r)];
 }
 
 // The stress state of lane i of b is that of particle p, bit for bit.
 inline bool stress_state_same(const StepContext* c, int p, int i, const StressBlock& b) {
   auto same = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
-  bool s = same(c->vol[p], b.vol[i]) && same(c->epeff[p], b.epeff[i]) && same(c->ie[p], b.ie[i]);
-  for (int k = 0; k < 6; ++k) s = s && same(c->sig[6 * p + k], b.sig[k][i]);
-  if (c->temp) s = s && same(c->temp[p], b.temp[i]);
-  if (c->qv) s = s && same(c->qv[p], b.qv[i]);
-  if (c->defgrad)
-    for (int r = 0; r < 9; ++r) s = s && same(c->defgrad[9 * size_t(p) + size_t(r)], b.H[r][i]);
-  if (c->pk1)
-    for (int r = 0; r < 9; ++r) s = s && same(c->pk1[9 * size_t(p) + size_t(r)], b.pk1[r][i]);
+  bool s = same(c->part.vol[p], b.vol[i]) && same(c->part.epeff[p], b.epeff[i]) && same(c->part.ie[p], b.ie[i]);
+  for (int k = 0; k < 6; ++k) s = s && same(c->part.sig[6 * p + k], b.sig[k][i]);
+  if (c->part.temp) s = s && same(c->part.temp[p], b.temp[i]);
+  if (c->part.qv) s = s && same(c->part.qv[p], b.qv[i]);
+  if (c->part.defgrad)
+    for (int r = 0; r < 9; ++r) s = s && same(c->part.defgrad[9 * size_t(p) + size_t(r)], b.H[r][i]);
+  if (c->part.pk1)
+    for (int r = 0; r < 9; ++r) s = s && same(c->part.pk1[9 * size_t(p) + size_t(r)], b.pk1[r][i]);
   return s;
 }
 
 inline void stress_block_store(StepContext* c, int p, int i, const StressBlock& b) {
-  c->vol[p] = b.vol[i];
-  for (int s = 0; s < 6; ++s) c->sig[6 * p + s] = b.sig[s][i];
-  c->epeff[p] = b.epeff[i];
-  c->ie[p] = b.ie[i];
-  if (c->temp) c->temp[p] = b.temp[i];
-  if (c->qv) c->qv[p] = b.qv[i];
-  if (c->defgrad)
-    for (int r = 0; r < 9; ++r) c->defgrad[9 * size_t(p) + size_t(r)] = b.H[r][i];
-  if (c->pk1)
-    for (int r = 0; r < 9; ++r) c->pk1[9 * size_t(p) + size_t(r)] = b.pk1[r][i];
+  c->part.vol[p] = b.vol[i];
+  for (int s = 0; s < 6; ++s) c->part.sig[6 * p + s] = b.sig[s][i];
+  c->part.epeff[p] = b.epeff[i];
+  c->part.ie[p] = b.ie[i];
+  if (c->part.temp) c->part.temp[p] = b.temp[i];
+  if (c->part.qv) c->part.qv[p] = b.qv[i];
+  if (c->part.defgrad)
+    for (int r = 0; r < 9; ++r) c->part.defgrad[9 * size_t(p) + size_t(r)] = b.H[r][i];
+  if (c->part.pk1)
+    for (int r = 0; r < 9; ++r) c->part.pk1[9 * size_t(p) + size_t(r)] = b.pk1[r][i];
 }
 
 // The stress stage of the particles list[0..count) (trilinear): velocity gradients and the
@@ -275,12 +275,12 @@ inline void stress_block_store(StepContext* c, int p, int i, const StressBlock& 
 template <class VL>
 void stress_list(StepContext* c, const CellDecoder& dec, const int* list, int count, const double* gvel,
                  const StressBlockArgs& args) {
-  const bool filter = c->only_comp > 0;
+  const bool filter = c->contact.only_comp > 0;
   StressBlock b;
   int part[kLanes];
   int n = 0, mat = -1;
   auto flush = [&]() {
-    const MaterialParams& mp = c->mats[mat];
+    const MaterialParams& mp = c->part.mats[mat];
     if (n == kLanes) {
       gradient_values<VL>(c, dec, part, gvel, b, 0);
     } else {
@@ -296,10 +296,10 @@ void stress_list(StepContext* c, const CellDecoder& dec, const int* list, int co
   };
   for (int j = 0; j < count; ++j) {
     const int p = list[j];
-    if (c->cell[p] < 0) continue;
+    if (c->part.cell[p] < 0) continue;
     if (filter && other_component(c, p)) continue;
-    if (n > 0 && c->mat[p] != mat) flush();
-    mat = c->mat[p];
+    if (n > 0 && c->part.mat[p] != mat) flush();
+    mat = c->part.mat[p];
     part[n++] = p;
     if (n == kLanes) flush();
   }

@@ -15,20 +15,20 @@ namespace {
 void p2g_trilinear(StepContext* c, bool with_mass_mom, bool with_forces) {
   const bool avx2 = lanes_use_avx2();
   for_patches(c, [&](int q) {
-    if (c->patch_slot[q] < 0) return;
+    if (c->patch.patch_slot[q] < 0) return;
     if (avx2)
       p2g_patch_avx2(c, q, with_mass_mom, with_forces);
     else
       p2g_patch<VectorLane<kLanes>>(c, CellDecoder(c), q, with_mass_mom, with_forces);
   });
-  assemble(c, with_mass_mom ? 0 : 4, with_mass_mom ? (with_forces ? 7 : 4) : 3, c->gmass, c->gmom, c->gforce);
+  assemble(c, with_mass_mom ? 0 : 4, with_mass_mom ? (with_forces ? 7 : 4) : 3, c->grid.gmass, c->grid.gmom, c->grid.gforce);
 }
 
 // Trilinear: each thread over its balanced range of patches, 4 particles per vector.
 void g2p_trilinear_particles(StepContext* c, bool remap) {
   const bool avx2 = lanes_use_avx2();
   for_patches(c, [&](int q) {
-    if (c->patch_slot[q] < 0) return;
+    if (c->patch.patch_slot[q] < 0) return;
     if (avx2)
       g2p_patch_avx2(c, q, remap);
     else
@@ -38,7 +38,7 @@ void g2p_trilinear_particles(StepContext* c, bool remap) {
 
 void g2p_trilinear(StepContext* c, bool remap) {
   g2p_trilinear_particles(c, remap);
-  if (remap) assemble(c, 1, 3, c->gmass, c->gmom, c->gforce);
+  if (remap) assemble(c, 1, 3, c->grid.gmass, c->grid.gmom, c->grid.gforce);
 }
 
 // The particle loop with the trilinear shape functions: chunks of the patch lists, each
@@ -47,11 +47,11 @@ void g2p_trilinear(StepContext* c, bool remap) {
 // transfer_lanes.hpp). Each particle's update is its own, so the chunks cross patch ends.
 void stress_trilinear(StepContext* c, const double* gvel) {
   const CellDecoder dec(c);
-  const StressBlockArgs args{c->dt, c->temp != nullptr, c->qv != nullptr, c->bulk_q1, c->bulk_q2, c->h, c->uvf != 0,
-                             c->tl != 0};
+  const StressBlockArgs args{c->clock.dt, c->part.temp != nullptr, c->part.qv != nullptr, c->method.bulk_q1, c->method.bulk_q2, c->grid.h, c->method.uvf != 0,
+                             c->method.tl != 0};
   const bool avx2 = lanes_use_avx2();
   for_list_chunks(c, [&](int first, int count) {
-    const int* list = c->patch_part + first;
+    const int* list = c->patch.patch_part + first;
     if (avx2)
       stress_list_avx2(c, list, count, gvel, args);
     else
@@ -63,17 +63,17 @@ void stress_trilinear(StepContext* c, const double* gvel) {
 
 // Contact: the mass gradients with the trilinear shape functions (transfer.hpp).
 void mass_gradient_trilinear(StepContext* c) {
-  const int P = c->patch_cells;
+  const int P = c->patch.patch_cells;
   const int pn = patch_nodes(c);
   const CellDecoder dec(c);
   for_filled_patches(c, [&](int q, const int q3[3], double* buf) {
     zero_fields(buf, pn, 4, 3);
-    for (int idx = c->patch_start[q]; idx < c->patch_start[q + 1]; ++idx) {
-      const int p = c->patch_part[idx];
-      const double mp = c->mass[p];
+    for (int idx = c->patch.patch_start[q]; idx < c->patch.patch_start[q + 1]; ++idx) {
+      const int p = c->patch.patch_part[idx];
+      const double mp = c->part.mass[p];
       double N[8], G[24];
-      shape_linear(c->lx + 3 * p, c->inv_h, N, G);
-      const int base = patch_base(c, dec, q3, c->cell[p]);
+      shape_linear(c->part.lx + 3 * p, c->grid.inv_h, N, G);
+      const int base = patch_base(c, dec, q3, c->part.cell[p]);
       for (int k = 0; k < 8; ++k) {
         double* b = buf + size_t(base + patch_local(P, k)) * kNodeFields;
         const double* g = G + 3 * k;
