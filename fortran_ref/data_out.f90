@@ -1,5 +1,5 @@
 ! DataOut (part): the HDF5 state file, with the datasets, shapes, types and attributes of
-! write_state_h5 in cxx/data_out.cpp. Fortran arrays x(3,np) are written with their
+! write_state_h5 in cxx/io/data_out.cpp. Fortran arrays x(3,np) are written with their
 ! dimensions reversed, so the file holds (np,3) in C order, exactly as the C++ writes it.
 module mpm3d_data_out
   use, intrinsic :: iso_c_binding

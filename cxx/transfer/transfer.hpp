@@ -8,8 +8,11 @@
 //   trilinear.cpp          8-node trilinear, in vector lanes (transfer_lanes.hpp)
 //   stencil27.cpp          the 27-node stencils of uGIMP and the quadratic B-spline
 //   smoothed_gradient.cpp  sgmp: every exchange through the cell centres
-// A new shape function is one file here (and its twin in fortran_ref/) plus one row of
-// transfer_of's table and of enum TransferFamily (stages/update_step.hpp).
+// A new point-shape function of the 27-node kind is a shape in core/grid.hpp and a branch
+// of gimp_stencil (stages/patch_index.hpp). A new family is one file here, one row of
+// enum TransferFamily (stages/update_step.hpp, with its Fortran twin in stage_common.f90)
+// and of transfer_of's table, its choice in Simulation::bind, and in Fortran its calls in
+// the stage files and its choice in mpm3d_ref.f90.
 #pragma once
 #include "stages/update_step.hpp"
 
