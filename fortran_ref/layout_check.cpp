@@ -10,11 +10,11 @@
 // placeholders), so that the Fortran stages reach the ranks' hooks. Every group's and every
 // member's offset is compared: padding after a short group cannot hide a missing member.
 
-extern "C" void mpm3d_f_context_layout(size_t out[99]);
+extern "C" void mpm3d_f_context_layout(size_t out[100]);
 extern "C" void mpm3d_f_step_constants(int out[17]);
 
 int main() {
-  constexpr int kChecks = 99;
+  constexpr int kChecks = 100;
   size_t f[kChecks];
   mpm3d_f_context_layout(f);
   const size_t c[kChecks] = {
@@ -65,6 +65,7 @@ int main() {
       offsetof(StepContext, patch.patch_buf),
       offsetof(StepContext, patch.pscratch),
       offsetof(StepContext, patch.patch_work),
+      offsetof(StepContext, patch.patch_box),
       offsetof(StepContext, patch.patch_cells),
       offsetof(StepContext, patch.npd),
       offsetof(StepContext, patch.npatch),
@@ -165,6 +166,7 @@ int main() {
       "offsetof(patch.patch_buf)",
       "offsetof(patch.pscratch)",
       "offsetof(patch.patch_work)",
+      "offsetof(patch.patch_box)",
       "offsetof(patch.patch_cells)",
       "offsetof(patch.npd)",
       "offsetof(patch.npatch)",

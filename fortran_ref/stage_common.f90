@@ -3,7 +3,7 @@
 ! filter of contact and the box-face boundary conditions (index helpers: stage_index.inc).
 !
 ! Every floating-point operation of the stages happens in the same order as in the C++
-! stages (cxx/stage_*.cpp): the same patch decomposition, the same canonical assembly order,
+! stages (cxx/stages/stage_*.cpp): the same patch decomposition, the same canonical assembly order,
 ! the same skip rules. Indices stored in the shared arrays (cells, particles, slots, offsets,
 ! material and body numbers) are C's 0-based ones; the Fortran arrays themselves are 1-based.
 module mpm3d_stage_common
@@ -71,6 +71,8 @@ module mpm3d_stage_common
     type(c_ptr) :: pscratch = c_null_ptr
     ! (npatch + 1) prefix sums of the patches' work for thread_patches, or null
     type(c_ptr) :: patch_work = c_null_ptr
+    ! C++ kernels' scratch (not used here): the nodes the 27-node scatters touched per buffer
+    type(c_ptr) :: patch_box = c_null_ptr
     integer(c_int) :: patch_cells = 0  ! cells per patch edge
     integer(c_int) :: npd(3) = 0  ! patches per axis
     ! patch_halo: node layers a buffer holds beyond its cells
@@ -319,7 +321,7 @@ contains
   ! The layout of step_context (its size, then every group's and every member's offset, in
   ! the order of layout_check.cpp) and of material_params (size, eos_e0, eos_type, dp_tension).
   subroutine mpm3d_f_context_layout(out) bind(C, name='mpm3d_f_context_layout')
-    integer(c_size_t), intent(out) :: out(99)
+    integer(c_size_t), intent(out) :: out(100)
     type(step_context), target :: c
     type(material_params), target :: m(2)
     integer(c_intptr_t) :: c0, m0
@@ -372,58 +374,59 @@ contains
     out(45) = transfer(c_loc(c%patch%patch_buf), 0_c_intptr_t) - c0
     out(46) = transfer(c_loc(c%patch%pscratch), 0_c_intptr_t) - c0
     out(47) = transfer(c_loc(c%patch%patch_work), 0_c_intptr_t) - c0
-    out(48) = transfer(c_loc(c%patch%patch_cells), 0_c_intptr_t) - c0
-    out(49) = transfer(c_loc(c%patch%npd), 0_c_intptr_t) - c0
-    out(50) = transfer(c_loc(c%patch%npatch), 0_c_intptr_t) - c0
-    out(51) = transfer(c_loc(c%patch%nslot), 0_c_intptr_t) - c0
-    out(52) = transfer(c_loc(c%patch%patch_halo), 0_c_intptr_t) - c0
-    out(53) = transfer(c_loc(c%clock), 0_c_intptr_t) - c0
-    out(54) = transfer(c_loc(c%clock%dt), 0_c_intptr_t) - c0
-    out(55) = transfer(c_loc(c%clock%dt_int), 0_c_intptr_t) - c0
-    out(56) = transfer(c_loc(c%clock%time), 0_c_intptr_t) - c0
-    out(57) = transfer(c_loc(c%method), 0_c_intptr_t) - c0
-    out(58) = transfer(c_loc(c%method%bulk_q1), 0_c_intptr_t) - c0
-    out(59) = transfer(c_loc(c%method%bulk_q2), 0_c_intptr_t) - c0
-    out(60) = transfer(c_loc(c%method%load_ramp_time), 0_c_intptr_t) - c0
-    out(61) = transfer(c_loc(c%method%damping), 0_c_intptr_t) - c0
-    out(62) = transfer(c_loc(c%method%scheme), 0_c_intptr_t) - c0
-    out(63) = transfer(c_loc(c%method%has_body_force), 0_c_intptr_t) - c0
-    out(64) = transfer(c_loc(c%method%uvf), 0_c_intptr_t) - c0
-    out(65) = transfer(c_loc(c%method%tl), 0_c_intptr_t) - c0
-    out(66) = transfer(c_loc(c%method%shape), 0_c_intptr_t) - c0
-    out(67) = transfer(c_loc(c%method%sg), 0_c_intptr_t) - c0
-    out(68) = transfer(c_loc(c%method%family), 0_c_intptr_t) - c0
-    out(69) = transfer(c_loc(c%out), 0_c_intptr_t) - c0
-    out(70) = transfer(c_loc(c%out%partials), 0_c_intptr_t) - c0
-    out(71) = transfer(c_loc(c%out%result), 0_c_intptr_t) - c0
-    out(72) = transfer(c_loc(c%out%noutside), 0_c_intptr_t) - c0
-    out(73) = transfer(c_loc(c%contact), 0_c_intptr_t) - c0
-    out(74) = transfer(c_loc(c%contact%body_comp), 0_c_intptr_t) - c0
-    out(75) = transfer(c_loc(c%contact%other), 0_c_intptr_t) - c0
-    out(76) = transfer(c_loc(c%contact%gnormal), 0_c_intptr_t) - c0
-    out(77) = transfer(c_loc(c%contact%cpartials), 0_c_intptr_t) - c0
-    out(78) = transfer(c_loc(c%contact%contact_mu), 0_c_intptr_t) - c0
-    out(79) = transfer(c_loc(c%contact%only_comp), 0_c_intptr_t) - c0
-    out(80) = transfer(c_loc(c%contact%contact_normbody), 0_c_intptr_t) - c0
-    out(81) = transfer(c_loc(c%contact%ncontact), 0_c_intptr_t) - c0
-    out(82) = transfer(c_loc(c%sgmp), 0_c_intptr_t) - c0
-    out(83) = transfer(c_loc(c%sgmp%aux), 0_c_intptr_t) - c0
-    out(84) = transfer(c_loc(c%sgmp%sg_w), 0_c_intptr_t) - c0
-    out(85) = transfer(c_loc(c%sgmp%sg_cell), 0_c_intptr_t) - c0
-    out(86) = transfer(c_loc(c%sgmp%sg_reach), 0_c_intptr_t) - c0
-    out(87) = transfer(c_loc(c%sgmp%sg_cached), 0_c_intptr_t) - c0
-    out(88) = transfer(c_loc(c%ranks), 0_c_intptr_t) - c0
-    out(89) = transfer(c_loc(c%ranks%exchange), 0_c_intptr_t) - c0
-    out(90) = transfer(c_loc(c%ranks%exchange_data), 0_c_intptr_t) - c0
-    out(91) = transfer(c_loc(c%ranks%order), 0_c_intptr_t) - c0
-    out(92) = transfer(c_loc(c%ranks%prebinned), 0_c_intptr_t) - c0
-    out(93) = transfer(c_loc(c%rest), 0_c_intptr_t) - c0
-    out(94) = transfer(c_loc(c%rest%sg_still), 0_c_intptr_t) - c0
-    out(95) = transfer(c_loc(c%rest%sg_rest), 0_c_intptr_t) - c0
-    out(96) = c_sizeof(m(1))
-    out(97) = transfer(c_loc(m(1)%eos_e0), 0_c_intptr_t) - m0
-    out(98) = transfer(c_loc(m(1)%eos_type), 0_c_intptr_t) - m0
-    out(99) = transfer(c_loc(m(1)%dp_tension), 0_c_intptr_t) - m0
+    out(48) = transfer(c_loc(c%patch%patch_box), 0_c_intptr_t) - c0
+    out(49) = transfer(c_loc(c%patch%patch_cells), 0_c_intptr_t) - c0
+    out(50) = transfer(c_loc(c%patch%npd), 0_c_intptr_t) - c0
+    out(51) = transfer(c_loc(c%patch%npatch), 0_c_intptr_t) - c0
+    out(52) = transfer(c_loc(c%patch%nslot), 0_c_intptr_t) - c0
+    out(53) = transfer(c_loc(c%patch%patch_halo), 0_c_intptr_t) - c0
+    out(54) = transfer(c_loc(c%clock), 0_c_intptr_t) - c0
+    out(55) = transfer(c_loc(c%clock%dt), 0_c_intptr_t) - c0
+    out(56) = transfer(c_loc(c%clock%dt_int), 0_c_intptr_t) - c0
+    out(57) = transfer(c_loc(c%clock%time), 0_c_intptr_t) - c0
+    out(58) = transfer(c_loc(c%method), 0_c_intptr_t) - c0
+    out(59) = transfer(c_loc(c%method%bulk_q1), 0_c_intptr_t) - c0
+    out(60) = transfer(c_loc(c%method%bulk_q2), 0_c_intptr_t) - c0
+    out(61) = transfer(c_loc(c%method%load_ramp_time), 0_c_intptr_t) - c0
+    out(62) = transfer(c_loc(c%method%damping), 0_c_intptr_t) - c0
+    out(63) = transfer(c_loc(c%method%scheme), 0_c_intptr_t) - c0
+    out(64) = transfer(c_loc(c%method%has_body_force), 0_c_intptr_t) - c0
+    out(65) = transfer(c_loc(c%method%uvf), 0_c_intptr_t) - c0
+    out(66) = transfer(c_loc(c%method%tl), 0_c_intptr_t) - c0
+    out(67) = transfer(c_loc(c%method%shape), 0_c_intptr_t) - c0
+    out(68) = transfer(c_loc(c%method%sg), 0_c_intptr_t) - c0
+    out(69) = transfer(c_loc(c%method%family), 0_c_intptr_t) - c0
+    out(70) = transfer(c_loc(c%out), 0_c_intptr_t) - c0
+    out(71) = transfer(c_loc(c%out%partials), 0_c_intptr_t) - c0
+    out(72) = transfer(c_loc(c%out%result), 0_c_intptr_t) - c0
+    out(73) = transfer(c_loc(c%out%noutside), 0_c_intptr_t) - c0
+    out(74) = transfer(c_loc(c%contact), 0_c_intptr_t) - c0
+    out(75) = transfer(c_loc(c%contact%body_comp), 0_c_intptr_t) - c0
+    out(76) = transfer(c_loc(c%contact%other), 0_c_intptr_t) - c0
+    out(77) = transfer(c_loc(c%contact%gnormal), 0_c_intptr_t) - c0
+    out(78) = transfer(c_loc(c%contact%cpartials), 0_c_intptr_t) - c0
+    out(79) = transfer(c_loc(c%contact%contact_mu), 0_c_intptr_t) - c0
+    out(80) = transfer(c_loc(c%contact%only_comp), 0_c_intptr_t) - c0
+    out(81) = transfer(c_loc(c%contact%contact_normbody), 0_c_intptr_t) - c0
+    out(82) = transfer(c_loc(c%contact%ncontact), 0_c_intptr_t) - c0
+    out(83) = transfer(c_loc(c%sgmp), 0_c_intptr_t) - c0
+    out(84) = transfer(c_loc(c%sgmp%aux), 0_c_intptr_t) - c0
+    out(85) = transfer(c_loc(c%sgmp%sg_w), 0_c_intptr_t) - c0
+    out(86) = transfer(c_loc(c%sgmp%sg_cell), 0_c_intptr_t) - c0
+    out(87) = transfer(c_loc(c%sgmp%sg_reach), 0_c_intptr_t) - c0
+    out(88) = transfer(c_loc(c%sgmp%sg_cached), 0_c_intptr_t) - c0
+    out(89) = transfer(c_loc(c%ranks), 0_c_intptr_t) - c0
+    out(90) = transfer(c_loc(c%ranks%exchange), 0_c_intptr_t) - c0
+    out(91) = transfer(c_loc(c%ranks%exchange_data), 0_c_intptr_t) - c0
+    out(92) = transfer(c_loc(c%ranks%order), 0_c_intptr_t) - c0
+    out(93) = transfer(c_loc(c%ranks%prebinned), 0_c_intptr_t) - c0
+    out(94) = transfer(c_loc(c%rest), 0_c_intptr_t) - c0
+    out(95) = transfer(c_loc(c%rest%sg_still), 0_c_intptr_t) - c0
+    out(96) = transfer(c_loc(c%rest%sg_rest), 0_c_intptr_t) - c0
+    out(97) = c_sizeof(m(1))
+    out(98) = transfer(c_loc(m(1)%eos_e0), 0_c_intptr_t) - m0
+    out(99) = transfer(c_loc(m(1)%eos_type), 0_c_intptr_t) - m0
+    out(100) = transfer(c_loc(m(1)%dp_tension), 0_c_intptr_t) - m0
   end subroutine mpm3d_f_context_layout
 
 end module mpm3d_stage_common

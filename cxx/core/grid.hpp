@@ -36,6 +36,7 @@ struct Grid {
   std::vector<int> patch_slot;   // (npatch) buffer slot of a non-empty patch, -1 if empty
   int nslot = 0;                 // non-empty patches (buffers in use)
   std::vector<double> patch_buf; // (kNodeFields, patch_nodes, nslot): only non-empty patches
+  std::vector<int> patch_box;     // (6, slots of patch_buf): the nodes a 27-node scatter touched
 
   int nnode() const { return nn[0] * nn[1] * nn[2]; }
   // define() and set_window() over the whole box.
@@ -224,6 +225,26 @@ inline int gimp_offset(double lx, int i, int nc) {
   if (i + o < 0) o = 0;
   if (i + o + 2 > nc) o = -1;
   return o;
+}
+
+// The 27-node shape functions, one place for each: shape 1 uGIMP (particle half-size
+// lp_cells, in cells), 2 quadratic B-spline. The offsets o of the stencil of a particle in
+// cell ci (of nc per axis) at local coordinates lx, then its weights N and, unless G is
+// null, gradients G. A new 27-node shape function is a branch here and its deck keyword.
+inline void stencil_27_offsets(int shape, const int ci[3], const double* lx, const int nc[3], int o[3]) {
+  if (shape == 2)
+    for (int a = 0; a < 3; ++a) o[a] = bspline_offset(ci[a]);
+  else
+    for (int a = 0; a < 3; ++a) o[a] = gimp_offset(lx[a], ci[a], nc[a]);
+}
+
+inline void stencil_27(int shape, const int ci[3], const double* lx, const int nc[3], double lp_cells, double inv_h,
+                       int o[3], double* N, double* G) {
+  stencil_27_offsets(shape, ci, lx, nc, o);
+  if (shape == 2)
+    shape_bspline(lx, o, inv_h, N, G);
+  else
+    shape_gimp(lx, o, lp_cells, inv_h, N, G);
 }
 
 }  // namespace mpm3d

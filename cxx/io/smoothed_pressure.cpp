@@ -32,13 +32,7 @@ void for_stencil(const Model& m, const int nc[3], int p, Visit&& visit) {
   if (m.shape() != 0) {
     int o[3];
     double N[27], G[81];
-    if (m.gimp) {
-      for (int a = 0; a < 3; ++a) o[a] = gimp_offset(lx[a], ci[a], nc[a]);
-      shape_gimp(lx, o, P.psize[size_t(p)] * inv_h, inv_h, N, G);
-    } else {
-      for (int a = 0; a < 3; ++a) o[a] = bspline_offset(ci[a]);
-      shape_bspline(lx, o, inv_h, N, G);
-    }
+    stencil_27(m.shape(), ci, lx, nc, m.gimp ? P.psize[size_t(p)] * inv_h : 0.0, inv_h, o, N, G);
     for (int k = 0; k < 27; ++k) {
       const int i = ci[0] + o[0] + k % 3, j = ci[1] + o[1] + (k / 3) % 3, l = ci[2] + o[2] + k / 9;
       visit(size_t(i) + size_t(nn0) * (size_t(j) + size_t(nn1) * size_t(l)), N[k]);

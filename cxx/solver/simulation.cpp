@@ -119,6 +119,7 @@ void point_at_grid(StepContext& c, Grid& g) {
   c.patch.patch_part = g.patch_part.data();
   c.patch.patch_slot = g.patch_slot.data();
   c.patch.patch_buf = g.patch_buf.data();
+  c.patch.patch_box = g.patch_box.data();
 }
 
 // Room in g's patch buffers for the patches binned into c.patch.nslot slots (a quarter more, so
@@ -128,6 +129,8 @@ void ensure_patch_buffer(StepContext& c, Grid& g) {
   if (g.patch_buf.size() < need) {
     g.patch_buf.resize(need + need / 4);
     c.patch.patch_buf = g.patch_buf.data();
+    g.patch_box.resize(6 * (g.patch_buf.size() / (size_t(g.patch_nodes) * kNodeFields)));
+    c.patch.patch_box = g.patch_box.data();
   }
 }
 

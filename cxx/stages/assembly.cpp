@@ -84,13 +84,13 @@ inline void patch_range(int n, int P, int H, int npd, int& lo, int& hi) {
   if (hi > npd - 1) hi = npd - 1;
 }
 
-// The assembly for buffers with a halo (27-node stencils): the owner patch of each node
+// The assembly for buffers with a halo (27-node stencils, sgmp): the owner patch of each node
 // gathers it from every non-empty patch whose buffer holds it, in ascending patch index.
 // The owned block is summed one contributing patch at a time (the patch's whole overlap at
 // once, patches in ascending index), which gives every node the same additions in the same
 // order as a node-by-node gather, at a fraction of its index arithmetic.
-void assemble_wide(const StepContext* c, int first, int count, double* dst_mass, double* dst_mom,
-                   double* dst_force) {
+template <int first, int count>
+void assemble_wide(const StepContext* c, double* dst_mass, double* dst_mom, double* dst_force, const int* boxes) {
   const int P = c->patch.patch_cells, H = c->patch.patch_halo, Q = P + 1 + 2 * H;
   const size_t pn = size_t(Q) * size_t(Q) * size_t(Q);
 #pragma omp parallel
@@ -116,11 +116,16 @@ void assemble_wide(const StepContext* c, int first, int count, double* dst_mass,
             const int slot = c->patch.patch_slot[rx + c->patch.npd[0] * (ry + c->patch.npd[1] * rz)];
             if (slot < 0) continue;
             const int r3[3] = {rx, ry, rz};
-            int b0[3], b1[3];  // the overlap of the owned block and the buffer's nodes
+            int b0[3], b1[3];  // the overlap of the owned block and the buffer's (written) nodes
+            const int* box = boxes ? boxes + 6 * size_t(slot) : nullptr;
+            bool empty = false;
             for (int a = 0; a < 3; ++a) {
-              b0[a] = std::max(o.lo[a], r3[a] * P - H);
-              b1[a] = std::min(o.hi[a], r3[a] * P + P + H + 1);
+              const int first_node = r3[a] * P - H;
+              b0[a] = std::max(o.lo[a], box ? first_node + box[a] : first_node);
+              b1[a] = std::min(o.hi[a], box ? first_node + box[3 + a] : r3[a] * P + P + H + 1);
+              empty = empty || b0[a] >= b1[a];
             }
+            if (empty) continue;
             const double* buf = c->patch.patch_buf + size_t(slot) * pn * kNodeFields;
             for (int k = b0[2]; k < b1[2]; ++k)
               for (int j = b0[1]; j < b1[1]; ++j) {
@@ -147,10 +152,19 @@ void assemble_wide(const StepContext* c, int first, int count, double* dst_mass,
 }  // namespace
 
 void assemble(const StepContext* c, int first, int count, double* dst_mass, double* dst_mom,
-              double* dst_force) {
+              double* dst_force, const int* boxes) {
   if (c->ranks.exchange) c->ranks.exchange(c, EXCHANGE_BUFFERS, first, count);  // ghost patches' buffers
-  if (c->patch.patch_halo > 0)
-    assemble_wide(c, first, count, dst_mass, dst_mom, dst_force);
+  const bool wide = c->patch.patch_halo > 0;
+  if (wide && first == 0 && count == 7)
+    assemble_wide<0, 7>(c, dst_mass, dst_mom, dst_force, boxes);
+  else if (wide && first == 0 && count == 4)
+    assemble_wide<0, 4>(c, dst_mass, dst_mom, dst_force, boxes);
+  else if (wide && first == 1 && count == 3)
+    assemble_wide<1, 3>(c, dst_mass, dst_mom, dst_force, boxes);
+  else if (wide && first == 4 && count == 3)
+    assemble_wide<4, 3>(c, dst_mass, dst_mom, dst_force, boxes);
+  else if (wide)
+    throw std::logic_error("assemble: unexpected field range");
   else if (first == 0 && count == 7)
     assemble_fields<0, 7>(c, dst_mass, dst_mom, dst_force);
   else if (first == 0 && count == 4)

@@ -124,17 +124,17 @@ struct GimpStencil {
   double N[27], G[81];
 };
 
+// The stencil offsets o of a particle in cell ci with local coordinates lx.
+inline void stencil_offsets(const StepContext* c, const int ci[3], const double* lx, int o[3]) {
+  stencil_27_offsets(c->method.shape, ci, lx, c->grid.nc, o);
+}
+
 // gradients false: the weights alone (G left unset).
 inline void gimp_stencil(const StepContext* c, const CellDecoder& dec, int p, GimpStencil& s, bool gradients = true) {
   dec(c->part.cell[p], s.ci[0], s.ci[1], s.ci[2]);
-  const double* lx = c->part.lx + 3 * p;
-  if (c->method.shape == 2) {
-    for (int a = 0; a < 3; ++a) s.o[a] = bspline_offset(s.ci[a]);
-    shape_bspline(lx, s.o, c->grid.inv_h, s.N, gradients ? s.G : nullptr);
-    return;
-  }
-  for (int a = 0; a < 3; ++a) s.o[a] = gimp_offset(lx[a], s.ci[a], c->grid.nc[a]);
-  shape_gimp(lx, s.o, c->part.psize[p] * c->grid.inv_h, c->grid.inv_h, s.N, gradients ? s.G : nullptr);
+  const double lp_cells = c->method.shape == 1 ? c->part.psize[p] * c->grid.inv_h : 0.0;
+  stencil_27(c->method.shape, s.ci, c->part.lx + 3 * p, c->grid.nc, lp_cells, c->grid.inv_h, s.o, s.N,
+             gradients ? s.G : nullptr);
 }
 
 // Global node index of the stencil's first node (a = b = c = 0).

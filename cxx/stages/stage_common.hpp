@@ -16,8 +16,11 @@ namespace mpm3d {
 // Fields first..first+count-1 of the buffers go to dst_mass (field 0), dst_mom (1-3)
 // and dst_force (4-6). Every node is written by exactly one owner patch, so owners run in
 // parallel (for_patches). assembly.cpp.
+// boxes (buffers with a halo): per slot the nodes [lo, hi) per axis, buffer-local, that the
+// scatter wrote (every other node of the buffer is taken as zero: a sum that starts at
+// +0.0 is the same without +0.0 terms); null: whole buffers.
 void assemble(const StepContext* c, int first, int count, double* dst_mass, double* dst_mom,
-              double* dst_force);
+              double* dst_force, const int* boxes = nullptr);
 
 // Boundary conditions of the box faces on a nodal vector field (3,nnode): 1 fixed (all
 // components zero), 2 symmetry (normal component zero). stage_grid.cpp.

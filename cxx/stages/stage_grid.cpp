@@ -113,8 +113,8 @@ namespace {
 // patch buffers, which no stage reads after the force assembly; the gradients are the
 // deck's shape-function family's (transfer/transfer.hpp).
 void scatter_mass_gradient(StepContext* c) {
-  transfer_of(c).mass_gradient(c);
-  assemble(c, 4, 3, c->grid.gmass, c->grid.gmom, c->contact.gnormal);
+  const int* boxes = transfer_of(c).mass_gradient(c);
+  assemble(c, 4, 3, c->grid.gmass, c->grid.gmom, c->contact.gnormal, boxes);
 }
 
 // Multi-velocity contact (Bardenhagen et al. 2000, 2001; Huang et al. 2011) between

@@ -54,6 +54,9 @@ struct StepPatches {
   double *patch_buf;  // the non-empty patches' buffers (kNodeFields per node)
   int *pscratch;  // C++ kernels' scratch: (np) patch of each particle during binning
   const int *patch_work;  // (npatch + 1) prefix sums of the patches' work for thread_patches, or null
+  // C++ kernels' scratch: (6, slots) the nodes [lo, hi) per axis, buffer-local, that the
+  // 27-node scatters touched in each buffer (assemble skips the rest; stencil27.cpp)
+  int *patch_box;
   int patch_cells;  // cells per patch edge
   int npd[3];  // patches per axis
   int npatch, nslot, patch_halo;  // patch_halo: node layers a buffer holds beyond its cells

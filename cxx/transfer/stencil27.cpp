@@ -12,16 +12,56 @@
 namespace mpm3d {
 namespace {
 
+// The buffer nodes the stencils of patch q's particles reach: [lo, hi) per axis, local to
+// its buffer, into box[0..6); then fields first..first+count-1 of those nodes zeroed. A
+// thin or sparse body touches a fraction of a buffer (a column one cell thick: 3 of its 7
+// node layers per side axis), and the assembly reads nothing else (the boxes passed to
+// assemble). In a distributed run the ranks send buffer nodes outside any box: the whole
+// buffer then, as its box.
+void clear_touched(const StepContext* c, const CellDecoder& dec, int q, const int q3[3], double* buf, int first,
+                   int count, int* box) {
+  const int P = c->patch.patch_cells, H = c->patch.patch_halo, Q = P + 1 + 2 * H;
+  if (c->ranks.exchange) {
+    for (int a = 0; a < 3; ++a) box[a] = 0, box[3 + a] = Q;
+  } else {
+    for (int a = 0; a < 3; ++a) box[a] = Q, box[3 + a] = 0;
+    for (int idx = c->patch.patch_start[q]; idx < c->patch.patch_start[q + 1]; ++idx) {
+      const int p = c->patch.patch_part[idx];
+      int ci[3], o[3];
+      dec(c->part.cell[p], ci[0], ci[1], ci[2]);
+      stencil_offsets(c, ci, c->part.lx + 3 * p, o);
+      for (int a = 0; a < 3; ++a) {
+        const int lo = ci[a] + o[a] - q3[a] * P + H;
+        box[a] = std::min(box[a], lo);
+        box[3 + a] = std::max(box[3 + a], lo + 3);
+      }
+    }
+  }
+  for (int k = box[2]; k < box[5]; ++k)
+    for (int j = box[1]; j < box[4]; ++j) {
+      double* row = buf + size_t(box[0] + Q * (j + Q * k)) * kNodeFields;
+      const int n = box[3] - box[0];
+      if (count == kNodeFields) {
+        std::memset(row, 0, sizeof(double) * size_t(n) * kNodeFields);
+        continue;
+      }
+      for (int i = 0; i < n; ++i)
+        for (int f = first; f < first + count; ++f) row[size_t(i) * kNodeFields + f] = 0.0;
+    }
+}
+
+// The boxes of the last scatter, or null (whole buffers) in a distributed run.
+inline const int* touched_boxes(const StepContext* c) { return c->ranks.exchange ? nullptr : c->patch.patch_box; }
+
 // The scatter with the 27-node GIMP stencils (buffers with a halo of one node layer).
 // One instance per flag set: constant flags, no test per node.
 template <bool kMassMom, bool kForces, bool kBody>
 void scatter_p2g_gimp(StepContext* c) {
   const int Q = c->patch.patch_cells + 1 + 2 * c->patch.patch_halo;
-  const int pn = patch_nodes(c);
   const CellDecoder dec(c);
   const StencilOffsets in_buffer(Q, Q);
   for_filled_patches(c, [&](int q, const int q3[3], double* buf) {
-    std::memset(buf, 0, sizeof(double) * size_t(pn) * kNodeFields);
+    clear_touched(c, dec, q, q3, buf, 0, kNodeFields, c->patch.patch_box + 6 * size_t(c->patch.patch_slot[q]));
     for (int idx = c->patch.patch_start[q]; idx < c->patch.patch_start[q + 1]; ++idx) {
       const int p = c->patch.patch_part[idx];
       GimpStencil st;
@@ -45,18 +85,18 @@ void scatter_p2g_gimp(StepContext* c, bool with_mass_mom, bool with_forces) {
 
 void p2g_stencil27(StepContext* c, bool with_mass_mom, bool with_forces) {
   scatter_p2g_gimp(c, with_mass_mom, with_forces);
-  assemble(c, with_mass_mom ? 0 : 4, with_mass_mom ? (with_forces ? 7 : 4) : 3, c->grid.gmass, c->grid.gmom, c->grid.gforce);
+  assemble(c, with_mass_mom ? 0 : 4, with_mass_mom ? (with_forces ? 7 : 4) : 3, c->grid.gmass, c->grid.gmom,
+           c->grid.gforce, touched_boxes(c));
 }
 
 // GIMP: the 27-node stencils, one particle after the other.
 void g2p_gimp(StepContext* c, bool remap) {
   const int Q = c->patch.patch_cells + 1 + 2 * c->patch.patch_halo;
-  const int pn = patch_nodes(c);
   const int nn0 = c->grid.nn[0], nn1 = c->grid.nn[1];
   const CellDecoder dec(c);
   const StencilOffsets in_grid(nn0, nn1), in_buffer(Q, Q);
   for_filled_patches(c, [&](int q, const int q3[3], double* buf) {
-    if (remap) zero_fields(buf, pn, 1, 3);
+    if (remap) clear_touched(c, dec, q, q3, buf, 1, 3, c->patch.patch_box + 6 * size_t(c->patch.patch_slot[q]));
     for (int idx = c->patch.patch_start[q]; idx < c->patch.patch_start[q + 1]; ++idx) {
       const int p = c->patch.patch_part[idx];
       GimpStencil st;
@@ -73,7 +113,7 @@ void g2p_gimp(StepContext* c, bool remap) {
 
 void g2p_stencil27(StepContext* c, bool remap) {
   g2p_gimp(c, remap);
-  if (remap) assemble(c, 1, 3, c->grid.gmass, c->grid.gmom, c->grid.gforce);
+  if (remap) assemble(c, 1, 3, c->grid.gmass, c->grid.gmom, c->grid.gforce, touched_boxes(c));
 }
 
 // Velocity gradient L[3a+b] = d v_a / d x_b of particle p from the node velocities gvel,
@@ -111,13 +151,12 @@ void stress_stencil27(StepContext* c, const double* gvel) {
 }
 
 // Contact: the mass gradients with the 27-node stencils.
-void mass_gradient_stencil27(StepContext* c) {
+const int* mass_gradient_stencil27(StepContext* c) {
   const int Q = c->patch.patch_cells + 1 + 2 * c->patch.patch_halo;
-  const int pn = patch_nodes(c);
   const CellDecoder dec(c);
   const StencilOffsets in_buffer(Q, Q);
   for_filled_patches(c, [&](int q, const int q3[3], double* buf) {
-    zero_fields(buf, pn, 4, 3);
+    clear_touched(c, dec, q, q3, buf, 4, 3, c->patch.patch_box + 6 * size_t(c->patch.patch_slot[q]));
     for (int idx = c->patch.patch_start[q]; idx < c->patch.patch_start[q + 1]; ++idx) {
       const int p = c->patch.patch_part[idx];
       const double mp = c->part.mass[p];
@@ -133,6 +172,7 @@ void mass_gradient_stencil27(StepContext* c) {
       }
     }
   });
+  return touched_boxes(c);
 }
 
 }  // namespace

@@ -29,8 +29,8 @@ struct Transfer {
   // constitutive update.
   void (*stress)(StepContext* c, const double* gvel);
   // Contact: sum_p m_p grad N_i(x_p) of the context's particles into fields 4-6 of the patch
-  // buffers (assembled by the contact stage).
-  void (*mass_gradient)(StepContext* c);
+  // buffers, assembled by the contact stage with the boxes this returns (null: whole buffers).
+  const int* (*mass_gradient)(StepContext* c);
 };
 
 extern const Transfer kTrilinearTransfer;         // trilinear.cpp
@@ -38,7 +38,7 @@ extern const Transfer kStencil27Transfer;         // stencil27.cpp
 extern const Transfer kSmoothedGradientTransfer;  // smoothed_gradient.cpp
 
 // The trilinear mass gradients, also sgmp's contact normals (trilinear.cpp).
-void mass_gradient_trilinear(StepContext* c);
+const int* mass_gradient_trilinear(StepContext* c);
 
 // The family of a bound context.
 inline const Transfer& transfer_of(const StepContext* c) {

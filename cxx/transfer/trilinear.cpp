@@ -62,7 +62,7 @@ void stress_trilinear(StepContext* c, const double* gvel) {
 }  // namespace
 
 // Contact: the mass gradients with the trilinear shape functions (transfer.hpp).
-void mass_gradient_trilinear(StepContext* c) {
+const int* mass_gradient_trilinear(StepContext* c) {
   const int P = c->patch.patch_cells;
   const int pn = patch_nodes(c);
   const CellDecoder dec(c);
@@ -83,6 +83,7 @@ void mass_gradient_trilinear(StepContext* c) {
       }
     }
   });
+  return nullptr;
 }
 
 const Transfer kTrilinearTransfer = {p2g_trilinear, g2p_trilinear, stress_trilinear,
