@@ -36,7 +36,7 @@ module mpm3d_grid
 
   public :: grid_setup, grid_define, grid_set_window, grid_window_is_box, grid_nnode, shape_linear
   public :: grid_adaptive_window, grid_count_escaped, gimp_1d, shape_gimp, gimp_offset
-  public :: bspline_1d, bspline_offset, shape_bspline
+  public :: bspline_1d, bspline_offset, shape_bspline, stencil_27
 
 contains
 
@@ -365,5 +365,27 @@ contains
     if (i + o < 0) o = 0
     if (i + o + 2 > nc) o = -1
   end function gimp_offset
+
+  ! The 27-node shape functions in one place (as stencil_27, cxx/core/grid.hpp): shape 1
+  ! uGIMP (particle half-size lp_cells, in cells), 2 quadratic B-spline; the offsets o of the
+  ! stencil of a particle in cell ci at local coordinates lx, its weights and gradients.
+  pure subroutine stencil_27(shape, ci, lx, nc, lp_cells, inv_h, o, sn, sg)
+    integer, intent(in) :: shape, ci(3), nc(3)
+    real(dp), intent(in) :: lx(3), lp_cells, inv_h
+    integer, intent(out) :: o(3)
+    real(dp), intent(out) :: sn(27), sg(3, 27)
+    integer :: a
+    if (shape == 2) then
+      do a = 1, 3
+        o(a) = bspline_offset(ci(a))
+      end do
+      call shape_bspline(lx, o, inv_h, sn, sg)
+      return
+    end if
+    do a = 1, 3
+      o(a) = gimp_offset(lx(a), ci(a), nc(a))
+    end do
+    call shape_gimp(lx, o, lp_cells, inv_h, sn, sg)
+  end subroutine stencil_27
 
 end module mpm3d_grid

@@ -9,7 +9,7 @@
 module mpm3d_stage_common
   use, intrinsic :: iso_c_binding
   use mpm3d_material
-  use mpm3d_grid, only: NODE_FIELDS, shape_gimp, gimp_offset, shape_bspline, bspline_offset
+  use mpm3d_grid, only: NODE_FIELDS, stencil_27
   implicit none
   private
 
@@ -200,21 +200,13 @@ contains
     real(dp), intent(in) :: lxp(3), lp
     integer, intent(out) :: ci(3), o(3)
     real(dp), intent(out) :: sn(27), sg(3, 27)
-    integer :: a
+    real(dp) :: lp_cells
     ci(1) = mod(cl, c%grid%nc(1))
     ci(2) = mod(cl / c%grid%nc(1), c%grid%nc(2))
     ci(3) = cl / (c%grid%nc(1) * c%grid%nc(2))
-    if (c%method%shape == 2) then
-      do a = 1, 3
-        o(a) = bspline_offset(ci(a))
-      end do
-      call shape_bspline(lxp, o, c%grid%inv_h, sn, sg)
-      return
-    end if
-    do a = 1, 3
-      o(a) = gimp_offset(lxp(a), ci(a), c%grid%nc(a))
-    end do
-    call shape_gimp(lxp, o, lp * c%grid%inv_h, c%grid%inv_h, sn, sg)
+    lp_cells = 0.0_dp
+    if (c%method%shape == 1) lp_cells = lp * c%grid%inv_h
+    call stencil_27(c%method%shape, ci, lxp, c%grid%nc, lp_cells, c%grid%inv_h, o, sn, sg)
   end subroutine gimp_stencil
 
   ! True when particle p (1-based) belongs to another component than the context's.
