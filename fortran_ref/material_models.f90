@@ -1,9 +1,11 @@
 ! The material models, one entry each (as cxx/materials/material_models.cpp): the deck keyword of
 ! the 'mate' card, the type, what kind of solid or fluid it is, the card's parameters in
 ! deck order with the checks of their values, and the derived constants. The deck reader
-! asks this module; the stress update of a type is in constitution.f90. Adding a model: a
-! MAT_ value (material.f90, and cxx/materials/material.hpp), one row in MODELS and one case in
-! read_material_card here, its stress update, and the same in C++.
+! asks this module; the stress update of a type is in its family's module (eos.f90,
+! j2_plasticity.f90, drucker_prager.f90, neo_hookean.f90), which stress_update in
+! constitution.f90 dispatches to. Adding a model: a MAT_ value (material.f90, and
+! cxx/materials/material.hpp), one row in MODELS and one case in read_material_card here, its
+! stress update (a family module and its branch in constitution.f90), and the same in C++.
 module mpm3d_material_models
   use mpm3d_material
   use mpm3d_ffi, only: token_stream

@@ -11,18 +11,12 @@
 #include <limits>
 
 #include "input/data_in_reader.hpp"
+#include "io/data_out.hpp"
 
 namespace mpm3d {
 
-static const char* const kOutputVars[] = {"seqv", "epef", "mat",  "pres", "volu", "engk", "engi",
-                                          "velx", "vely", "velz", "cels", "fail", "sspd", "damg",
-                                          "stsx", "disx", "disy", "disz", "spre"};
-
-bool is_output_variable(const std::string& name) {
-  for (const char* v : kOutputVars)
-    if (name == v) return true;
-  return false;
-}
+// The names of outr, curv and curx: those of the one list of output variables (data_out.cpp).
+bool is_output_variable(const std::string& name) { return output_variable(name) != nullptr; }
 
 // The process-wide default of the memory budget (set_deck_memory_budget): the one piece of
 // state this file keeps; each read takes its budget once, as a parameter of the DeckReader.

@@ -90,6 +90,7 @@ double var_sspd(const Model& m, int p) {
 
 }  // namespace
 
+// The one list of the output variables (data_out.hpp): a new one is one entry here.
 const std::vector<OutputVariable>& output_variables() {
   static const std::vector<OutputVariable> vars = {
       {"seqv", var_seqv}, {"epef", var_epef}, {"mat", var_mat},   {"pres", var_pres}, {"volu", var_volu},

@@ -28,6 +28,9 @@ std::string fortran_e12_4(double v);
 //   sspd longitudinal wave speed sqrt((K + 4G/3) / rho) at the current density, K the
 //        EOS's reference bulk modulus (rho0 c0^2 Mie-Gruneisen, C1 polynomial) or
 //        lambda + 2G/3 without an EOS; the material's wave speed when K + 4G/3 <= 0
+// output_variables() is the one list of them: the deck reader accepts its names
+// (is_output_variable), the writers look their functions up in it. A new variable is its
+// function and one entry there (data_out.cpp).
 using ParticleVarFn = double (*)(const Model& m, int p);
 struct OutputVariable {
   const char* name;

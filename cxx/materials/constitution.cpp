@@ -7,15 +7,16 @@
 
 namespace mpm3d {
 
-// One particle: the lane-generic update of constitution_lanes.hpp with T = double.
+// One particle: the lane-generic update of constitution_lanes.hpp (and the families'
+// headers) with T = double.
 using Scalar = LaneUpdate<double, ScalarLane>;
 
-void jaumann_rotate(double sig[6], const double dw[3]) { Scalar::jaumann_rotate(sig, dw); }
+void jaumann_rotate(double sig[6], const double dw[3]) { Scalar::Ops::jaumann_rotate(sig, dw); }
 
 void eos_coefficients(const MaterialParams& m, double mu, double* a, double* b) {
   if (m.eos_type != EOS_JWL) {
-    // Linear and Mie-Gruneisen (the lane-generic code; it calls back here for JWL).
-    Scalar::eos_coefficients(m, mu, a, b);
+    // Linear, weakly compressible and Mie-Gruneisen (eos_lanes.hpp; it calls back here for JWL).
+    Scalar::Eos::eos_coefficients(m, mu, a, b);
     return;
   }
   // JWL: A B R1 R2 omega; V = rho0 / rho.
@@ -34,7 +35,7 @@ double burn_fraction(const MaterialParams& m, double t_light, double time) {
 }
 
 double bulk_viscosity(double rho, double len, double c, double rate, double q1, double q2) {
-  return Scalar::bulk_viscosity(rho, len, c, rate, q1, q2);
+  return Scalar::Ops::bulk_viscosity(rho, len, c, rate, q1, q2);
 }
 
 // Drucker-Prager, perfectly plastic, with tension cut-off (the FLAC formulation):

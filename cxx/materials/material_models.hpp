@@ -2,9 +2,12 @@
 // parameters the card lists (in deck order, with the MaterialParams field each fills), what
 // kind of solid or fluid it is, and the checks of its parameters. The deck reader, the
 // keyword of a type and the derived constants (material.cpp) all ask this table; the stress
-// update of a type is in constitution_lanes.hpp. Adding a model: a MaterialType value
-// (material.hpp, and its Fortran mirror), one entry in material_models.cpp, its stress
-// update, and the same in fortran_ref/material_models.f90 and constitution.f90.
+// update of a type is in its family's header (eos_lanes.hpp, j2_plasticity_lanes.hpp,
+// drucker_prager_lanes.hpp, neo_hookean_lanes.hpp), which constitution_lanes.hpp dispatches
+// to. Adding a model: a MaterialType value (material.hpp, and its Fortran mirror), one entry
+// in material_models.cpp, its stress update (a family header and its branch in
+// constitution_lanes.hpp), and the same in fortran_ref/material_models.f90 and the family
+// module used by constitution.f90.
 #pragma once
 #include <string>
 

@@ -1,0 +1,64 @@
+! Drucker-Prager (dpm): the return of a trial stress (as dp_return of cxx/materials/constitution.cpp,
+! which cxx/materials/drucker_prager_lanes.hpp runs lane by lane).
+module mpm3d_drucker_prager
+  use mpm3d_material
+  implicit none
+  private
+
+  public :: dp_return
+
+contains
+
+  ! Drucker-Prager return of a trial stress (deviator s, mean stress sm, tension > 0):
+  ! the formulas of cxx/materials/constitution.cpp (dp_return). Returns the equivalent plastic
+  ! strain increment.
+  real(dp) function dp_return(m, s, sm, bk, g) result(deps)
+    type(material_params), intent(in) :: m
+    real(dp), intent(inout) :: s(6), sm
+    real(dp), intent(in) :: bk, g
+    real(dp) :: j2, tau, qphi, kphi, qpsi, sigt, fs, ft, tau_p, alpha_p, h, tau_new, lam, ratio, sm_new
+    logical :: tension
+    integer :: c
+    j2 = (0.5_dp * (((s(1) * s(1)) + (s(2) * s(2))) + (s(3) * s(3)))) + &
+         (((s(4) * s(4)) + (s(5) * s(5))) + (s(6) * s(6)))
+    tau = sqrt(j2)
+    qphi = m%dp_qphi
+    kphi = m%dp_kphi
+    qpsi = m%dp_qpsi
+    sigt = m%dp_tension
+    fs = (tau + (qphi * sm)) - kphi
+    ft = sm - sigt
+    deps = 0.0_dp
+    if (.not. (fs > 0.0_dp) .and. .not. (ft > 0.0_dp)) return
+    tau_p = kphi - (qphi * sigt)
+    alpha_p = sqrt(1.0_dp + (qphi * qphi)) - qphi
+    h = (tau - tau_p) - (alpha_p * (sm - sigt))
+    tau_new = 0.0_dp
+    sm_new = sigt
+    tension = .true.
+    if (fs > 0.0_dp .and. h > 0.0_dp) then
+      lam = fs / (g + ((bk * qphi) * qpsi))
+      tau_new = tau - (g * lam)
+      sm_new = sm - ((bk * qpsi) * lam)
+      ! A non-associated return may land beyond the apex or the cut-off: tension return.
+      tension = tau_new < 0.0_dp .or. sm_new > sigt
+    end if
+    if (tension) then
+      if (tau > tau_p) then
+        tau_new = tau_p
+      else
+        tau_new = tau
+      end if
+      sm_new = sigt
+    end if
+    sm = sm_new
+    if (tau > 0.0_dp) then
+      ratio = tau_new / tau
+      do c = 1, 6
+        s(c) = s(c) * ratio
+      end do
+    end if
+    deps = (tau - tau_new) / (sqrt(3.0_dp) * g)
+  end function dp_return
+
+end module mpm3d_drucker_prager
