@@ -5,6 +5,7 @@
 #include <cstddef>
 
 #include "core/grid.hpp"
+#include "materials/constitution.hpp"
 #include "stages/patch_index.hpp"
 #include "stages/patch_loops.hpp"
 #include "stages/update_step.hpp"
@@ -21,6 +22,20 @@ namespace mpm3d {
 // +0.0 is the same without +0.0 terms); null: whole buffers.
 void assemble(const StepContext* c, int first, int count, double* dst_mass, double* dst_mom,
               double* dst_force, const int* boxes = nullptr);
+
+// The assembly that ends a P2G scatter of mass and momentum (with_mass_mom) and/or forces:
+// fields 0-6, 0-3 or 4-6 into the node arrays.
+inline void assemble_p2g(const StepContext* c, bool with_mass_mom, bool with_forces, const int* boxes = nullptr) {
+  assemble(c, with_mass_mom ? 0 : 4, with_mass_mom ? (with_forces ? 7 : 4) : 3, c->grid.gmass, c->grid.gmom,
+           c->grid.gforce, boxes);
+}
+
+// What the constitutive update takes from the context besides the particles.
+inline StressBlockArgs stress_args(const StepContext* c) {
+  return StressBlockArgs{c->clock.dt,        c->part.temp != nullptr, c->part.qv != nullptr,
+                         c->method.bulk_q1,  c->method.bulk_q2,       c->grid.h,
+                         c->method.uvf != 0, c->method.tl != 0};
+}
 
 // Boundary conditions of the box faces on a nodal vector field (3,nnode): 1 fixed (all
 // components zero), 2 symmetry (normal component zero). stage_grid.cpp.

@@ -12,12 +12,6 @@
 namespace mpm3d {
 namespace {
 
-// What the constitutive update takes from the context besides the particles.
-inline StressBlockArgs stress_args(const StepContext* c) {
-  return StressBlockArgs{c->clock.dt, c->part.temp != nullptr, c->part.qv != nullptr, c->method.bulk_q1, c->method.bulk_q2, c->grid.h, c->method.uvf != 0,
-                         c->method.tl != 0};
-}
-
 // The constitutive update of the particles list[i] (i where list is null), i in
 // [first, first + count): velocity gradients one particle at a time (gradient(dec, i, p, L)), the update
 // of kStressLanes consecutive particles of one material at a time (stress_block; a shorter

@@ -85,8 +85,7 @@ void scatter_p2g_gimp(StepContext* c, bool with_mass_mom, bool with_forces) {
 
 void p2g_stencil27(StepContext* c, bool with_mass_mom, bool with_forces) {
   scatter_p2g_gimp(c, with_mass_mom, with_forces);
-  assemble(c, with_mass_mom ? 0 : 4, with_mass_mom ? (with_forces ? 7 : 4) : 3, c->grid.gmass, c->grid.gmom,
-           c->grid.gforce, touched_boxes(c));
+  assemble_p2g(c, with_mass_mom, with_forces, touched_boxes(c));
 }
 
 // GIMP: the 27-node stencils, one particle after the other.

@@ -21,7 +21,7 @@ void p2g_trilinear(StepContext* c, bool with_mass_mom, bool with_forces) {
     else
       p2g_patch<VectorLane<kLanes>>(c, CellDecoder(c), q, with_mass_mom, with_forces);
   });
-  assemble(c, with_mass_mom ? 0 : 4, with_mass_mom ? (with_forces ? 7 : 4) : 3, c->grid.gmass, c->grid.gmom, c->grid.gforce);
+  assemble_p2g(c, with_mass_mom, with_forces);
 }
 
 // Trilinear: each thread over its balanced range of patches, 4 particles per vector.
@@ -47,8 +47,7 @@ void g2p_trilinear(StepContext* c, bool remap) {
 // transfer_lanes.hpp). Each particle's update is its own, so the chunks cross patch ends.
 void stress_trilinear(StepContext* c, const double* gvel) {
   const CellDecoder dec(c);
-  const StressBlockArgs args{c->clock.dt, c->part.temp != nullptr, c->part.qv != nullptr, c->method.bulk_q1, c->method.bulk_q2, c->grid.h, c->method.uvf != 0,
-                             c->method.tl != 0};
+  const StressBlockArgs args = stress_args(c);
   const bool avx2 = lanes_use_avx2();
   for_list_chunks(c, [&](int first, int count) {
     const int* list = c->patch.patch_part + first;
