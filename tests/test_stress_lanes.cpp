@@ -13,6 +13,7 @@
 
 #include "materials/constitution.hpp"
 #include "materials/material.hpp"
+#include "materials/drucker_prager_lanes.hpp"
 
 namespace {
 
@@ -311,4 +312,63 @@ TEST(StressLanes, TotalLagrangianNeoHookean) {
     for (int i = 0; i < mpm3d::kStressLanes; ++i) mpm3d::stress_block_lane(m, lane, i, tl);
     ASSERT_EQ(std::memcmp(&vec, &lane, sizeof vec), 0) << "trial " << trial;
   }
+}
+
+// The Drucker-Prager return in lanes (selects over its four arms) against the scalar
+// dp_return with its branches (constitution.cpp), bit for bit, on stress states that reach
+// every arm: elastic, shear, shear landing beyond the cut-off (then tension), tension
+// below and at the corner.
+TEST(StressLanes, DruckerPragerReturnInLanesEqualsTheBranches) {
+  using VL = mpm3d::VectorLane<4>;
+  using V = VL::D;
+  MaterialParams m{};
+  m.dp_qphi = 0.6;
+  m.dp_kphi = 0.02;
+  m.dp_qpsi = 0.1;
+  m.dp_tension = 0.01;
+  const double K = 40.0, G = 20.0, tau_p = m.dp_kphi - m.dp_qphi * m.dp_tension;
+  std::mt19937_64 rng(20261127);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int elastic = 0, shear = 0, tension_below = 0, tension_corner = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    double s[4][6], sm[4];
+    V sv[6], smv;
+    for (int i = 0; i < 4; ++i) {
+      const double scale = 0.05 * std::pow(10.0, u(rng));  // around the surface and far out
+      for (int c = 0; c < 6; ++c) s[i][c] = (c < 3 ? 1.0 : 0.5) * scale * u(rng);
+      const double dev_mean = (s[i][0] + s[i][1] + s[i][2]) / 3.0;
+      for (int c = 0; c < 3; ++c) s[i][c] -= dev_mean;
+      sm[i] = 0.04 * u(rng);
+      for (int c = 0; c < 6; ++c) sv[c][i] = s[i][c];
+      smv[i] = sm[i];
+    }
+    double sd[6], smd;
+    for (int c = 0; c < 6; ++c) sd[c] = s[1][c];
+    smd = sm[1];
+    const V dv = mpm3d::DruckerPragerLanes<V, VL>::dp_return(m, sv, smv, K, G);
+    const double dd = mpm3d::DruckerPragerLanes<double, mpm3d::ScalarLane>::dp_return(m, sd, smd, K, G);
+    for (int i = 0; i < 4; ++i) {
+      const double tau = std::sqrt(0.5 * ((s[i][0] * s[i][0] + s[i][1] * s[i][1]) + s[i][2] * s[i][2]) +
+                                   ((s[i][3] * s[i][3] + s[i][4] * s[i][4]) + s[i][5] * s[i][5]));
+      double ref_s[6], ref_sm = sm[i];
+      for (int c = 0; c < 6; ++c) ref_s[c] = s[i][c];
+      const double ref = mpm3d::dp_return(m, ref_s, &ref_sm, K, G);
+      EXPECT_EQ(std::memcmp(&ref, &dv[i], sizeof ref), 0) << "trial " << trial << " lane " << i;
+      EXPECT_EQ(std::memcmp(&ref_sm, &smv[i], sizeof ref_sm), 0) << "trial " << trial << " lane " << i;
+      for (int c = 0; c < 6; ++c) EXPECT_EQ(std::memcmp(&ref_s[c], &sv[c][i], sizeof(double)), 0) << trial;
+      if (i == 1) {
+        EXPECT_EQ(std::memcmp(&ref, &dd, sizeof ref), 0) << "trial " << trial;
+        EXPECT_EQ(std::memcmp(&ref_sm, &smd, sizeof ref_sm), 0) << "trial " << trial;
+      }
+      if (ref == 0.0 && ref_sm == sm[i]) ++elastic;
+      else if (ref_sm != m.dp_tension) ++shear;
+      else if (tau > tau_p) ++tension_corner;
+      else ++tension_below;
+    }
+  }
+  // Every arm was taken by a tenth of the lanes or more.
+  EXPECT_GT(elastic, 1600);
+  EXPECT_GT(shear, 1600);
+  EXPECT_GT(tension_below, 1600);
+  EXPECT_GT(tension_corner, 1600);
 }

@@ -1,7 +1,11 @@
-// Drucker-Prager (dpm), written for a lane type T (constitution_lanes.hpp): its return
-// branches four ways, so every lane runs the scalar dp_return (constitution.cpp, where
-// the formulas are) one at a time. Internal linkage (lanes.hpp).
+// Drucker-Prager (dpm), written for a lane type T (constitution_lanes.hpp): the return of
+// dp_return (constitution.cpp, where the formulas and their branches are explained) with
+// its four branches (elastic, shear, tension cut-off, apex) as selects that compute every
+// arm, so W particles return at once with the scalar function's bits. Internal linkage
+// (lanes.hpp).
 #pragma once
+#include <cmath>
+
 #include "core/lanes.hpp"
 #include "materials/constitution.hpp"
 #include "materials/material.hpp"
@@ -11,17 +15,36 @@ namespace {  // internal linkage, see lanes.hpp
 
 template <class T, class TL>
 struct DruckerPragerLanes {
-  // Drucker-Prager, one lane at a time (its returns branch in four ways).
+  // dp_return lane by lane: s (deviator) and sm (mean stress) returned in place; the
+  // equivalent plastic strain increment returned. The operations of each arm are the
+  // scalar function's, in its order; a lane takes the arm the scalar branches would.
   static T dp_return(const MaterialParams& m, T s[6], T& sm, double K, double G) {
-    T deps;
-    for (int i = 0; i < TL::W; ++i) {
-      double si[6], smi = TL::get(sm, i);
-      for (int c = 0; c < 6; ++c) si[c] = TL::get(s[c], i);
-      TL::set(deps, i, mpm3d::dp_return(m, si, &smi, K, G));
-      for (int c = 0; c < 6; ++c) TL::set(s[c], i, si[c]);
-      TL::set(sm, i, smi);
-    }
-    return deps;
+    const T zero = TL::splat(0.0);
+    const T j2 = 0.5 * ((s[0] * s[0] + s[1] * s[1]) + s[2] * s[2]) + ((s[3] * s[3] + s[4] * s[4]) + s[5] * s[5]);
+    const T tau = TL::sqrt(j2);
+    const double qphi = m.dp_qphi, kphi = m.dp_kphi, qpsi = m.dp_qpsi, sigt = m.dp_tension;
+    const T fs = (tau + qphi * sm) - kphi;
+    const T ft = sm - sigt;
+    const auto yields = (fs > 0.0) | (ft > 0.0);
+    const double tau_p = kphi - qphi * sigt;
+    const double alpha_p = std::sqrt(1.0 + qphi * qphi) - qphi;
+    const T h = (tau - tau_p) - alpha_p * (sm - sigt);
+    // Shear return, kept where it lands inside the apex and the cut-off.
+    const T lam = fs / (G + (K * qphi) * qpsi);
+    const T tau_s = tau - G * lam;
+    const T sm_s = sm - (K * qpsi) * lam;
+    const auto shear = (fs > 0.0) & (h > 0.0);
+    // Tension return: onto the cut-off, at most to the corner.
+    const T tau_t = TL::select(tau > tau_p, TL::splat(tau_p), tau);
+    const T sm_t = TL::splat(sigt);
+    const auto beyond = (tau_s < 0.0) | (sm_s > sigt);
+    const T tau_new = TL::select(shear, TL::select(beyond, tau_t, tau_s), tau_t);
+    const T sm_new = TL::select(shear, TL::select(beyond, sm_t, sm_s), sm_t);
+    sm = TL::select(yields, sm_new, sm);
+    const T ratio = tau_new / tau;
+    const auto scaled = yields & (tau > 0.0);
+    for (int c = 0; c < 6; ++c) s[c] = TL::select(scaled, s[c] * ratio, s[c]);
+    return TL::select(yields, (tau - tau_new) / (std::sqrt(3.0) * G), zero);
   }
 };
 
