@@ -63,5 +63,12 @@ if command -v mpirun > /dev/null && ldd "$build/cxx/mpm3d" | grep -q libmpi; the
   "$py" tools/rank_bench.py "$build" "$outdir/ranks.csv" --rounds "${BENCH_ROUNDS:-5}" --steps "$steps" \
     inputs/taylor/taylor_coarse.mpm inputs/taylor/taylor_medium.mpm
 fi
+# Every public deck against the original programs (issue 36), when the user names them:
+# BENCH_MPM3D_F90 (a checkout of the public MPM3D-F90, for its decks), BENCH_BOOK and
+# BENCH_CURRENT (its programs at commits 2284feb and 4a6275f, built outside this repository).
+if [ -n "${BENCH_MPM3D_F90:-}" ] && [ -n "${BENCH_BOOK:-}" ] && [ -n "${BENCH_CURRENT:-}" ]; then
+  "$py" tools/every_deck_speed.py "$build" --repo "$BENCH_MPM3D_F90" --book "$BENCH_BOOK" \
+    --current "$BENCH_CURRENT" --rounds "${BENCH_ROUNDS:-3}" --csv "$outdir/every_deck.csv"
+fi
 "$py" tools/bench_plot.py "$csv" "$outdir"
 column -s, -t < "$csv"

@@ -53,6 +53,8 @@ double bulk_viscosity(double rho, double len, double c, double rate, double q1, 
 // tension return sm' = sigma_t, tau' = min(tau, tau_P) (onto the cut-off, at most to the
 // corner). The deviator is scaled by tau'/tau. The
 // equivalent plastic strain grows by (tau - tau') / (sqrt(3) G).
+// This is the return as branches, the reference that the update's lanes
+// (drucker_prager_lanes.hpp, selects over the four arms) are tested against bit for bit.
 double dp_return(const MaterialParams& m, double s[6], double* sm, double K, double G) {
   const double j2 = 0.5 * ((s[0] * s[0] + s[1] * s[1]) + s[2] * s[2]) +
                     ((s[3] * s[3] + s[4] * s[4]) + s[5] * s[5]);

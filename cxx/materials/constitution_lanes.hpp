@@ -4,7 +4,7 @@
 // update in the same order (docs/DESIGN.md 5: vectorising across particles keeps the bits):
 // branches that depend on the particle become selects that compute both arms, branches
 // that depend on the material stay branches, and the transcendental calls (pow, log, exp)
-// and the Drucker-Prager return run lane by lane through the scalar functions.
+// run lane by lane through the scalar functions.
 // This file holds the update's skeleton and the dispatch on the material; each model
 // family is a header of its own, templates over T:
 //   stress_ops_lanes.hpp       what all share: sigma : de, Jaumann rotation, bulk viscosity, det(I + A)
