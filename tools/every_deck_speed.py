@@ -1,0 +1,259 @@
+#!/usr/bin/env python3
+"""Speed on every public deck: mpm3d against the original program that reads it, side by side.
+
+usage: tools/every_deck_speed.py BUILD_DIR --repo MPM3D_F90 --book EXE --current EXE
+                                 [--threads 1,2] [--rounds 3] [--target 4] [--only NAME[,NAME...]]
+                                 [--csv docs/bench/every_deck.csv] [--doc docs/PERFORMANCE.md]
+
+The decks and originals are those of tools/public_decks.py (31 runs: the 26 readable decks of
+the current version against the current program, the five book decks also against the book
+program); the programs are built outside this repository (see that tool). Each deck is cut so
+that the original runs about TARGET seconds: its end time is set to the time mpm3d reaches at
+step K, K scaled from a run of the original to mpm3d's time at step 50 and checked once more
+(the current program computes its time step every step, so its steps may differ from ours),
+and its TecPlot and ParaView animation cards (`tecp`, `para`) are taken out, so that neither
+program writes animation frames. Both programs read the same cut deck and write what it asks
+(energies, curves).
+
+Each round runs the original (serial, as it is built) and mpm3d once at each thread count, one
+after the other, the order reversed every other round; every figure is the whole process's
+wall time and peak resident memory (wait4). Per deck and thread count the ratio is the median
+of the per-round ratios original / mpm3d: this machine is noisy, and a ratio of two runs
+seconds apart is what it can measure. Writes the rows to --csv and the table between the
+EVERY_DECK markers of --doc.
+"""
+import argparse
+import csv
+import datetime
+import importlib.util
+import json
+import os
+import platform
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+BEGIN, END = "<!-- EVERY_DECK begin -->", "<!-- EVERY_DECK end -->"
+
+_spec = importlib.util.spec_from_file_location("public_decks", os.path.join(HERE, "public_decks.py"))
+public = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(public)
+
+PROBE_STEPS = 50
+
+
+def cut_deck(src, end_time, path):
+    """The deck with its end time set (None: kept) and its animation cards taken out."""
+    with open(src, errors="replace") as f:
+        lines = f.readlines()
+    with open(path, "w") as f:
+        for line in lines:
+            key = line.split()[0].lower()[:4] if line.split() else ""
+            if key in ("tecp", "para"):
+                continue
+            if key == "endt" and end_time is not None:
+                line = "endtime %.9g\n" % end_time
+            f.write(line)
+
+
+def timed(cmd, cwd):
+    """(exit status, wall seconds, peak resident bytes) of cmd, its output in cwd/run.log."""
+    with open(os.path.join(cwd, "run.log"), "w") as log:
+        t0 = time.perf_counter()
+        p = subprocess.Popen(cmd, cwd=cwd, stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT)
+        _, status, usage = os.wait4(p.pid, 0)
+        wall = time.perf_counter() - t0
+    p.returncode = os.waitstatus_to_exitcode(status)
+    return p.returncode, wall, usage.ru_maxrss * 1024
+
+
+def fresh(work, deck):
+    shutil.rmtree(work, ignore_errors=True)
+    os.makedirs(work)
+    shutil.copy(deck, work)
+    return os.path.basename(deck)
+
+
+def run_original(exe, deck, work):
+    name = fresh(work, deck)
+    return timed([exe, name], work)
+
+
+def run_mpm3d(exe, deck, threads, work, steps=None):
+    name = fresh(work, deck)
+    cmd = [exe, "--threads", str(threads), "--quiet", "--out-dir", ".", "--summary", "summary.json"]
+    if steps:
+        cmd += ["--no-output", "--steps", str(steps)]
+    rc, wall, peak = timed(cmd + [name], work)
+    info = {}
+    if rc == 0:
+        with open(os.path.join(work, "summary.json")) as f:
+            info = json.load(f)
+    return rc, wall, peak, info
+
+
+def full_end_time(deck):
+    with open(deck, errors="replace") as f:
+        for line in f:
+            w = line.split()
+            if w and w[0].lower()[:4] == "endt":
+                return float(w[1].replace("d", "e").replace("D", "e"))
+    return None
+
+
+def measure(name, src, exe_orig, mpm3d, threads, rounds, target, tmp):
+    """One deck's rows, or a refusal."""
+    work = os.path.join(tmp, "run")
+    deck = os.path.join(tmp, os.path.basename(src))
+    end_full = full_end_time(src)
+    # Probe: the time mpm3d reaches at PROBE_STEPS, and how long the original takes to get
+    # there; then step K scaled from it, checked once more (the programs' time steps may
+    # differ: the current one computes it every step).
+    uncut = os.path.join(tmp, "probe_" + os.path.basename(src))
+    cut_deck(src, None, uncut)
+    steps, end = PROBE_STEPS, None
+    for attempt in range(3):
+        rc, _, _, info = run_mpm3d(mpm3d, uncut, 1, work, steps)
+        if rc != 0:
+            return {"refused": "mpm3d: " + open(os.path.join(work, "run.log"), errors="replace").read().strip()[-200:]}
+        end = min(info["time"], end_full) if end_full else info["time"]
+        cut_deck(src, end, deck)
+        if attempt == 2 or end == end_full:
+            break
+        rc, wall, _ = run_original(exe_orig, deck, work)
+        if rc != 0:
+            return {"refused": "the original: exit %d" % rc}
+        if attempt > 0 and target / 1.5 < wall < target * 1.5:
+            break
+        steps = max(PROBE_STEPS, int(steps * target / max(wall, 1e-3)))
+    orig, ours = [], {t: [] for t in threads}
+    ratio = {t: [] for t in threads}
+    peak = {t: 0 for t in threads}
+    peak_orig, particles, our_steps = 0, None, None
+    for r in range(rounds):
+        order = ["orig"] + threads if r % 2 == 0 else threads[::-1] + ["orig"]
+        walls = {}
+        for who in order:
+            if who == "orig":
+                rc, walls[who], pk = run_original(exe_orig, deck, work)
+                if rc != 0:
+                    return {"refused": "the original: exit %d" % rc}
+                peak_orig = max(peak_orig, pk)
+            else:
+                rc, walls[who], pk, info = run_mpm3d(mpm3d, deck, who, work)
+                if rc != 0:
+                    return {"refused": "mpm3d: exit %d" % rc}
+                peak[who] = max(peak[who], pk)
+                particles, our_steps = info["particles"], info["steps"]
+        orig.append(walls["orig"])
+        for t in threads:
+            ours[t].append(walls[t])
+            ratio[t].append(walls["orig"] / walls[t])
+    return {"end_time": end, "particles": particles, "steps": our_steps,
+            "orig_s": statistics.median(orig), "peak_orig": peak_orig,
+            "ours_s": {t: statistics.median(ours[t]) for t in threads},
+            "ratio": {t: statistics.median(ratio[t]) for t in threads},
+            "ratio_range": {t: (min(ratio[t]), max(ratio[t])) for t in threads},
+            "peak": peak}
+
+
+def table(results, threads, rounds, target, when):
+    t_hdr = " | ".join(f"{t} thr" for t in threads)
+    out = [BEGIN, f"`tools/every_deck_speed.py` ({'make bench'} with the originals given), {when}, "
+           f"{platform.machine()}, {os.cpu_count()} cores: every public deck cut so that the original runs "
+           f"about {target:g} s, whole process, wall time; the ratio original / mpm3d is the median of "
+           f"{rounds} interleaved rounds (range in brackets). Book decks against the book program, "
+           "current decks against the current program, both gfortran 12 `-O2`, serial. Memory: mpm3d's "
+           "peak resident bytes per particle at the highest thread count (the original's in brackets).", "",
+           f"| deck | program | particles | steps | original s | {t_hdr} | bytes/particle |",
+           "|---|---|---|---|---|" + "---|" * len(threads) + "---|"]
+    for r in results:
+        if "refused" in r:
+            out.append(f"| {r['name']} | {r['program']} | - | - | - | " + " | ".join("-" for _ in threads)
+                       + f" | refused: {r['refused']} |")
+            continue
+        cells = " | ".join("%.2fx (%.2f-%.2f)" % ((r["ratio"][t],) + r["ratio_range"][t]) for t in threads)
+        tmax = threads[-1]
+        out.append(f"| {r['name']} | {r['program']} | {r['particles']} | {r['steps']} | {r['orig_s']:.2f} | "
+                   f"{cells} | {r['peak'][tmax] / r['particles']:.0f} ({r['peak_orig'] / r['particles']:.0f}) |")
+    out.append(END)
+    return out
+
+
+def write_doc(path, block):
+    text = open(path).read()
+    if BEGIN in text and END in text:
+        head, rest = text.split(BEGIN, 1)
+        text = head + "\n".join(block) + rest.split(END, 1)[1]
+    else:
+        text = text.rstrip("\n") + "\n\n" + "\n".join(block) + "\n"
+    with open(path, "w") as f:
+        f.write(text)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("build")
+    ap.add_argument("--repo", required=True, help="checkout of the public MPM3D-F90 (its decks)")
+    ap.add_argument("--book", required=True, help="the book program (commit 2284feb)")
+    ap.add_argument("--current", required=True, help="the current program (commit 4a6275f)")
+    ap.add_argument("--threads", default="1,2")
+    ap.add_argument("--rounds", type=int, default=3)
+    ap.add_argument("--target", type=float, default=4.0, help="seconds the original should run")
+    ap.add_argument("--only", default="", help="only the decks whose names contain one of these")
+    ap.add_argument("--csv", default=os.path.join(ROOT, "docs", "bench", "every_deck.csv"))
+    ap.add_argument("--doc", default=os.path.join(ROOT, "docs", "PERFORMANCE.md"))
+    a = ap.parse_args()
+    mpm3d = os.path.join(os.path.abspath(a.build), "cxx", "mpm3d")
+    threads = [int(t) for t in a.threads.split(",")]
+    wanted = [w for w in a.only.split(",") if w]
+    results = []
+    print(f"every_deck_speed: load before: {open('/proc/loadavg').read().split()[0]}", flush=True)
+    for name, rel, which, _ in public.DECKS:
+        if wanted and not any(w in name for w in wanted):
+            continue
+        src = os.path.join(a.repo, rel)
+        if not os.path.exists(src):
+            print(f"every_deck_speed: {rel} not in {a.repo}: skipped", file=sys.stderr)
+            continue
+        exe = os.path.abspath(a.book if which == "book" else a.current)
+        with tempfile.TemporaryDirectory() as tmp:
+            r = measure(name, src, exe, mpm3d, threads, a.rounds, a.target, tmp)
+        r.update(name=name, program=which)
+        results.append(r)
+        if "refused" in r:
+            print(f"every_deck_speed: {name}: refused: {r['refused']}", flush=True)
+        else:
+            print(f"every_deck_speed: {name}: original {r['orig_s']:.2f} s, "
+                  + ", ".join("%d thr %.2fx" % (t, r["ratio"][t]) for t in threads), flush=True)
+    os.makedirs(os.path.dirname(a.csv), exist_ok=True)
+    with open(a.csv, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["deck", "program", "particles", "steps", "end_time", "original_s"]
+                   + [f"mpm3d_s_{t}" for t in threads] + [f"ratio_{t}" for t in threads]
+                   + [f"ratio_min_{t}" for t in threads] + [f"ratio_max_{t}" for t in threads]
+                   + ["peak_bytes_original"] + [f"peak_bytes_{t}" for t in threads])
+        for r in results:
+            if "refused" in r:
+                w.writerow([r["name"], r["program"], "refused: " + r["refused"]])
+                continue
+            w.writerow([r["name"], r["program"], r["particles"], r["steps"], "%.6g" % r["end_time"],
+                        "%.3f" % r["orig_s"]] + ["%.3f" % r["ours_s"][t] for t in threads]
+                       + ["%.3f" % r["ratio"][t] for t in threads]
+                       + ["%.3f" % r["ratio_range"][t][0] for t in threads]
+                       + ["%.3f" % r["ratio_range"][t][1] for t in threads]
+                       + [r["peak_orig"]] + [r["peak"][t] for t in threads])
+    when = datetime.datetime.utcnow().strftime("%Y-%m-%d")
+    if not wanted:
+        write_doc(a.doc, table(results, threads, a.rounds, a.target, when))
+    print(f"every_deck_speed: wrote {a.csv}" + ("" if wanted else f" and the table in {a.doc}"))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
