@@ -12,7 +12,8 @@ that the original runs about TARGET seconds: its end time is set to the time mpm
 step K, K scaled from a run of the original to mpm3d's time at step 50 and checked once more
 (the current program computes its time step every step, so its steps may differ from ours),
 and its TecPlot and ParaView animation cards (`tecp`, `para`) are taken out, so that neither
-program writes animation frames. Both programs read the same cut deck and write what it asks
+program writes animation frames, and so is `QuLo` (its load ramp's run-on rule carries both
+programs past the end time to t = 100). Both programs read the same cut deck and write what it asks
 (energies, curves).
 
 Each round runs the original (serial, as it is built) and mpm3d once at each thread count, one
@@ -48,13 +49,15 @@ PROBE_STEPS = 50
 
 
 def cut_deck(src, end_time, path):
-    """The deck with its end time set (None: kept) and its animation cards taken out."""
+    """The deck with its end time set (None: kept), its animation cards and QuLo taken out."""
     with open(src, errors="replace") as f:
         lines = f.readlines()
     with open(path, "w") as f:
         for line in lines:
             key = line.split()[0].lower()[:4] if line.split() else ""
             if key in ("tecp", "para"):
+                continue
+            if key == "qulo":  # its run-on rule carries both programs on to t = 100
                 continue
             if key == "endt" and end_time is not None:
                 line = "endtime %.9g\n" % end_time
