@@ -96,8 +96,10 @@ void assemble_wide(const StepContext* c, double* dst_mass, double* dst_mom, doub
 #pragma omp parallel
   {
     std::vector<double> acc;
-#pragma omp for schedule(dynamic, 1)
-    for (int q = 0; q < c->patch.npatch; ++q) {
+    int t, T, qlo, qhi;
+    team_position(t, T);
+    thread_patches(c, t, T, qlo, qhi);
+    for (int q = qlo; q < qhi; ++q) {
       const OwnedNodes o = owned_nodes(c, q);
       if (!o.active) continue;
       const int ex = o.hi[0] - o.lo[0], ey = o.hi[1] - o.lo[1], ez = o.hi[2] - o.lo[2];

@@ -66,18 +66,17 @@ __attribute__((always_inline)) inline void store_node_fields(int first, int coun
   }
 }
 
-// f(q, q3, buf) for every non-empty patch q (coordinates q3, buffer buf), dealt out to the
-// threads one patch at a time: the GIMP stages and the contact's mass gradients.
+// f(q, q3, buf) for every non-empty patch q (coordinates q3, buffer buf), each thread over
+// its run of patches (for_patches): the 27-node stages and the contact's mass gradients.
 template <class F>
 inline void for_filled_patches(const StepContext* c, F&& f) {
-#pragma omp parallel for schedule(dynamic, 1)
-  for (int q = 0; q < c->patch.npatch; ++q) {
+  for_patches(c, [&](int q) {
     const int slot = c->patch.patch_slot[q];
-    if (slot < 0) continue;
+    if (slot < 0) return;
     int q3[3];
     patch_coords(c, q, q3);
     f(q, q3, patch_buffer(c, slot));
-  }
+  });
 }
 
 // The body force of particle p: the point load (ramped with QuLo), the damping (Damp),

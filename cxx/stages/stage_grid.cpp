@@ -205,8 +205,7 @@ inline bool contact_node(StepContext* c, StepContext* c2, int n, double part[3])
 template <bool kRemap>
 void contact_correct(StepContext* c) {
   StepContext* c2 = c->contact.other;
-#pragma omp parallel for schedule(dynamic, 1)
-  for (int q = 0; q < c->patch.npatch; ++q) {
+  for_patches(c, [&](int q) {
     double part[3] = {0.0, 0.0, 0.0};
     int count = 0;
     const OwnedNodes o = owned_nodes(c, q);
@@ -225,7 +224,7 @@ void contact_correct(StepContext* c) {
       for (int a = 0; a < 3; ++a) col[a] = part[a];
       col[3] = double(count);
     }
-  }
+  });
   apply_bc(c, c->grid.gmom);
   apply_bc(c2, c2->grid.gmom);
   if (kRemap) return;

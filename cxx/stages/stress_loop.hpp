@@ -64,7 +64,7 @@ void stress_particles(StepContext* c, Gradient&& gradient) {
   const StressBlockArgs args = stress_args(c);
   constexpr int kChunk = 256;
   const int nchunk = (c->part.np + kChunk - 1) / kChunk;
-#pragma omp parallel for schedule(dynamic, 1)
+#pragma omp parallel for schedule(static)
   for (int ch = 0; ch < nchunk; ++ch)
     stress_run(c, dec, args, nullptr, ch * kChunk, std::min(c->part.np, (ch + 1) * kChunk) - ch * kChunk, gradient);
 }
