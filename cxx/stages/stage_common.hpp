@@ -113,7 +113,16 @@ __attribute__((always_inline)) inline void p2g_particle(const StepContext* c, in
                                                         const double* G, bool with_mass_mom, bool with_forces,
                                                         bool with_body, NodeOf node) {
   const double mp = c->part.mass[p];
+  // The buffer stores below could alias the particle arrays, so the compiler reloads what it
+  // reads from them at every node. USF's pass of mass and momentum alone keeps the velocity
+  // in registers; in the pass with forces the registers are better spent on sigma V
+  // (docs/PERFORMANCE.md).
   const double* vp = c->part.v + 3 * p;
+  double v_local[3];
+  if (with_mass_mom && !with_forces) {
+    for (int a = 0; a < 3; ++a) v_local[a] = vp[a];
+    vp = v_local;
+  }
   // sigma V (Voigt), or under TLmp V0 P (pk, a 3x3 matrix, row i giving force component i).
   double vs[6] = {0, 0, 0, 0, 0, 0}, fb[3] = {0, 0, 0};
   const double* pk = c->part.pk1 ? c->part.pk1 + 9 * size_t(p) : nullptr;
