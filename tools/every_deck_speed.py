@@ -65,14 +65,22 @@ def cut_deck(src, end_time, path):
 
 
 def timed(cmd, cwd):
-    """(exit status, wall seconds, peak resident bytes) of cmd, its output in cwd/run.log."""
+    """(exit status, wall seconds, peak resident bytes) of cmd, its output in cwd/run.log.
+    The peak comes from GNU time (Debian's `time` package): a child forked from this script
+    would report the script's own resident size where the program's is smaller."""
+    peak_file = os.path.join(cwd, "peak.txt")
+    wrap = ["/usr/bin/time", "-f", "%M", "-o", peak_file] if os.path.exists("/usr/bin/time") else []
     with open(os.path.join(cwd, "run.log"), "w") as log:
         t0 = time.perf_counter()
-        p = subprocess.Popen(cmd, cwd=cwd, stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT)
-        _, status, usage = os.wait4(p.pid, 0)
+        rc = subprocess.run(wrap + cmd, cwd=cwd, stdin=subprocess.DEVNULL, stdout=log,
+                            stderr=subprocess.STDOUT).returncode
         wall = time.perf_counter() - t0
-    p.returncode = os.waitstatus_to_exitcode(status)
-    return p.returncode, wall, usage.ru_maxrss * 1024
+    peak = 0
+    if wrap and os.path.exists(peak_file):
+        with open(peak_file) as f:
+            lines = [l for l in f.read().split() if l.isdigit()]
+        peak = int(lines[-1]) * 1024 if lines else 0
+    return rc, wall, peak
 
 
 def fresh(work, deck):
