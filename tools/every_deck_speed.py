@@ -196,23 +196,9 @@ def table(results, threads, rounds, target, when):
     return out
 
 
-def write_doc(path, block):
-    text = open(path).read()
-    if BEGIN in text and END in text:
-        head, rest = text.split(BEGIN, 1)
-        text = head + "\n".join(block) + rest.split(END, 1)[1]
-    else:
-        text = text.rstrip("\n") + "\n\n" + "\n".join(block) + "\n"
-    with open(path, "w") as f:
-        f.write(text)
-
-
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("build")
-    ap.add_argument("--repo", required=True, help="checkout of the public MPM3D-F90 (its decks)")
-    ap.add_argument("--book", required=True, help="the book program (commit 2284feb)")
-    ap.add_argument("--current", required=True, help="the current program (commit 4a6275f)")
+    public.add_program_args(ap)
     ap.add_argument("--threads", default="1,2")
     ap.add_argument("--rounds", type=int, default=3)
     ap.add_argument("--target", type=float, default=4.0, help="seconds the original should run")
@@ -261,7 +247,7 @@ def main():
                        + [r["peak_orig"]] + [r["peak"][t] for t in threads])
     when = datetime.datetime.utcnow().strftime("%Y-%m-%d")
     if not wanted:
-        write_doc(a.doc, table(results, threads, a.rounds, a.target, when))
+        public.write(a.doc, table(results, threads, a.rounds, a.target, when), BEGIN, END)
     print(f"every_deck_speed: wrote {a.csv}" + ("" if wanted else f" and the table in {a.doc}"))
     return 0
 

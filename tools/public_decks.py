@@ -278,11 +278,13 @@ def table(results, when, threads):
     return out
 
 
-def write(out_path, block):
+def write(out_path, block, begin=BEGIN, end=END):
+    """block (lines, from its begin marker to its end marker) in place of the one between the
+    markers in out_path, or after the file's title line when it has none."""
     text = open(out_path).read() if os.path.exists(out_path) else "# The current MPM3D-F90's public decks\n"
-    if BEGIN in text and END in text:
-        head, rest = text.split(BEGIN, 1)
-        text = head + "\n".join(block) + rest.split(END, 1)[1]
+    if begin in text and end in text:
+        head, rest = text.split(begin, 1)
+        text = head + "\n".join(block) + rest.split(end, 1)[1]
     else:
         title, _, body = text.partition("\n")
         text = title + "\n\n" + "\n".join(block) + "\n" + body
@@ -290,12 +292,17 @@ def write(out_path, block):
         f.write(text)
 
 
-def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def add_program_args(ap):
+    """The arguments both comparison tools take: the build and the original programs."""
     ap.add_argument("build")
     ap.add_argument("--repo", required=True, help="checkout of the public MPM3D-F90 (its decks)")
     ap.add_argument("--book", required=True, help="the book program (commit 2284feb)")
     ap.add_argument("--current", required=True, help="the current program (commit 4a6275f)")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    add_program_args(ap)
     ap.add_argument("--runs", required=True, help="where both programs run (outside the repository)")
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--only", default="", help="only the decks whose names contain one of these")
