@@ -3,7 +3,7 @@ BUILD ?= build
 JOBS  ?= $(shell nproc)
 DEB_PACKAGES = g++ gfortran cmake make libeigen3-dev libhdf5-dev hdf5-tools googletest \
                libgtest-dev libbenchmark-dev python3 python3-numpy python3-matplotlib \
-               libopenmpi-dev openmpi-bin
+               libopenmpi-dev openmpi-bin time
 DECK ?= inputs/taylor/taylor_coarse.mpm
 # `make fuzz` only (docs/RELIABILITY.md): libFuzzer comes with Debian's clang.
 FUZZ_PACKAGES = clang libclang-rt-dev

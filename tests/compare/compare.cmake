@@ -92,4 +92,10 @@ if(Python3_Interpreter_FOUND)
     EXPECT --rc 0 --clean ${_cmp_out}/keep
            --file ${_cmp_out}/keep/sg_usf_blocks/original/EnergyPlot.dat
            --file ${_cmp_out}/keep/sg_usf_blocks/mpm3d/sg_usf_blocks_curv.dat)
+
+  # make bench's pass over every public deck (tools/every_deck_speed.py): its cut deck, and one
+  # deck name run end to end with the stand-in as both originals (every_deck_test.py).
+  add_test(NAME compare.every_deck_speed
+           COMMAND ${Python3_EXECUTABLE} ${_cmp_dir}/every_deck_test.py $<TARGET_FILE:mpm3d> ${_cmp_deck})
+  set_tests_properties(compare.every_deck_speed PROPERTIES TIMEOUT 120)
 endif()
