@@ -54,6 +54,23 @@ inline void zero_fields(double* buf, int pn, int first, int count) {
     for (int f = first; f < first + count; ++f) buf[size_t(ln) * kNodeFields + f] = 0.0;
 }
 
+// Fields first..first+count-1 of the nodes of patch q3's buffer (no halo) that lie in the
+// grid set to zero. The nodes beyond the grid's last layer are never written nor read (a
+// column one cell thick uses 2 of 5 node layers a side axis), so they are not cleared.
+inline void zero_fields_in_grid(const StepContext* c, const int q3[3], double* buf, int first, int count) {
+  const int P = c->patch.patch_cells, Q = P + 1;
+  int hi[3];
+  for (int a = 0; a < 3; ++a) hi[a] = c->grid.nn[a] - q3[a] * P < Q ? c->grid.nn[a] - q3[a] * P : Q;
+  for (int k = 0; k < hi[2]; ++k)
+    for (int j = 0; j < hi[1]; ++j) {
+      double* row = buf + size_t(Q * (j + Q * k)) * kNodeFields;
+      if (count == kNodeFields)
+        for (int i = 0; i < hi[0] * kNodeFields; ++i) row[i] = 0.0;
+      else
+        zero_fields(row, hi[0], first, count);
+    }
+}
+
 // The node sums sum[0..count) of fields first.. into node n of the grid arrays (field 0
 // mass, 1-3 momentum, 4-6 force): the last step of every assembly and reduction.
 __attribute__((always_inline)) inline void store_node_fields(int first, int count, const double* sum, int n,

@@ -96,11 +96,10 @@ inline void load_lx(const StepContext* c, const int* part, decltype(TL::splat(0.
 template <bool kMassMom, bool kForces, bool kBody>
 void p2g_patch_fields(const StepContext* c, const CellDecoder& dec, int q) {
   const int P = c->patch.patch_cells;
-  const int pn = (P + 1) * (P + 1) * (P + 1);
   int q3[3];
   patch_coords(c, q, q3);
   double* buf = patch_buffer(c, c->patch.patch_slot[q]);
-  for (size_t i = 0; i < size_t(pn) * kNodeFields; ++i) buf[i] = 0.0;
+  zero_fields_in_grid(c, q3, buf, 0, kNodeFields);
   int local[8];
   for (int k = 0; k < 8; ++k) local[k] = patch_local(P, k) * kNodeFields;
   for (int idx = c->patch.patch_start[q]; idx < c->patch.patch_start[q + 1]; ++idx) {
@@ -172,11 +171,10 @@ void g2p_values(StepContext* c, const CellDecoder& dec, const int* part, bool re
 template <class VL>
 void g2p_patch(StepContext* c, const CellDecoder& dec, int q, bool remap) {
   const int P = c->patch.patch_cells;
-  const int pn = (P + 1) * (P + 1) * (P + 1);
   int q3[3];
   patch_coords(c, q, q3);
   double* buf = patch_buffer(c, c->patch.patch_slot[q]);
-  if (remap) zero_fields(buf, pn, 1, 3);
+  if (remap) zero_fields_in_grid(c, q3, buf, 1, 3);
   int local[8];
   for (int k = 0; k < 8; ++k) local[k] = patch_local(P, k);
   double rm[3][8][kLanes];

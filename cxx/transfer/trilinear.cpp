@@ -63,10 +63,9 @@ void stress_trilinear(StepContext* c, const double* gvel) {
 // Contact: the mass gradients with the trilinear shape functions (transfer.hpp).
 const int* mass_gradient_trilinear(StepContext* c) {
   const int P = c->patch.patch_cells;
-  const int pn = patch_nodes(c);
   const CellDecoder dec(c);
   for_filled_patches(c, [&](int q, const int q3[3], double* buf) {
-    zero_fields(buf, pn, 4, 3);
+    zero_fields_in_grid(c, q3, buf, 4, 3);
     for (int idx = c->patch.patch_start[q]; idx < c->patch.patch_start[q + 1]; ++idx) {
       const int p = c->patch.patch_part[idx];
       const double mp = c->part.mass[p];
