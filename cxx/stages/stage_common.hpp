@@ -124,8 +124,9 @@ __attribute__((always_inline)) inline void particle_body_force(const StepContext
 // trilinear, 27 GIMP), node(k) the 7 fields of stencil node k: mass and momentum
 // (with_mass_mom) and the force -V sigma G + N (m g + f_ext) (with_forces; body forces with
 // has_body_force). Used by the trilinear patch scatter (constant flags, so the loop
-// unrolls) and the GIMP scatter.
-template <int kNodes, class NodeOf>
+// unrolls) and the GIMP scatter. Node k's weight is N[k S], its gradient G[(3 k + d) S]
+// (S = kStride: 1, or the lane count of a block of stencils).
+template <int kNodes, int kStride = 1, class NodeOf>
 __attribute__((always_inline)) inline void p2g_particle(const StepContext* c, int p, const double* N,
                                                         const double* G, bool with_mass_mom, bool with_forces,
                                                         bool with_body, NodeOf node) {
@@ -151,14 +152,14 @@ __attribute__((always_inline)) inline void p2g_particle(const StepContext* c, in
   for (int k = 0; k < kNodes; ++k) {
     double* b = node(k);
     if (with_mass_mom) {
-      const double mn = mp * N[k];
+      const double mn = mp * N[k * kStride];
       b[0] += mn;
       b[1] += mn * vp[0];
       b[2] += mn * vp[1];
       b[3] += mn * vp[2];
     }
     if (with_forces) {
-      const double gx = G[3 * k], gy = G[3 * k + 1], gz = G[3 * k + 2];
+      const double gx = G[(3 * k) * kStride], gy = G[(3 * k + 1) * kStride], gz = G[(3 * k + 2) * kStride];
       double fx, fy, fz;
       if (pk) {
         fx = -((pk[0] * gx + pk[1] * gy) + pk[2] * gz);
@@ -170,9 +171,9 @@ __attribute__((always_inline)) inline void p2g_particle(const StepContext* c, in
         fz = -((vs[4] * gx + vs[3] * gy) + vs[2] * gz);
       }
       if (with_body) {
-        fx = N[k] * fb[0] + fx;
-        fy = N[k] * fb[1] + fy;
-        fz = N[k] * fb[2] + fz;
+        fx = N[k * kStride] * fb[0] + fx;
+        fy = N[k * kStride] * fb[1] + fy;
+        fz = N[k * kStride] * fb[2] + fz;
       }
       b[4] += fx;
       b[5] += fy;
@@ -199,8 +200,8 @@ __attribute__((always_inline)) inline void advance_particle(StepContext* c, int 
 // G2P of particle p over its kNodes nodes (grid node node(k) of stencil node k):
 // v_p += dt_int sum_k N_k f_k / m_k and x_p += dt sum_k N_k p_k / m_k over the nodes above
 // the mass cut-off. The GIMP stage; the trilinear stage runs
-// the same sums in lanes (g2p_values, transfer_lanes.hpp).
-template <int kNodes, class NodeOf>
+// the same sums in lanes (g2p_values, transfer_lanes.hpp). Weights N[k kStride].
+template <int kNodes, int kStride = 1, class NodeOf>
 __attribute__((always_inline)) inline void g2p_particle(StepContext* c, int p, const double* N, NodeOf node) {
   const double cutoff = c->grid.mass_cutoff;
   double ax = 0.0, ay = 0.0, az = 0.0, ux = 0.0, uy = 0.0, uz = 0.0;
@@ -208,7 +209,7 @@ __attribute__((always_inline)) inline void g2p_particle(StepContext* c, int p, c
     const int n = node(k);
     const double m = c->grid.gmass[n];
     if (!(m > cutoff)) continue;
-    const double r = N[k] / m;
+    const double r = N[k * kStride] / m;
     const double* f = c->grid.gforce + 3 * n;
     const double* pm = c->grid.gmom + 3 * n;
     ax += f[0] * r;
@@ -222,14 +223,15 @@ __attribute__((always_inline)) inline void g2p_particle(StepContext* c, int p, c
 }
 
 // MUSL remap of particle p: its momentum m_p N_k v_p added to fields 1-3 of node(k).
-template <int kNodes, class NodeOf>
+// Weights N[k kStride].
+template <int kNodes, int kStride = 1, class NodeOf>
 __attribute__((always_inline)) inline void remap_particle(const StepContext* c, int p, const double* N,
                                                           NodeOf node) {
   const double mp = c->part.mass[p];
   const double* vp = c->part.v + 3 * p;
   for (int k = 0; k < kNodes; ++k) {
     double* b = node(k);
-    const double mn = mp * N[k];
+    const double mn = mp * N[k * kStride];
     b[1] += mn * vp[0];
     b[2] += mn * vp[1];
     b[3] += mn * vp[2];

@@ -57,16 +57,20 @@ void stress_run(StepContext* c, const CellDecoder& dec, const StressBlockArgs& a
   if (n > 0) flush();
 }
 
-// The particle loop of the 27-node stencils: fixed chunks of the particles.
-template <class Gradient>
-void stress_particles(StepContext* c, Gradient&& gradient) {
+// The particle loop of the 27-node stencils: fixed chunks [first, end) of the particles,
+// each with its own gradient functor make_gradient(first, end).
+template <class MakeGradient>
+void stress_particles(StepContext* c, MakeGradient&& make_gradient) {
   const CellDecoder dec(c);
   const StressBlockArgs args = stress_args(c);
   constexpr int kChunk = 256;
   const int nchunk = (c->part.np + kChunk - 1) / kChunk;
 #pragma omp parallel for schedule(static)
-  for (int ch = 0; ch < nchunk; ++ch)
-    stress_run(c, dec, args, nullptr, ch * kChunk, std::min(c->part.np, (ch + 1) * kChunk) - ch * kChunk, gradient);
+  for (int ch = 0; ch < nchunk; ++ch) {
+    const int first = ch * kChunk, end = std::min(c->part.np, first + kChunk);
+    auto gradient = make_gradient(first, end);
+    stress_run(c, dec, args, nullptr, first, end - first, gradient);
+  }
 }
 
 }  // namespace

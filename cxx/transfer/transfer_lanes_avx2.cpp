@@ -2,6 +2,7 @@
 // (cxx/CMakeLists.txt adds -mavx2 to this file alone; no FMA, -ffp-contract=off as
 // everywhere): the same bits as the baseline build. The stage files call these only
 // where lanes_use_avx2() (constitution.cpp) says the CPU has AVX2.
+#include "transfer/stencil27_lanes.hpp"
 #include "transfer/transfer_lanes.hpp"
 
 namespace mpm3d {
@@ -21,6 +22,10 @@ void g2p_patch_avx2(StepContext* c, int q, bool remap) {
 void stress_list_avx2(StepContext* c, const int* list, int count, const double* gvel,
                       const StressBlockArgs& args) {
   stress_list<VectorLane<kLanes>>(c, CellDecoder(c), list, count, gvel, args);
+}
+
+void stencil27_block_avx2(const StepContext* c, const int* part, int n, bool gradients, Stencil27Block& s) {
+  stencil27_block<VectorLane<kStencilLanes>>(c, part, n, gradients, s);
 }
 
 }  // namespace mpm3d
