@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cstddef>
 #include <stdexcept>
-#include <vector>
 
 #include "stages/stage_common.hpp"
 #include "stages/update_step.hpp"
@@ -87,68 +86,63 @@ inline void patch_range(int n, int P, int H, int npd, int& lo, int& hi) {
 // The assembly for buffers with a halo (27-node stencils, sgmp): the owner patch of each node
 // gathers it from every non-empty patch whose buffer holds it, in ascending patch index.
 // The owned block is summed one contributing patch at a time (the patch's whole overlap at
-// once, patches in ascending index), which gives every node the same additions in the same
-// order as a node-by-node gather, at a fraction of its index arithmetic.
+// once, patches in ascending index) straight into the node arrays, set to +0.0 first: every
+// node gets the same additions in the same order as a node-by-node gather, at a fraction of
+// its index arithmetic.
 template <int first, int count>
 void assemble_wide(const StepContext* c, double* dst_mass, double* dst_mom, double* dst_force, const int* boxes) {
   const int P = c->patch.patch_cells, H = c->patch.patch_halo, Q = P + 1 + 2 * H;
   const size_t pn = size_t(Q) * size_t(Q) * size_t(Q);
-#pragma omp parallel
-  {
-    std::vector<double> acc;
-    int t, T, qlo, qhi;
-    team_position(t, T);
-    thread_patches(c, t, T, qlo, qhi);
-    for (int q = qlo; q < qhi; ++q) {
-      const OwnedNodes o = owned_nodes(c, q);
-      if (!o.active) continue;
-      const int ex = o.hi[0] - o.lo[0], ey = o.hi[1] - o.lo[1], ez = o.hi[2] - o.lo[2];
-      acc.assign(size_t(ex) * size_t(ey) * size_t(ez) * size_t(count), 0.0);
-      int rlo[3], rhi[3];
-      for (int a = 0; a < 3; ++a) {
-        int l0, h0, l1, h1;
-        patch_range(o.lo[a], P, H, c->patch.npd[a], l0, h0);
-        patch_range(o.hi[a] - 1, P, H, c->patch.npd[a], l1, h1);
-        rlo[a] = l0;
-        rhi[a] = h1;
+  const int nn0 = c->grid.nn[0], nn1 = c->grid.nn[1];
+  // Field f of node n: mass, momentum or force component.
+  auto field = [&](int f, size_t n) -> double& {
+    return f == 0 ? dst_mass[n] : (f <= 3 ? dst_mom[3 * n + size_t(f - 1)] : dst_force[3 * n + size_t(f - 4)]);
+  };
+  for_patches(c, [&](int q) {
+    const OwnedNodes o = owned_nodes(c, q);
+    if (!o.active) return;
+    for (int k = o.lo[2]; k < o.hi[2]; ++k)
+      for (int j = o.lo[1]; j < o.hi[1]; ++j) {
+        const size_t row = size_t(nn0) * (size_t(j) + size_t(nn1) * size_t(k));
+        for (int i = o.lo[0]; i < o.hi[0]; ++i)
+          for (int f = first; f < first + count; ++f) field(f, row + size_t(i)) = 0.0;
       }
-      for (int rz = rlo[2]; rz <= rhi[2]; ++rz)
-        for (int ry = rlo[1]; ry <= rhi[1]; ++ry)
-          for (int rx = rlo[0]; rx <= rhi[0]; ++rx) {
-            const int slot = c->patch.patch_slot[rx + c->patch.npd[0] * (ry + c->patch.npd[1] * rz)];
-            if (slot < 0) continue;
-            const int r3[3] = {rx, ry, rz};
-            int b0[3], b1[3];  // the overlap of the owned block and the buffer's (written) nodes
-            const int* box = boxes ? boxes + 6 * size_t(slot) : nullptr;
-            bool empty = false;
-            for (int a = 0; a < 3; ++a) {
-              const int first_node = r3[a] * P - H;
-              b0[a] = std::max(o.lo[a], box ? first_node + box[a] : first_node);
-              b1[a] = std::min(o.hi[a], box ? first_node + box[3 + a] : r3[a] * P + P + H + 1);
-              empty = empty || b0[a] >= b1[a];
-            }
-            if (empty) continue;
-            const double* buf = c->patch.patch_buf + size_t(slot) * pn * kNodeFields;
-            for (int k = b0[2]; k < b1[2]; ++k)
-              for (int j = b0[1]; j < b1[1]; ++j) {
-                const int ln0 = (b0[0] - rx * P + H) + Q * ((j - ry * P + H) + Q * (k - rz * P + H));
-                const size_t a0 = size_t((k - o.lo[2]) * ey + (j - o.lo[1])) * size_t(ex) + size_t(b0[0] - o.lo[0]);
-                for (int i = 0; i < b1[0] - b0[0]; ++i) {
-                  const double* v = buf + size_t(ln0 + i) * kNodeFields + first;
-                  double* t = acc.data() + (a0 + size_t(i)) * size_t(count);
-                  for (int f = 0; f < count; ++f) t[f] += v[f];
-                }
-              }
-          }
-      for (int k = o.lo[2]; k < o.hi[2]; ++k)
-        for (int j = o.lo[1]; j < o.hi[1]; ++j)
-          for (int i = o.lo[0]; i < o.hi[0]; ++i) {
-            const size_t a = size_t((k - o.lo[2]) * ey + (j - o.lo[1])) * size_t(ex) + size_t(i - o.lo[0]);
-            store_node_fields(first, count, acc.data() + a * size_t(count), i + c->grid.nn[0] * (j + c->grid.nn[1] * k),
-                              dst_mass, dst_mom, dst_force);
-          }
+    int rlo[3], rhi[3];
+    for (int a = 0; a < 3; ++a) {
+      int l0, h0, l1, h1;
+      patch_range(o.lo[a], P, H, c->patch.npd[a], l0, h0);
+      patch_range(o.hi[a] - 1, P, H, c->patch.npd[a], l1, h1);
+      rlo[a] = l0;
+      rhi[a] = h1;
     }
-  }
+    for (int rz = rlo[2]; rz <= rhi[2]; ++rz)
+      for (int ry = rlo[1]; ry <= rhi[1]; ++ry)
+        for (int rx = rlo[0]; rx <= rhi[0]; ++rx) {
+          const int slot = c->patch.patch_slot[rx + c->patch.npd[0] * (ry + c->patch.npd[1] * rz)];
+          if (slot < 0) continue;
+          const int r3[3] = {rx, ry, rz};
+          int b0[3], b1[3];  // the overlap of the owned block and the buffer's (written) nodes
+          const int* box = boxes ? boxes + 6 * size_t(slot) : nullptr;
+          bool empty = false;
+          for (int a = 0; a < 3; ++a) {
+            const int first_node = r3[a] * P - H;
+            b0[a] = std::max(o.lo[a], box ? first_node + box[a] : first_node);
+            b1[a] = std::min(o.hi[a], box ? first_node + box[3 + a] : r3[a] * P + P + H + 1);
+            empty = empty || b0[a] >= b1[a];
+          }
+          if (empty) continue;
+          const double* buf = c->patch.patch_buf + size_t(slot) * pn * kNodeFields;
+          for (int k = b0[2]; k < b1[2]; ++k)
+            for (int j = b0[1]; j < b1[1]; ++j) {
+              const int ln0 = (b0[0] - rx * P + H) + Q * ((j - ry * P + H) + Q * (k - rz * P + H));
+              const size_t n0 = size_t(nn0) * (size_t(j) + size_t(nn1) * size_t(k)) + size_t(b0[0]);
+              for (int i = 0; i < b1[0] - b0[0]; ++i) {
+                const double* v = buf + size_t(ln0 + i) * kNodeFields;
+                for (int f = first; f < first + count; ++f) field(f, n0 + size_t(i)) += v[f];
+              }
+            }
+        }
+  });
 }
 
 }  // namespace
