@@ -18,54 +18,94 @@ namespace mpm3d {
 // more than it saves (docs/PERFORMANCE.md).
 constexpr long kParallelBcNodes = 16384;
 
+// The nodes any particle's stencil reaches, [lo, hi) per axis: those of the buffers of the
+// non-empty patches (halo included). Every other node is in an inactive patch, read by no
+// stage, or assembled as +0.0 in every field and left so by the grid update: the boundary
+// conditions have nothing to change there, and an empty part of the grid costs them
+// nothing. A distributed run keeps the whole grid.
+static void reached_nodes(const StepContext* c, int lo[3], int hi[3]) {
+  for (int a = 0; a < 3; ++a) lo[a] = 0, hi[a] = c->grid.nn[a];
+  if (c->ranks.exchange) return;
+  int plo[3] = {c->patch.npd[0], c->patch.npd[1], c->patch.npd[2]}, phi[3] = {-1, -1, -1};
+  const int* slot = c->patch.patch_slot;
+  for (int qz = 0; qz < c->patch.npd[2]; ++qz)
+    for (int qy = 0; qy < c->patch.npd[1]; ++qy, slot += c->patch.npd[0]) {
+      int xlo = -1, xhi = -1;  // the row's first and last non-empty patch
+      for (int qx = 0; qx < c->patch.npd[0]; ++qx)
+        if (slot[qx] >= 0) {
+          if (xlo < 0) xlo = qx;
+          xhi = qx;
+        }
+      if (xhi < 0) continue;
+      const int q3lo[3] = {xlo, qy, qz}, q3hi[3] = {xhi, qy, qz};
+      for (int a = 0; a < 3; ++a) {
+        plo[a] = q3lo[a] < plo[a] ? q3lo[a] : plo[a];
+        phi[a] = q3hi[a] > phi[a] ? q3hi[a] : phi[a];
+      }
+    }
+  if (phi[0] < 0) return;  // no particle: the whole grid
+  const int P = c->patch.patch_cells, H = c->patch.patch_halo;
+  for (int a = 0; a < 3; ++a) {
+    const int l = plo[a] * P - H, h = phi[a] * P + P + H + 1;
+    lo[a] = l > 0 ? l : 0;
+    hi[a] = h < c->grid.nn[a] ? h : c->grid.nn[a];
+  }
+}
+
 void apply_bc(const StepContext* c, double* a) {
   const int layers = c->grid.fix_layers > 1 ? c->grid.fix_layers : 1;  // 0 (unset) means 1
   const long stride[3] = {1, c->grid.nn[0], long(c->grid.nn[0]) * c->grid.nn[1]};
-  // A face's node plane as rows: the outer of the two other axes over the inner (the one
-  // of smaller stride), each row a run of nodes `stride[inner]` apart. Clearing is the same
-  // in any order: only the loop's shape differs between the team and one thread.
+  int lo[3], hi[3];
+  reached_nodes(c, lo, hi);
+  // A face's node plane within the reached box as rows: the outer of the two other axes
+  // over the inner (the one of smaller stride), each row a run of nodes `stride[inner]`
+  // apart. Clearing is the same in any order: only the loop's shape differs between the
+  // team and one thread.
   struct Plane {
-    int kind, axis, n_outer, n_inner;
+    int kind, axis, o_lo, o_hi, i_lo, i_hi;
     long s_outer, s_inner;
   };
   auto plane = [&](int face) {
     const int axis = face / 2, o1 = axis == 0 ? 1 : 0, o2 = axis == 2 ? 1 : 2;
-    return Plane{c->grid.fix[face], axis, c->grid.nn[o2], c->grid.nn[o1], stride[o2], stride[o1]};
+    return Plane{c->grid.fix[face], axis, lo[o2], hi[o2], lo[o1], hi[o1], stride[o2], stride[o1]};
   };
-  auto layer_base = [&](int face, int layer) {
+  // The node index of a face's layer along its axis.
+  auto layer_index = [&](int face, int layer) {
     const int axis = face / 2;
-    return stride[axis] * ((face % 2 == 0) ? layer : c->grid.nn[axis] - 1 - layer);
+    return (face % 2 == 0) ? layer : c->grid.nn[axis] - 1 - layer;
   };
   auto clear_row = [&](const Plane& f, long first) {
     if (f.kind == 1) {
-      for (int i = 0; i < f.n_inner; ++i) {
+      for (int i = f.i_lo; i < f.i_hi; ++i) {
         double* v = a + 3 * (first + i * f.s_inner);
         v[0] = 0.0;
         v[1] = 0.0;
         v[2] = 0.0;
       }
     } else {
-      for (int i = 0; i < f.n_inner; ++i) a[3 * (first + i * f.s_inner) + f.axis] = 0.0;
+      for (int i = f.i_lo; i < f.i_hi; ++i) a[3 * (first + i * f.s_inner) + f.axis] = 0.0;
     }
   };
   long held = 0;
   for (int face = 0; face < 6; ++face) {
     if (c->grid.fix[face] == 0) continue;
     const Plane f = plane(face);
-    held += layers * long(f.n_outer) * f.n_inner;
+    held += layers * long(f.o_hi - f.o_lo) * (f.i_hi - f.i_lo);
   }
   int threads = 1;
 #ifdef _OPENMP
   threads = omp_get_max_threads();
 #endif
   if (threads > 1 && held > kParallelBcNodes) {
-    // Each thread one run of the node order, every face's components in it: no thread
-    // writes another's nodes, so no barrier between the faces (clearing twice is clearing).
+    // Each thread one run of the box's node order, every face's components in it: no
+    // thread writes another's nodes, so no barrier between the faces (clearing twice is
+    // clearing).
     unsigned comps[6];  // the components face f holds: all (fixed) or its normal one
     for (int face = 0; face < 6; ++face)
       comps[face] = c->grid.fix[face] == 0 ? 0u : (c->grid.fix[face] == 1 ? 7u : 1u << (face / 2));
     const int n0 = c->grid.nn[0], n1 = c->grid.nn[1], n2 = c->grid.nn[2];
-    const long nodes = long(n0) * n1 * n2;
+    const int b0 = hi[0] - lo[0], b1 = hi[1] - lo[1];
+    const long nodes = long(b0) * b1 * (hi[2] - lo[2]);
     auto clear = [&](double* v, unsigned m) {
       for (int d = 0; d < 3; ++d)
         if (m >> d & 1u) v[d] = 0.0;
@@ -75,22 +115,23 @@ void apply_bc(const StepContext* c, double* a) {
       int t, T;
       team_position(t, T);
       const long first = nodes * t / T, last = nodes * (t + 1) / T;
-      for (long r = first / n0; r * n0 < last; ++r) {  // node rows along x
-        const int j = int(r % n1), k = int(r / n1);
+      for (long r = first / b0; r * b0 < last; ++r) {  // the box's node rows along x
+        const int j = lo[1] + int(r % b1), k = lo[2] + int(r / b1);
         unsigned m = 0;  // the y and z faces holding the row
         if (j < layers) m |= comps[2];
         if (j >= n1 - layers) m |= comps[3];
         if (k < layers) m |= comps[4];
         if (k >= n2 - layers) m |= comps[5];
-        const long i0 = first > r * n0 ? first - r * n0 : 0;
-        const long i1 = last < (r + 1) * n0 ? last - r * n0 : n0;
-        double* row = a + 3 * r * n0;
+        const long i0 = first > r * b0 ? first - r * b0 : 0;  // within the box's row
+        const long i1 = last < (r + 1) * b0 ? last - r * b0 : b0;
+        double* row = a + 3 * (lo[0] + long(n0) * (j + long(n1) * k));
         for (int d = 0; d < 3; ++d)
           if (m >> d & 1u)
             for (long i = i0; i < i1; ++i) row[3 * i + d] = 0.0;
         for (long l = 0; l < layers; ++l) {  // the x faces' nodes of the row
-          if (l >= i0 && l < i1) clear(row + 3 * l, comps[0]);
-          if (n0 - 1 - l >= i0 && n0 - 1 - l < i1) clear(row + 3 * (n0 - 1 - l), comps[1]);
+          const long lx = l - lo[0], hx = n0 - 1 - l - lo[0];
+          if (lx >= i0 && lx < i1) clear(row + 3 * lx, comps[0]);
+          if (hx >= i0 && hx < i1) clear(row + 3 * hx, comps[1]);
         }
       }
     }
@@ -100,8 +141,10 @@ void apply_bc(const StepContext* c, double* a) {
     if (c->grid.fix[face] == 0) continue;
     const Plane f = plane(face);
     for (int layer = 0; layer < layers; ++layer) {
-      const long base = layer_base(face, layer);
-      for (int o = 0; o < f.n_outer; ++o) clear_row(f, base + o * f.s_outer);
+      const int li = layer_index(face, layer);
+      if (li < lo[f.axis] || li >= hi[f.axis]) continue;  // a layer no stencil reaches
+      const long base = stride[f.axis] * li;
+      for (int o = f.o_lo; o < f.o_hi; ++o) clear_row(f, base + o * f.s_outer);
     }
   }
 }
