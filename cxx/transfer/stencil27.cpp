@@ -62,17 +62,13 @@ inline void stencils(const StepContext* c, const CellDecoder& dec, const int* pa
     stencil27_block<VectorLane<kStencilLanes>>(c, part, n, gradients, s);
 }
 
-// Node index of lane i's first stencil node (a = b = c = 0): in patch q3's buffer (halo H),
-// and in the grid.
+// Buffer node index, in patch q3's buffer (halo H), of lane i's first stencil node.
 inline int block_patch_corner(const StepContext* c, const int q3[3], const Stencil27Block& s, int i) {
   const int P = c->patch.patch_cells, H = c->patch.patch_halo, Q = P + 1 + 2 * H;
   return (s.ci[0][i] + s.o[0][i] - q3[0] * P + H) +
          Q * ((s.ci[1][i] + s.o[1][i] - q3[1] * P + H) + Q * (s.ci[2][i] + s.o[2][i] - q3[2] * P + H));
 }
 
-inline int block_grid_corner(const StepContext* c, const Stencil27Block& s, int i) {
-  return (s.ci[0][i] + s.o[0][i]) + c->grid.nn[0] * ((s.ci[1][i] + s.o[1][i]) + c->grid.nn[1] * (s.ci[2][i] + s.o[2][i]));
-}
 
 // The boxes of the last scatter, or null (whole buffers) in a distributed run.
 inline const int* touched_boxes(const StepContext* c) { return c->ranks.exchange ? nullptr : c->patch.patch_box; }
@@ -121,23 +117,25 @@ void g2p_gimp(StepContext* c, bool remap) {
   const int nn0 = c->grid.nn[0], nn1 = c->grid.nn[1];
   const CellDecoder dec(c);
   const StencilOffsets in_grid(nn0, nn1), in_buffer(Q, Q);
+  const bool avx2 = lanes_use_avx2();
   for_filled_patches(c, [&](int q, const int q3[3], double* buf) {
     if (remap) clear_touched(c, dec, q, q3, buf, 1, 3, c->patch.patch_box + 6 * size_t(c->patch.patch_slot[q]));
     const int end = c->patch.patch_start[q + 1];
     Stencil27Block s;
     for (int idx = c->patch.patch_start[q]; idx < end; idx += kStencilLanes) {
       const int n = std::min(kStencilLanes, end - idx);
-      stencils(c, dec, c->patch.patch_part + idx, n, false, s);
-      for (int i = 0; i < n; ++i) {
-        const int p = c->patch.patch_part[idx + i];
-        const int base = block_grid_corner(c, s, i);
-        g2p_particle<27, kStencilLanes>(c, p, &s.N[0][i], [&](int k) { return base + in_grid.of[k]; });
-        if (remap) {
+      const int* part = c->patch.patch_part + idx;
+      stencils(c, dec, part, n, false, s);
+      if (avx2)
+        g2p27_block_avx2(c, s, part, n, in_grid.of);
+      else
+        g2p27_block<VectorLane<kStencilLanes>>(c, s, part, n, in_grid.of);
+      if (remap)
+        for (int i = 0; i < n; ++i) {
           double* corner = buf + size_t(block_patch_corner(c, q3, s, i)) * kNodeFields;
-          remap_particle<27, kStencilLanes>(c, p, &s.N[0][i],
+          remap_particle<27, kStencilLanes>(c, part[i], &s.N[0][i],
                                             [&](int k) { return corner + size_t(in_buffer.of[k]) * kNodeFields; });
         }
-      }
     }
   });
 }
@@ -147,53 +145,40 @@ void g2p_stencil27(StepContext* c, bool remap) {
   if (remap) assemble(c, 1, 3, c->grid.gmass, c->grid.gmom, c->grid.gforce, touched_boxes(c));
 }
 
-// The velocity gradients L[3a+b] = d v_a / d x_b of the stress stage from the node
-// velocities gvel, summed over the 27 stencil nodes in stencil order (the trilinear one:
-// gradient_values in transfer_lanes.hpp). One per chunk of particles [first, end): the
-// stencils of the next kStencilLanes particles the stress loop takes (stress_run's test)
-// at a time.
+// The velocity gradients of the stress stage from the node velocities gvel
+// (gradient27_lanes, stencil27_lanes.hpp). One per chunk of particles [first, end): the
+// stencils and gradients of the next kStencilLanes particles the stress loop takes
+// (stress_run's test) at a time, handed out one particle after the other.
 struct BlockGradient {
   const StepContext* c;
   const StencilOffsets* in_grid;
   const double* gvel;
   int end;
   Stencil27Block s;
+  double L[9][kStencilLanes];
   int part[kStencilLanes];
   int n = 0, lane = 0;
 
-  void operator()(const CellDecoder& dec, int, int p, double* L) {
+  void operator()(const CellDecoder& dec, int, int p, double* Lp) {
     if (lane == n || part[lane] != p) {
       n = 0;
       lane = 0;
       for (int q = p; q < end && n < kStencilLanes; ++q)
         if (c->part.cell[q] >= 0 && !other_component(c, q)) part[n++] = q;
       stencils(c, dec, part, n, true, s);
+      if (lanes_use_avx2())
+        gradient27_block_avx2(c, s, n, gvel, in_grid->of, L);
+      else
+        gradient27_block<VectorLane<kStencilLanes>>(c, s, n, gvel, in_grid->of, L);
     }
     const int i = lane++;
-    double l0 = 0, l1 = 0, l2 = 0, l3 = 0, l4 = 0, l5 = 0, l6 = 0, l7 = 0, l8 = 0;
-    const int base = block_grid_corner(c, s, i);
-    for (int k = 0; k < 27; ++k) {
-      const int nd = base + in_grid->of[k];
-      if (!(c->grid.gmass[nd] > c->grid.mass_cutoff)) continue;
-      const double vx = gvel[3 * nd], vy = gvel[3 * nd + 1], vz = gvel[3 * nd + 2];
-      const double gx = s.G[3 * k][i], gy = s.G[3 * k + 1][i], gz = s.G[3 * k + 2][i];
-      l0 += vx * gx;
-      l1 += vx * gy;
-      l2 += vx * gz;
-      l3 += vy * gx;
-      l4 += vy * gy;
-      l5 += vy * gz;
-      l6 += vz * gx;
-      l7 += vz * gy;
-      l8 += vz * gz;
-    }
-    L[0] = l0, L[1] = l1, L[2] = l2, L[3] = l3, L[4] = l4, L[5] = l5, L[6] = l6, L[7] = l7, L[8] = l8;
+    for (int r = 0; r < 9; ++r) Lp[r] = L[r][i];
   }
 };
 
 void stress_stencil27(StepContext* c, const double* gvel) {
   const StencilOffsets in_grid(c->grid.nn[0], c->grid.nn[1]);
-  stress_particles(c, [&](int, int end) { return BlockGradient{c, &in_grid, gvel, end, {}, {}}; });
+  stress_particles(c, [&](int, int end) { return BlockGradient{c, &in_grid, gvel, end, {}, {}, {}}; });
 }
 
 // Contact: the mass gradients with the 27-node stencils.

@@ -87,9 +87,94 @@ void stencil27_block(const StepContext* c, const int* part, int n, bool gradient
     for (int i = 0; i < n; ++i) stencil27_lanes<ScalarLane>(c, part + i, gradients, s, i);
 }
 
+// Grid node index of lane l's first stencil node (a = b = c = 0).
+inline int block_grid_corner(const StepContext* c, const Stencil27Block& s, int l) {
+  return (s.ci[0][l] + s.o[0][l]) + c->grid.nn[0] * ((s.ci[1][l] + s.o[1][l]) + c->grid.nn[1] * (s.ci[2][l] + s.o[2][l]));
+}
+
+// G2P of the particles part[0 .. TL::W) in lanes first.. of s (g2p_particle's sums, node k
+// of a lane at its corner + of[k]; a light node adds +0.0, which leaves a sum started at
+// +0.0 unchanged), then advance_particle's update of each.
+template <class TL>
+void g2p27_lanes(StepContext* c, const Stencil27Block& s, const int* part, const int* of, int first) {
+  typedef decltype(TL::splat(0.0)) T;
+  int base[kStencilLanes], n1[kStencilLanes], n3[kStencilLanes], i3[kStencilLanes];
+  for (int i = 0; i < TL::W; ++i) base[i] = block_grid_corner(c, s, first + i), i3[i] = 3 * part[i];
+  const double cutoff = c->grid.mass_cutoff;
+  const T zero = TL::splat(0.0);
+  T ax = zero, ay = zero, az = zero, ux = zero, uy = zero, uz = zero;
+  for (int k = 0; k < 27; ++k) {
+    for (int i = 0; i < TL::W; ++i) n1[i] = base[i] + of[k], n3[i] = 3 * n1[i];
+    const T m = TL::gather(c->grid.gmass, n1);
+    const auto heavy = m > cutoff;
+    const T r = TL::load(&s.N[k][first]) / m;
+    ax = ax + TL::select(heavy, TL::gather(c->grid.gforce, n3) * r, zero);
+    ay = ay + TL::select(heavy, TL::gather(c->grid.gforce + 1, n3) * r, zero);
+    az = az + TL::select(heavy, TL::gather(c->grid.gforce + 2, n3) * r, zero);
+    ux = ux + TL::select(heavy, TL::gather(c->grid.gmom, n3) * r, zero);
+    uy = uy + TL::select(heavy, TL::gather(c->grid.gmom + 1, n3) * r, zero);
+    uz = uz + TL::select(heavy, TL::gather(c->grid.gmom + 2, n3) * r, zero);
+  }
+  const double dt = c->clock.dt, dt_int = c->clock.dt_int;
+  const T v[3] = {TL::gather(c->part.v, i3) + ax * dt_int, TL::gather(c->part.v + 1, i3) + ay * dt_int,
+                  TL::gather(c->part.v + 2, i3) + az * dt_int};
+  const T x[3] = {TL::gather(c->part.x, i3) + ux * dt, TL::gather(c->part.x + 1, i3) + uy * dt,
+                  TL::gather(c->part.x + 2, i3) + uz * dt};
+  for (int i = 0; i < TL::W; ++i)
+    for (int d = 0; d < 3; ++d) {
+      c->part.v[i3[i] + d] = TL::get(v[d], i);
+      c->part.x[i3[i] + d] = TL::get(x[d], i);
+    }
+}
+
+// Velocity gradients L[3a+b][lane] = d v_a / d x_b of lanes first.. of s from the node
+// velocities gvel (the scalar sums' order, a light node adding +0.0).
+template <class TL>
+void gradient27_lanes(const StepContext* c, const Stencil27Block& s, const double* gvel, const int* of,
+                      double L[9][kStencilLanes], int first) {
+  typedef decltype(TL::splat(0.0)) T;
+  int base[kStencilLanes], n1[kStencilLanes], n3[kStencilLanes];
+  for (int i = 0; i < TL::W; ++i) base[i] = block_grid_corner(c, s, first + i);
+  const double cutoff = c->grid.mass_cutoff;
+  const T zero = TL::splat(0.0);
+  T l[9];
+  for (int r = 0; r < 9; ++r) l[r] = zero;
+  for (int k = 0; k < 27; ++k) {
+    for (int i = 0; i < TL::W; ++i) n1[i] = base[i] + of[k], n3[i] = 3 * n1[i];
+    const auto heavy = TL::gather(c->grid.gmass, n1) > cutoff;
+    const T v[3] = {TL::gather(gvel, n3), TL::gather(gvel + 1, n3), TL::gather(gvel + 2, n3)};
+    const T g[3] = {TL::load(&s.G[3 * k][first]), TL::load(&s.G[3 * k + 1][first]), TL::load(&s.G[3 * k + 2][first])};
+    for (int a = 0; a < 3; ++a)
+      for (int d = 0; d < 3; ++d) l[3 * a + d] = l[3 * a + d] + TL::select(heavy, v[a] * g[d], zero);
+  }
+  for (int r = 0; r < 9; ++r) TL::store(&L[r][first], l[r]);
+}
+
+// G2P and the velocity gradients of a block of n particles: all lanes in vectors, a
+// shorter block lane by lane (the same bits).
+template <class VL>
+void g2p27_block(StepContext* c, const Stencil27Block& s, const int* part, int n, const int* of) {
+  if (n == kStencilLanes)
+    g2p27_lanes<VL>(c, s, part, of, 0);
+  else
+    for (int i = 0; i < n; ++i) g2p27_lanes<ScalarLane>(c, s, part + i, of, i);
+}
+
+template <class VL>
+void gradient27_block(const StepContext* c, const Stencil27Block& s, int n, const double* gvel, const int* of,
+                      double L[9][kStencilLanes]) {
+  if (n == kStencilLanes)
+    gradient27_lanes<VL>(c, s, gvel, of, L, 0);
+  else
+    for (int i = 0; i < n; ++i) gradient27_lanes<ScalarLane>(c, s, gvel, of, L, i);
+}
+
 }  // namespace
 
-// transfer_lanes_avx2.cpp: stencil27_block for AVX2 (lanes_use_avx2()).
+// transfer_lanes_avx2.cpp: the block kernels above for AVX2 (lanes_use_avx2()).
 void stencil27_block_avx2(const StepContext* c, const int* part, int n, bool gradients, Stencil27Block& s);
+void g2p27_block_avx2(StepContext* c, const Stencil27Block& s, const int* part, int n, const int* of);
+void gradient27_block_avx2(const StepContext* c, const Stencil27Block& s, int n, const double* gvel, const int* of,
+                           double L[9][kStencilLanes]);
 
 }  // namespace mpm3d

@@ -28,4 +28,13 @@ void stencil27_block_avx2(const StepContext* c, const int* part, int n, bool gra
   stencil27_block<VectorLane<kStencilLanes>>(c, part, n, gradients, s);
 }
 
+void g2p27_block_avx2(StepContext* c, const Stencil27Block& s, const int* part, int n, const int* of) {
+  g2p27_block<VectorLane<kStencilLanes>>(c, s, part, n, of);
+}
+
+void gradient27_block_avx2(const StepContext* c, const Stencil27Block& s, int n, const double* gvel, const int* of,
+                           double L[9][kStencilLanes]) {
+  gradient27_block<VectorLane<kStencilLanes>>(c, s, n, gvel, of, L);
+}
+
 }  // namespace mpm3d
