@@ -360,6 +360,46 @@ TEST(Solver, SgmpPatchesAtRestKeepEveryBit) {
   }
 }
 
+// A scene with no quiet patch keeps the still bits only one step in 16 (the probe), and
+// finds rest when it comes: block 2 starts with a velocity, so nothing is quiet, and is
+// stopped after step 5 (velocity and stress zeroed in both runs). No patch rests before
+// the probe at step 16 keeps the still bits again, some do after it, and skipping them
+// keeps every bit.
+TEST(Solver, SgmpRestIsFoundAfterAStartWithoutQuietPatches) {
+  const std::string deck = testutil::read_file(std::string(MPM3D_TEST_DECKS) + "/sg_rest_blocks.mpm");
+  mpm3d::Simulation skip(mpm3d::read_deck_text(deck, "rest.mpm"), 2);
+  mpm3d::Simulation full(mpm3d::read_deck_text(deck, "rest.mpm"), 2);
+  full.skip_rest = false;
+  std::vector<int> still_block;  // block 2: the particles without a velocity (storage order)
+  for (int p = 0; p < skip.model.particles.np; ++p)
+    if (skip.model.particles.v[3 * size_t(p)] == 0.0) still_block.push_back(p);
+  ASSERT_EQ(still_block.size(), 1536u);
+  auto block2 = [&](mpm3d::Simulation& sim, double vz) {
+    auto& P = sim.model.particles;
+    for (int p : still_block) {
+      P.v[3 * size_t(p) + 2] = vz;
+      for (int k = 0; k < 6; ++k) P.sig[6 * size_t(p) + size_t(k)] = 0.0;
+      if (!P.qv.empty()) P.qv[size_t(p)] = 0.0;
+    }
+  };
+  block2(skip, 1.0);
+  block2(full, 1.0);
+  for (int s = 0; s < 60; ++s) {
+    if (s == 6) {
+      block2(skip, 0.0);
+      block2(full, 0.0);
+    }
+    skip.step();
+    full.step();
+    if (s == 15) EXPECT_EQ(skip.rest_particle_steps, 0);  // no probe since step 0
+  }
+  EXPECT_GT(skip.rest_particle_steps, 0);
+  EXPECT_EQ(full.rest_particle_steps, 0);
+  EXPECT_EQ(differing_fields(skip.model.particles, full.model.particles), "");
+  EXPECT_EQ(skip.kinetic, full.kinetic);
+  EXPECT_EQ(skip.internal, full.internal);
+}
+
 TEST(Stability, RunawayEnergyIsStoppedWithADiagnostic) {
   // docs/DESIGN.md section 7: a run either finishes with a bounded energy error and no NaN or
   // stops with a clear diagnostic naming the step, the particle and the cause. USL at

@@ -35,6 +35,10 @@ constexpr int kRestReachCells = 8;
 // against one that is computed, for the threads' shares (thread_patches): about 1 to 8 on
 // SGDeto1k (docs/PERFORMANCE.md).
 constexpr int kMovingWork = 8;
+// Keeping the still bits costs every particle a comparison in G2P and the stress stage; a
+// scene where no patch is quiet (a vibrating beam) checks again only every this many steps.
+// Skipping begins at most this many steps later than it could; the results are the same.
+constexpr long kRestProbeSteps = 16;
 
 // Particle p, as it stands, would be left as it is by a step whose grid values near it are
 // all zero: its last G2P and stress update changed no bit of it (sg_still bits 0 and 1),
@@ -368,6 +372,7 @@ void Simulation::step() {
   if (nstage < 0) throw std::logic_error("unknown update scheme " + std::to_string(c->method.scheme));
   c->rest.sg_rest = nullptr;  // the bin stage shares the patches by their particles
   c->patch.patch_work = nullptr;
+  c->rest.sg_still = nullptr;  // mark_rest sets it when this step keeps the still bits
   for (int k = 0; k < nstage; ++k) {
     const int s = order[k];
     if (mpm3d_stage_needs_contact(s) && !contact) continue;
@@ -378,7 +383,13 @@ void Simulation::step() {
         forget_rest();
         rest_on_ = rest;
       }
-      if (rest) timed(ST_BIN, [&] { mark_rest(); });  // with the bin stage, as the quiet check below
+      track_ = rest && (any_quiet_ || steps % kRestProbeSteps == 0);
+      if (track_) {
+        timed(ST_BIN, [&] { mark_rest(); });  // with the bin stage, as the quiet check below
+      } else if (rest) {  // not kept this step: nothing is known still in the next
+        std::fill(still_.begin(), still_.end(), 0);
+        quiet_before_.clear();
+      }
       continue;
     }
     run_stage(s);
@@ -387,7 +398,13 @@ void Simulation::step() {
       contact_nodes = c->contact.ncontact;
     }
   }
-  if (rest_on_) timed(ST_BIN, [&] { quiet_patches(quiet_before_); });  // this step's lists, for the next
+  if (track_)
+    timed(ST_BIN, [&] {
+      quiet_patches(quiet_before_);  // this step's lists, for the next
+      any_quiet_ = false;  // a patch with particles, every one of them quiet
+      for (int q = 0; q < c->patch.npatch && !any_quiet_; ++q)
+        any_quiet_ = quiet_before_[size_t(q)] && c->patch.patch_start[q + 1] > c->patch.patch_start[q];
+    });
   outside = c->out.noutside + (contact ? ctx2.out.noutside : 0);
   if (ranks) outside = int(ranks->sum(outside));
   kinetic = c->out.result[0];
@@ -437,6 +454,7 @@ void Simulation::forget_rest() {
   ctx.rest.sg_rest = nullptr;
   ctx.patch.patch_work = nullptr;
   rest_on_ = false;
+  track_ = any_quiet_ = false;
 }
 
 void Simulation::quiet_patches(std::vector<unsigned char>& quiet) const {
@@ -481,14 +499,19 @@ void Simulation::mark_rest() {
     stride *= len;
   }
   patch_work_.assign(size_t(npatch) + 1, 0);
+  long resting = 0;
   for (int q = 0; q < npatch; ++q) {
     const int n = c->patch.patch_start[q + 1] - c->patch.patch_start[q];
-    if (rest_[size_t(q)]) rest_particle_steps += n;
+    if (rest_[size_t(q)]) resting += n;
     patch_work_[size_t(q) + 1] = patch_work_[size_t(q)] + n * (rest_[size_t(q)] ? 1 : kMovingWork);
   }
+  rest_particle_steps += resting;
   c->rest.sg_still = still_.data();
-  c->rest.sg_rest = rest_.data();
-  c->patch.patch_work = patch_work_.data();
+  // No particle at rest: the still bits are kept, but the stages run as without the rest
+  // skip (one thread's plain scatter, no reach masks): a scene where nothing rests pays
+  // only for the bits.
+  c->rest.sg_rest = resting > 0 ? rest_.data() : nullptr;
+  c->patch.patch_work = resting > 0 ? patch_work_.data() : nullptr;
 }
 
 void Simulation::run_stage(int s) {

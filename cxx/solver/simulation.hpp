@@ -150,6 +150,9 @@ class Simulation {
   std::vector<unsigned char> still_, quiet_, quiet_before_, rest_, ring_;
   std::vector<int> patch_work_;
   bool rest_on_ = false;       // rest_possible() held in the last step
+  // The stages keep the still bits this step (track_): every step while a patch was quiet
+  // at the end of the last tracked step, else one step in kRestProbeSteps.
+  bool track_ = true, any_quiet_ = false;
   bool rest_possible() const;  // the deck and the stage table allow skipping patches at rest
   void quiet_patches(std::vector<unsigned char>& quiet) const;
   void mark_rest();    // after the bin stage, when possible: sg_rest, patch_work for this step

@@ -3,6 +3,8 @@
 // (defined in assembly.cpp and stage_grid.cpp).
 #pragma once
 #include <cstddef>
+#include <cstdint>
+#include <cstring>
 
 #include "core/grid.hpp"
 #include "materials/constitution.hpp"
@@ -183,18 +185,27 @@ __attribute__((always_inline)) inline void p2g_particle(const StepContext* c, in
 }
 
 // The end of every G2P: v_p += dt_int a, x_p += dt u with a and u the particle's
-// interpolated acceleration and grid velocity.
-__attribute__((always_inline)) inline void advance_particle(StepContext* c, int p, double ax, double ay, double az,
+// interpolated acceleration and grid velocity. Returns whether v_p and x_p kept every bit
+// (sgmp's still bits; a caller that ignores it computes nothing for it).
+__attribute__((always_inline)) inline bool advance_particle(StepContext* c, int p, double ax, double ay, double az,
                                                             double ux, double uy, double uz) {
   const double dt = c->clock.dt, dt_int = c->clock.dt_int;
   double* vp = c->part.v + 3 * p;
   double* xp = c->part.x + 3 * p;
-  vp[0] = vp[0] + ax * dt_int;
-  vp[1] = vp[1] + ay * dt_int;
-  vp[2] = vp[2] + az * dt_int;
-  xp[0] = xp[0] + ux * dt;
-  xp[1] = xp[1] + uy * dt;
-  xp[2] = xp[2] + uz * dt;
+  const double v[3] = {vp[0] + ax * dt_int, vp[1] + ay * dt_int, vp[2] + az * dt_int};
+  const double x[3] = {xp[0] + ux * dt, xp[1] + uy * dt, xp[2] + uz * dt};
+  uint64_t changed = 0;
+  for (int d = 0; d < 3; ++d) {
+    uint64_t a, b, e, f;
+    std::memcpy(&a, v + d, 8);
+    std::memcpy(&b, vp + d, 8);
+    std::memcpy(&e, x + d, 8);
+    std::memcpy(&f, xp + d, 8);
+    changed |= (a ^ b) | (e ^ f);
+    vp[d] = v[d];
+    xp[d] = x[d];
+  }
+  return changed == 0;
 }
 
 // G2P of particle p over its kNodes nodes (grid node node(k) of stencil node k):

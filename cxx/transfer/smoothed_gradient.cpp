@@ -429,20 +429,15 @@ void sg_g2p(StepContext* c, bool remap) {
       uy += w[k] * a[AUX_V + 1];
       uz += w[k] * a[AUX_V + 2];
     }
-    advance_particle(c, c->patch.patch_part[e], ax, ay, az, ux, uy, uz);
+    return advance_particle(c, c->patch.patch_part[e], ax, ay, az, ux, uy, uz);
   };
-  if (c->rest.sg_rest) {
+  if (c->rest.sg_still) {
     // The patches not at rest, each particle's still bit 1 set when x and v kept every bit.
     for_patches(c, [&](int q) {
       if (patch_at_rest(c, q)) return;
       for (int e = c->patch.patch_start[q]; e < c->patch.patch_start[q + 1]; ++e) {
         const int p = c->patch.patch_part[e];
-        double before[6];
-        std::memcpy(before, c->part.x + 3 * size_t(p), sizeof(double) * 3);
-        std::memcpy(before + 3, c->part.v + 3 * size_t(p), sizeof(double) * 3);
-        update(e);
-        const bool same = std::memcmp(before, c->part.x + 3 * size_t(p), sizeof(double) * 3) == 0 &&
-                          std::memcmp(before + 3, c->part.v + 3 * size_t(p), sizeof(double) * 3) == 0;
+        const bool same = update(e);
         c->rest.sg_still[p] = static_cast<unsigned char>((c->rest.sg_still[p] & 1u) | (same ? 2u : 0u));
       }
     });
