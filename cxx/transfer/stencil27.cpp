@@ -51,8 +51,9 @@ void clear_touched(const StepContext* c, const CellDecoder& dec, int q, const in
     }
 }
 
-// The stencils of particles part[0 .. n) into s (stencil27_lanes.hpp), in AVX2 lanes where
-// the CPU has them.
+// The block kernels of stencil27_lanes.hpp, in AVX2 lanes where the CPU has them: the
+// stencils of particles part[0 .. n) into s; their G2P (node k of a stencil at its first
+// node + of[k]); their velocity gradients from the node velocities gvel into L.
 inline void stencils(const StepContext* c, const CellDecoder& dec, const int* part, int n, bool gradients,
                      Stencil27Block& s) {
   for (int i = 0; i < n; ++i) dec(c->part.cell[part[i]], s.ci[0][i], s.ci[1][i], s.ci[2][i]);
@@ -62,13 +63,27 @@ inline void stencils(const StepContext* c, const CellDecoder& dec, const int* pa
     stencil27_block<VectorLane<kStencilLanes>>(c, part, n, gradients, s);
 }
 
+inline void g2p_stencils(StepContext* c, const Stencil27Block& s, const int* part, int n, const int* of) {
+  if (lanes_use_avx2())
+    g2p27_block_avx2(c, s, part, n, of);
+  else
+    g2p27_block<VectorLane<kStencilLanes>>(c, s, part, n, of);
+}
+
+inline void gradients_of_stencils(const StepContext* c, const Stencil27Block& s, int n, const double* gvel,
+                                  const int* of, double L[9][kStencilLanes]) {
+  if (lanes_use_avx2())
+    gradient27_block_avx2(c, s, n, gvel, of, L);
+  else
+    gradient27_block<VectorLane<kStencilLanes>>(c, s, n, gvel, of, L);
+}
+
 // Buffer node index, in patch q3's buffer (halo H), of lane i's first stencil node.
 inline int block_patch_corner(const StepContext* c, const int q3[3], const Stencil27Block& s, int i) {
   const int P = c->patch.patch_cells, H = c->patch.patch_halo, Q = P + 1 + 2 * H;
   return (s.ci[0][i] + s.o[0][i] - q3[0] * P + H) +
          Q * ((s.ci[1][i] + s.o[1][i] - q3[1] * P + H) + Q * (s.ci[2][i] + s.o[2][i] - q3[2] * P + H));
 }
-
 
 // The boxes of the last scatter, or null (whole buffers) in a distributed run.
 inline const int* touched_boxes(const StepContext* c) { return c->ranks.exchange ? nullptr : c->patch.patch_box; }
@@ -111,13 +126,13 @@ void p2g_stencil27(StepContext* c, bool with_mass_mom, bool with_forces) {
   assemble_p2g(c, with_mass_mom, with_forces, touched_boxes(c));
 }
 
-// GIMP: the 27-node stencils, one particle after the other.
+// G2P with the 27-node stencils, four particles at a time; the MUSL remap one particle after
+// the other, in list order.
 void g2p_gimp(StepContext* c, bool remap) {
   const int Q = c->patch.patch_cells + 1 + 2 * c->patch.patch_halo;
   const int nn0 = c->grid.nn[0], nn1 = c->grid.nn[1];
   const CellDecoder dec(c);
   const StencilOffsets in_grid(nn0, nn1), in_buffer(Q, Q);
-  const bool avx2 = lanes_use_avx2();
   for_filled_patches(c, [&](int q, const int q3[3], double* buf) {
     if (remap) clear_touched(c, dec, q, q3, buf, 1, 3, c->patch.patch_box + 6 * size_t(c->patch.patch_slot[q]));
     const int end = c->patch.patch_start[q + 1];
@@ -126,10 +141,7 @@ void g2p_gimp(StepContext* c, bool remap) {
       const int n = std::min(kStencilLanes, end - idx);
       const int* part = c->patch.patch_part + idx;
       stencils(c, dec, part, n, false, s);
-      if (avx2)
-        g2p27_block_avx2(c, s, part, n, in_grid.of);
-      else
-        g2p27_block<VectorLane<kStencilLanes>>(c, s, part, n, in_grid.of);
+      g2p_stencils(c, s, part, n, in_grid.of);
       if (remap)
         for (int i = 0; i < n; ++i) {
           double* corner = buf + size_t(block_patch_corner(c, q3, s, i)) * kNodeFields;
@@ -166,10 +178,7 @@ struct BlockGradient {
       for (int q = p; q < end && n < kStencilLanes; ++q)
         if (c->part.cell[q] >= 0 && !other_component(c, q)) part[n++] = q;
       stencils(c, dec, part, n, true, s);
-      if (lanes_use_avx2())
-        gradient27_block_avx2(c, s, n, gvel, in_grid->of, L);
-      else
-        gradient27_block<VectorLane<kStencilLanes>>(c, s, n, gvel, in_grid->of, L);
+      gradients_of_stencils(c, s, n, gvel, in_grid->of, L);
     }
     const int i = lane++;
     for (int r = 0; r < 9; ++r) Lp[r] = L[r][i];

@@ -9,6 +9,7 @@
 #include "core/grid.hpp"
 #include "core/lanes.hpp"
 #include "stages/patch_index.hpp"
+#include "transfer/transfer_lanes.hpp"
 
 namespace mpm3d {
 
@@ -93,38 +94,20 @@ inline int block_grid_corner(const StepContext* c, const Stencil27Block& s, int 
 }
 
 // G2P of the particles part[0 .. TL::W) in lanes first.. of s (g2p_particle's sums, node k
-// of a lane at its corner + of[k]; a light node adds +0.0, which leaves a sum started at
-// +0.0 unchanged), then advance_particle's update of each.
+// of a lane at its corner + of[k]: g2p_node_lanes), then advance_particle's update of each.
 template <class TL>
 void g2p27_lanes(StepContext* c, const Stencil27Block& s, const int* part, const int* of, int first) {
   typedef decltype(TL::splat(0.0)) T;
   int base[kStencilLanes], n1[kStencilLanes], n3[kStencilLanes], i3[kStencilLanes];
   for (int i = 0; i < TL::W; ++i) base[i] = block_grid_corner(c, s, first + i), i3[i] = 3 * part[i];
-  const double cutoff = c->grid.mass_cutoff;
-  const T zero = TL::splat(0.0);
-  T ax = zero, ay = zero, az = zero, ux = zero, uy = zero, uz = zero;
+  T acc[6];
+  for (int d = 0; d < 6; ++d) acc[d] = TL::splat(0.0);
   for (int k = 0; k < 27; ++k) {
     for (int i = 0; i < TL::W; ++i) n1[i] = base[i] + of[k], n3[i] = 3 * n1[i];
-    const T m = TL::gather(c->grid.gmass, n1);
-    const auto heavy = m > cutoff;
-    const T r = TL::load(&s.N[k][first]) / m;
-    ax = ax + TL::select(heavy, TL::gather(c->grid.gforce, n3) * r, zero);
-    ay = ay + TL::select(heavy, TL::gather(c->grid.gforce + 1, n3) * r, zero);
-    az = az + TL::select(heavy, TL::gather(c->grid.gforce + 2, n3) * r, zero);
-    ux = ux + TL::select(heavy, TL::gather(c->grid.gmom, n3) * r, zero);
-    uy = uy + TL::select(heavy, TL::gather(c->grid.gmom + 1, n3) * r, zero);
-    uz = uz + TL::select(heavy, TL::gather(c->grid.gmom + 2, n3) * r, zero);
+    g2p_node_lanes<TL>(c, n1, n3, TL::load(&s.N[k][first]), acc);
   }
-  const double dt = c->clock.dt, dt_int = c->clock.dt_int;
-  const T v[3] = {TL::gather(c->part.v, i3) + ax * dt_int, TL::gather(c->part.v + 1, i3) + ay * dt_int,
-                  TL::gather(c->part.v + 2, i3) + az * dt_int};
-  const T x[3] = {TL::gather(c->part.x, i3) + ux * dt, TL::gather(c->part.x + 1, i3) + uy * dt,
-                  TL::gather(c->part.x + 2, i3) + uz * dt};
-  for (int i = 0; i < TL::W; ++i)
-    for (int d = 0; d < 3; ++d) {
-      c->part.v[i3[i] + d] = TL::get(v[d], i);
-      c->part.x[i3[i] + d] = TL::get(x[d], i);
-    }
+  T v[3];
+  advance_lanes<TL>(c, i3, acc, v);
 }
 
 // Velocity gradients L[3a+b][lane] = d v_a / d x_b of lanes first.. of s from the node

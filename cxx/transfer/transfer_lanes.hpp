@@ -122,6 +122,37 @@ void p2g_patch(const StepContext* c, const CellDecoder& dec, int q, bool with_ma
     body ? p2g_patch_fields<false, true, true>(c, dec, q) : p2g_patch_fields<false, true, false>(c, dec, q);
 }
 
+// One node's share of a G2P in lanes (grid nodes n1, their vector entries n3 = 3 n1, the
+// lanes' weights w): acc[0..2] += w f / m, acc[3..5] += w p / m where the node is above the
+// mass cut-off; a light node adds +0.0, which leaves a sum started at +0.0 unchanged.
+template <class TL, class T>
+__attribute__((always_inline)) inline void g2p_node_lanes(const StepContext* c, const int* n1, const int* n3, T w,
+                                                          T acc[6]) {
+  const T zero = TL::splat(0.0);
+  const T m = TL::gather(c->grid.gmass, n1);
+  const auto heavy = m > c->grid.mass_cutoff;
+  const T r = w / m;
+  for (int d = 0; d < 3; ++d) acc[d] = acc[d] + TL::select(heavy, TL::gather(c->grid.gforce + d, n3) * r, zero);
+  for (int d = 0; d < 3; ++d) acc[3 + d] = acc[3 + d] + TL::select(heavy, TL::gather(c->grid.gmom + d, n3) * r, zero);
+}
+
+// The end of a G2P in lanes (advance_particle's operations): v += acc[0..2] dt_int,
+// x += acc[3..5] dt for the particles of vector entries i3 = 3 p; the new velocities in v.
+template <class TL, class T>
+__attribute__((always_inline)) inline void advance_lanes(StepContext* c, const int* i3, const T acc[6], T v[3]) {
+  const double dt = c->clock.dt, dt_int = c->clock.dt_int;
+  T x[3];
+  for (int d = 0; d < 3; ++d) {
+    v[d] = TL::gather(c->part.v + d, i3) + acc[d] * dt_int;
+    x[d] = TL::gather(c->part.x + d, i3) + acc[3 + d] * dt;
+  }
+  for (int i = 0; i < TL::W; ++i)
+    for (int d = 0; d < 3; ++d) {
+      c->part.v[i3[i] + d] = TL::get(v[d], i);
+      c->part.x[i3[i] + d] = TL::get(x[d], i);
+    }
+}
+
 // G2P of TL::W particles: v += a dt_int, x += u dt from the grid (a = f/m, u = p/m summed
 // with the weights); with the MUSL remap their momenta m_p N_k v_p per node into rm.
 template <class TL>
@@ -133,32 +164,15 @@ void g2p_values(StepContext* c, const CellDecoder& dec, const int* part, bool re
   shape_linear_lanes(lx, c->grid.inv_h, N, G);
   int base[kLanes], i3[kLanes], n1[kLanes], n3[kLanes];
   for (int i = 0; i < TL::W; ++i) base[i] = base_node(c, dec, c->part.cell[part[i]]), i3[i] = 3 * part[i];
-  const double cutoff = c->grid.mass_cutoff;
-  const T zero = TL::splat(0.0);
-  T ax = zero, ay = zero, az = zero, ux = zero, uy = zero, uz = zero;
+  T acc[6];
+  for (int d = 0; d < 6; ++d) acc[d] = TL::splat(0.0);
   for (int k = 0; k < 8; ++k) {
     const int off = node_of(c, 0, k);  // local node k from the base node
     for (int i = 0; i < TL::W; ++i) n1[i] = base[i] + off, n3[i] = 3 * n1[i];
-    const T m = TL::gather(c->grid.gmass, n1);
-    const auto heavy = m > cutoff;
-    const T r = N[k] / m;
-    ax = ax + TL::select(heavy, TL::gather(c->grid.gforce, n3) * r, zero);
-    ay = ay + TL::select(heavy, TL::gather(c->grid.gforce + 1, n3) * r, zero);
-    az = az + TL::select(heavy, TL::gather(c->grid.gforce + 2, n3) * r, zero);
-    ux = ux + TL::select(heavy, TL::gather(c->grid.gmom, n3) * r, zero);
-    uy = uy + TL::select(heavy, TL::gather(c->grid.gmom + 1, n3) * r, zero);
-    uz = uz + TL::select(heavy, TL::gather(c->grid.gmom + 2, n3) * r, zero);
+    g2p_node_lanes<TL>(c, n1, n3, N[k], acc);
   }
-  const double dt = c->clock.dt, dt_int = c->clock.dt_int;
-  const T v[3] = {TL::gather(c->part.v, i3) + ax * dt_int, TL::gather(c->part.v + 1, i3) + ay * dt_int,
-                  TL::gather(c->part.v + 2, i3) + az * dt_int};
-  const T x[3] = {TL::gather(c->part.x, i3) + ux * dt, TL::gather(c->part.x + 1, i3) + uy * dt,
-                  TL::gather(c->part.x + 2, i3) + uz * dt};
-  for (int i = 0; i < TL::W; ++i)
-    for (int d = 0; d < 3; ++d) {
-      c->part.v[i3[i] + d] = TL::get(v[d], i);
-      c->part.x[i3[i] + d] = TL::get(x[d], i);
-    }
+  T v[3];
+  advance_lanes<TL>(c, i3, acc, v);
   if (!remap) return;
   const T mp = TL::gather(c->part.mass, part);
   for (int k = 0; k < 8; ++k) {
