@@ -94,10 +94,7 @@ void assemble_wide(const StepContext* c, double* dst_mass, double* dst_mom, doub
   const int P = c->patch.patch_cells, H = c->patch.patch_halo, Q = P + 1 + 2 * H;
   const size_t pn = size_t(Q) * size_t(Q) * size_t(Q);
   const int nn0 = c->grid.nn[0], nn1 = c->grid.nn[1];
-  // Field f of node n: mass, momentum or force component.
-  auto field = [&](int f, size_t n) -> double& {
-    return f == 0 ? dst_mass[n] : (f <= 3 ? dst_mom[3 * n + size_t(f - 1)] : dst_force[3 * n + size_t(f - 4)]);
-  };
+  auto field = [&](int f, size_t n) -> double& { return node_field(f, n, dst_mass, dst_mom, dst_force); };
   for_patches(c, [&](int q) {
     const OwnedNodes o = owned_nodes(c, q);
     if (!o.active) return;

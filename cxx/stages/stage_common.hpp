@@ -73,16 +73,17 @@ inline void zero_fields_in_grid(const StepContext* c, const int q3[3], double* b
     }
 }
 
-// The node sums sum[0..count) of fields first.. into node n of the grid arrays (field 0
-// mass, 1-3 momentum, 4-6 force): the last step of every assembly and reduction.
+// Buffer field f of node n in the grid arrays: 0 mass, 1-3 momentum, 4-6 force.
+__attribute__((always_inline)) inline double& node_field(int f, size_t n, double* dst_mass, double* dst_mom,
+                                                         double* dst_force) {
+  return f == 0 ? dst_mass[n] : (f <= 3 ? dst_mom[3 * n + size_t(f - 1)] : dst_force[3 * n + size_t(f - 4)]);
+}
+
+// The node sums sum[0..count) of fields first.. into node n of the grid arrays: the last
+// step of every assembly and reduction.
 __attribute__((always_inline)) inline void store_node_fields(int first, int count, const double* sum, int n,
                                                              double* dst_mass, double* dst_mom, double* dst_force) {
-  for (int f = 0; f < count; ++f) {
-    const int field = first + f;
-    if (field == 0) dst_mass[n] = sum[f];
-    else if (field <= 3) dst_mom[3 * n + field - 1] = sum[f];
-    else dst_force[3 * n + field - 4] = sum[f];
-  }
+  for (int f = 0; f < count; ++f) node_field(first + f, size_t(n), dst_mass, dst_mom, dst_force) = sum[f];
 }
 
 // f(q, q3, buf) for every non-empty patch q (coordinates q3, buffer buf), each thread over
