@@ -439,7 +439,7 @@ bool Simulation::rest_possible() const {
   // Grid values at rest are zero momenta and forces only without gravity, loads and
   // damping; one process, one grid, one current position per particle; and the still bits
   // are written by the C++ G2P and stress stages, whose skipping the other stages share.
-  if (!skip_rest || !model.sg || model.tl || model.contact || ranks) return false;
+  if (!skip_rest || model.tl || model.contact || ranks) return false;
   if (model.has_gravity || model.has_loads || model.damping > 0.0 || model.dynamic_relaxation) return false;
   const StageTable cxx = cxx_stages();
   for (int s : {ST_BIN, ST_P2G, ST_FORCES, ST_INTEGRATE, ST_G2P, ST_STRESS})
@@ -448,7 +448,7 @@ bool Simulation::rest_possible() const {
 }
 
 void Simulation::forget_rest() {
-  still_.assign(model.sg ? size_t(model.particles.np) : 0, 0);
+  still_.assign(0, 0);  // allocated when first kept (mark_rest)
   quiet_before_.clear();
   ctx.rest.sg_still = nullptr;
   ctx.rest.sg_rest = nullptr;
@@ -476,6 +476,7 @@ void Simulation::quiet_patches(std::vector<unsigned char>& quiet) const {
 void Simulation::mark_rest() {
   StepContext* c = &ctx;
   const int npatch = c->patch.npatch;
+  if (still_.size() != size_t(model.particles.np)) still_.assign(size_t(model.particles.np), 0);
   quiet_patches(quiet_);
   // Quiet now over this step's lists and at the end of the step before over its lists: a
   // particle that moved out of a patch's reach in that step was still listed there.

@@ -21,6 +21,7 @@ void assemble_fields(const StepContext* c, double* dst_mass, double* dst_mom, do
   const int npd0 = c->patch.npd[0], npd1 = c->patch.npd[1], npd2 = c->patch.npd[2];
   const int pn = Q * Q * Q;
   for_patches(c, [&](int q) {
+    if (patch_at_rest(c, q)) return;  // its nodes keep the sums of the step before
     const int qx = q % npd0, qy = (q / npd0) % npd1, qz = q / (npd0 * npd1);
     // Slots of the patch and its lower neighbours: nb[cz][cy][cx], c = 0 lower, 1 self.
     const double* nb[2][2][2];
@@ -96,6 +97,7 @@ void assemble_wide(const StepContext* c, double* dst_mass, double* dst_mom, doub
   const int nn0 = c->grid.nn[0], nn1 = c->grid.nn[1];
   auto field = [&](int f, size_t n) -> double& { return node_field(f, n, dst_mass, dst_mom, dst_force); };
   for_patches(c, [&](int q) {
+    if (patch_at_rest(c, q)) return;  // its nodes keep the sums of the step before
     const OwnedNodes o = owned_nodes(c, q);
     if (!o.active) return;
     for (int k = o.lo[2]; k < o.hi[2]; ++k)

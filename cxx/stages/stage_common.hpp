@@ -86,13 +86,38 @@ __attribute__((always_inline)) inline void store_node_fields(int first, int coun
   for (int f = 0; f < count; ++f) node_field(first + f, size_t(n), dst_mass, dst_mom, dst_force) = sum[f];
 }
 
-// f(q, q3, buf) for every non-empty patch q (coordinates q3, buffer buf), each thread over
-// its run of patches (for_patches): the 27-node stages and the contact's mass gradients.
+// f(n, k) for patch q and each patch n next to it, k = (dx + 1) + 3 (dy + 1) + 9 (dz + 1)
+// its place among the 27 (13: q itself).
+template <class F>
+inline void for_patches_around(const StepContext* c, int q, F&& f) {
+  int q3[3];
+  patch_coords(c, q, q3);
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int x = q3[0] + dx, y = q3[1] + dy, z = q3[2] + dz;
+        if (x < 0 || y < 0 || z < 0 || x >= c->patch.npd[0] || y >= c->patch.npd[1] || z >= c->patch.npd[2]) continue;
+        f(x + c->patch.npd[0] * (y + c->patch.npd[1] * z), (dx + 1) + 3 * (dy + 1) + 9 * (dz + 1));
+      }
+}
+
+// Patch q and its neighbours are at rest (StepContext::sg_rest): no stage reads what q's
+// particles would scatter (its buffer, its cell centres), so the scatters skip them.
+inline bool rest_around(const StepContext* c, int q) {
+  if (!patch_at_rest(c, q)) return false;
+  bool all = true;
+  for_patches_around(c, q, [&](int n, int) { all = all && patch_at_rest(c, n); });
+  return all;
+}
+
+// f(q, q3, buf) for every non-empty patch q (coordinates q3, buffer buf) whose buffer some
+// patch not at rest assembles (rest_around), each thread over its run of patches
+// (for_patches): the 27-node stages and the contact's mass gradients.
 template <class F>
 inline void for_filled_patches(const StepContext* c, F&& f) {
   for_patches(c, [&](int q) {
     const int slot = c->patch.patch_slot[q];
-    if (slot < 0) return;
+    if (slot < 0 || rest_around(c, q)) return;
     int q3[3];
     patch_coords(c, q, q3);
     f(q, q3, patch_buffer(c, slot));

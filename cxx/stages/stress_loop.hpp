@@ -29,15 +29,7 @@ void stress_run(StepContext* c, const CellDecoder& dec, const StressBlockArgs& a
       stress_block(mp, b, args);
     else
       for (int i = 0; i < n; ++i) stress_block_lane(mp, b, i, args);
-    if (c->rest.sg_still) {
-      // Still bit 0: the update changed no bit of the stress state (and an explosive is
-      // unlit, so that the next step's burn fraction is the same zero).
-      const bool unlit_or_inert = mp.type != MAT_HIEX;
-      for (int i = 0; i < n; ++i) {
-        const bool same = stress_state_same(c, part[i], i, b) && (unlit_or_inert || b.burn[i] == 0.0);
-        c->rest.sg_still[part[i]] = static_cast<unsigned char>((c->rest.sg_still[part[i]] & 2u) | (same ? 1u : 0u));
-      }
-    }
+    if (c->rest.sg_still) mark_stress_still(c, mp, part, n, b);
     for (int i = 0; i < n; ++i) stress_block_store(c, part[i], i, b);
     n = 0;
   };
@@ -58,17 +50,28 @@ void stress_run(StepContext* c, const CellDecoder& dec, const StressBlockArgs& a
 }
 
 // The particle loop of the 27-node stencils: fixed chunks [first, end) of the particles,
-// each with its own gradient functor make_gradient(first, end).
+// each with its own gradient functor make_gradient(nullptr, end); with patches at rest the
+// lists of the others, make_gradient(list, end) for entries [first, end).
 template <class MakeGradient>
 void stress_particles(StepContext* c, MakeGradient&& make_gradient) {
   const CellDecoder dec(c);
   const StressBlockArgs args = stress_args(c);
+  if (c->rest.sg_rest) {  // the lists of the patches not at rest, shared by their work
+    const int* list = c->patch.patch_part;
+    for_patches(c, [&](int q) {
+      if (patch_at_rest(c, q)) return;
+      const int first = c->patch.patch_start[q], end = c->patch.patch_start[q + 1];
+      auto gradient = make_gradient(list, end);
+      stress_run(c, dec, args, list, first, end - first, gradient);
+    });
+    return;
+  }
   constexpr int kChunk = 256;
   const int nchunk = (c->part.np + kChunk - 1) / kChunk;
 #pragma omp parallel for schedule(static)
   for (int ch = 0; ch < nchunk; ++ch) {
     const int first = ch * kChunk, end = std::min(c->part.np, first + kChunk);
-    auto gradient = make_gradient(first, end);
+    auto gradient = make_gradient(nullptr, end);
     stress_run(c, dec, args, nullptr, first, end - first, gradient);
   }
 }

@@ -83,30 +83,6 @@ inline void patch_centres(const StepContext* c, int q, int q3[3], int lo[3], int
   }
 }
 
-// f(n, k) for patch q and each patch n next to it, k = (dx + 1) + 3 (dy + 1) + 9 (dz + 1)
-// its place among the 27 (13: q itself).
-template <class F>
-inline void for_patches_around(const StepContext* c, int q, F&& f) {
-  int q3[3];
-  patch_coords(c, q, q3);
-  for (int dz = -1; dz <= 1; ++dz)
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        const int x = q3[0] + dx, y = q3[1] + dy, z = q3[2] + dz;
-        if (x < 0 || y < 0 || z < 0 || x >= c->patch.npd[0] || y >= c->patch.npd[1] || z >= c->patch.npd[2]) continue;
-        f(x + c->patch.npd[0] * (y + c->patch.npd[1] * z), (dx + 1) + 3 * (dy + 1) + 9 * (dz + 1));
-      }
-}
-
-// Patch q and its neighbours are at rest: the scatters visit no entry of q (their centres
-// are not added to) and the stress stage skips q.
-inline bool rest_around(const StepContext* c, int q) {
-  if (!patch_at_rest(c, q)) return false;
-  bool all = true;
-  for_patches_around(c, q, [&](int n, int) { all = all && patch_at_rest(c, n); });
-  return all;
-}
-
 // Every patch-list entry's weights (both rules) and centres into c->sgmp.sg_w, sg_cell; with
 // kReach also which neighbour patches its corners fall in, into c->sg_reach (the scatters
 // of several threads).

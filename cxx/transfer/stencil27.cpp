@@ -158,25 +158,29 @@ void g2p_stencil27(StepContext* c, bool remap) {
 }
 
 // The velocity gradients of the stress stage from the node velocities gvel
-// (gradient27_lanes, stencil27_lanes.hpp). One per chunk of particles [first, end): the
-// stencils and gradients of the next kStencilLanes particles the stress loop takes
-// (stress_run's test) at a time, handed out one particle after the other.
+// (gradient27_lanes, stencil27_lanes.hpp). One per run of entries [first, end) of a list
+// (null: the particles themselves): the stencils and gradients of the next kStencilLanes
+// particles the stress loop takes (stress_run's test) at a time, handed out one particle
+// after the other.
 struct BlockGradient {
   const StepContext* c;
   const StencilOffsets* in_grid;
   const double* gvel;
+  const int* list;
   int end;
   Stencil27Block s;
   double L[9][kStencilLanes];
   int part[kStencilLanes];
   int n = 0, lane = 0;
 
-  void operator()(const CellDecoder& dec, int, int p, double* Lp) {
+  void operator()(const CellDecoder& dec, int e, int p, double* Lp) {
     if (lane == n || part[lane] != p) {
       n = 0;
       lane = 0;
-      for (int q = p; q < end && n < kStencilLanes; ++q)
+      for (int j = e; j < end && n < kStencilLanes; ++j) {
+        const int q = list ? list[j] : j;
         if (c->part.cell[q] >= 0 && !other_component(c, q)) part[n++] = q;
+      }
       stencils(c, dec, part, n, true, s);
       gradients_of_stencils(c, s, n, gvel, in_grid->of, L);
     }
@@ -187,7 +191,7 @@ struct BlockGradient {
 
 void stress_stencil27(StepContext* c, const double* gvel) {
   const StencilOffsets in_grid(c->grid.nn[0], c->grid.nn[1]);
-  stress_particles(c, [&](int, int end) { return BlockGradient{c, &in_grid, gvel, end, {}, {}, {}}; });
+  stress_particles(c, [&](const int* list, int end) { return BlockGradient{c, &in_grid, gvel, list, end, {}, {}, {}}; });
 }
 
 // Contact: the mass gradients with the 27-node stencils.

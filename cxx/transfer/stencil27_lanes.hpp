@@ -107,7 +107,7 @@ void g2p27_lanes(StepContext* c, const Stencil27Block& s, const int* part, const
     g2p_node_lanes<TL>(c, n1, n3, TL::load(&s.N[k][first]), acc);
   }
   T v[3];
-  advance_lanes<TL>(c, i3, acc, v);
+  advance_lanes<TL>(c, part, i3, acc, v);
 }
 
 // Velocity gradients L[3a+b][lane] = d v_a / d x_b of lanes first.. of s from the node

@@ -137,20 +137,36 @@ __attribute__((always_inline)) inline void g2p_node_lanes(const StepContext* c, 
 }
 
 // The end of a G2P in lanes (advance_particle's operations): v += acc[0..2] dt_int,
-// x += acc[3..5] dt for the particles of vector entries i3 = 3 p; the new velocities in v.
+// x += acc[3..5] dt for the particles part with vector entries i3 = 3 part; the new
+// velocities in v. While the still bits are kept (StepContext::sg_still), bit 1 of each
+// particle's says whether v and x kept every bit.
 template <class TL, class T>
-__attribute__((always_inline)) inline void advance_lanes(StepContext* c, const int* i3, const T acc[6], T v[3]) {
+__attribute__((always_inline)) inline void advance_lanes(StepContext* c, const int* part, const int* i3,
+                                                         const T acc[6], T v[3]) {
   const double dt = c->clock.dt, dt_int = c->clock.dt_int;
   T x[3];
   for (int d = 0; d < 3; ++d) {
     v[d] = TL::gather(c->part.v + d, i3) + acc[d] * dt_int;
     x[d] = TL::gather(c->part.x + d, i3) + acc[3 + d] * dt;
   }
-  for (int i = 0; i < TL::W; ++i)
+  unsigned char* still = c->rest.sg_still;
+  for (int i = 0; i < TL::W; ++i) {
+    uint64_t changed = 0;
     for (int d = 0; d < 3; ++d) {
-      c->part.v[i3[i] + d] = TL::get(v[d], i);
-      c->part.x[i3[i] + d] = TL::get(x[d], i);
+      const double vn = TL::get(v[d], i), xn = TL::get(x[d], i);
+      if (still) {
+        uint64_t a, b, e, f;
+        std::memcpy(&a, &vn, 8);
+        std::memcpy(&b, c->part.v + i3[i] + d, 8);
+        std::memcpy(&e, &xn, 8);
+        std::memcpy(&f, c->part.x + i3[i] + d, 8);
+        changed |= (a ^ b) | (e ^ f);
+      }
+      c->part.v[i3[i] + d] = vn;
+      c->part.x[i3[i] + d] = xn;
     }
+    if (still) still[part[i]] = static_cast<unsigned char>((still[part[i]] & 1u) | (changed == 0 ? 2u : 0u));
+  }
 }
 
 // G2P of TL::W particles: v += a dt_int, x += u dt from the grid (a = f/m, u = p/m summed
@@ -172,7 +188,7 @@ void g2p_values(StepContext* c, const CellDecoder& dec, const int* part, bool re
     g2p_node_lanes<TL>(c, n1, n3, N[k], acc);
   }
   T v[3];
-  advance_lanes<TL>(c, i3, acc, v);
+  advance_lanes<TL>(c, part, i3, acc, v);
   if (!remap) return;
   const T mp = TL::gather(c->part.mass, part);
   for (int k = 0; k < 8; ++k) {
@@ -269,6 +285,17 @@ inline bool stress_state_same(const StepContext* c, int p, int i, const StressBl
   return s;
 }
 
+// Still bit 0 of the particles part[0 .. n), lanes 0 .. n of b before they are stored: the
+// update changed no bit of the stress state (and an explosive is unlit, so that the next
+// step's burn fraction is the same zero).
+inline void mark_stress_still(StepContext* c, const MaterialParams& mp, const int* part, int n, const StressBlock& b) {
+  const bool unlit_or_inert = mp.type != MAT_HIEX;
+  for (int i = 0; i < n; ++i) {
+    const bool same = stress_state_same(c, part[i], i, b) && (unlit_or_inert || b.burn[i] == 0.0);
+    c->rest.sg_still[part[i]] = static_cast<unsigned char>((c->rest.sg_still[part[i]] & 2u) | (same ? 1u : 0u));
+  }
+}
+
 inline void stress_block_store(StepContext* c, int p, int i, const StressBlock& b) {
   c->part.vol[p] = b.vol[i];
   for (int s = 0; s < 6; ++s) c->part.sig[6 * p + s] = b.sig[s][i];
@@ -303,6 +330,7 @@ void stress_list(StepContext* c, const CellDecoder& dec, const int* list, int co
       stress_block_lanes<VL>(mp, b, 0, args);
     else
       for (int i = 0; i < n; ++i) stress_block_lanes<ScalarLane>(mp, b, i, args);
+    if (c->rest.sg_still) mark_stress_still(c, mp, part, n, b);
     for (int i = 0; i < n; ++i) stress_block_store(c, part[i], i, b);
     n = 0;
   };

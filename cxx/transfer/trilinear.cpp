@@ -15,7 +15,7 @@ namespace {
 void p2g_trilinear(StepContext* c, bool with_mass_mom, bool with_forces) {
   const bool avx2 = lanes_use_avx2();
   for_patches(c, [&](int q) {
-    if (c->patch.patch_slot[q] < 0) return;
+    if (c->patch.patch_slot[q] < 0 || rest_around(c, q)) return;  // empty, or read by no assembly
     if (avx2)
       p2g_patch_avx2(c, q, with_mass_mom, with_forces);
     else
@@ -24,11 +24,12 @@ void p2g_trilinear(StepContext* c, bool with_mass_mom, bool with_forces) {
   assemble_p2g(c, with_mass_mom, with_forces);
 }
 
-// Trilinear: each thread over its balanced range of patches, 4 particles per vector.
+// Trilinear: each thread over its balanced range of patches, 4 particles per vector. A
+// patch at rest whose remapped momenta no assembly reads (rest_around) is left as it is.
 void g2p_trilinear_particles(StepContext* c, bool remap) {
   const bool avx2 = lanes_use_avx2();
   for_patches(c, [&](int q) {
-    if (c->patch.patch_slot[q] < 0) return;
+    if (c->patch.patch_slot[q] < 0 || rest_around(c, q)) return;
     if (avx2)
       g2p_patch_avx2(c, q, remap);
     else
@@ -49,13 +50,20 @@ void stress_trilinear(StepContext* c, const double* gvel) {
   const CellDecoder dec(c);
   const StressBlockArgs args = stress_args(c);
   const bool avx2 = lanes_use_avx2();
-  for_list_chunks(c, [&](int first, int count) {
+  auto run = [&](int first, int count) {
     const int* list = c->patch.patch_part + first;
     if (avx2)
       stress_list_avx2(c, list, count, gvel, args);
     else
       stress_list<VectorLane<kLanes>>(c, dec, list, count, gvel, args);
-  });
+  };
+  if (c->rest.sg_rest) {  // the patches not at rest, shared by their work
+    for_patches(c, [&](int q) {
+      if (!patch_at_rest(c, q)) run(c->patch.patch_start[q], c->patch.patch_start[q + 1] - c->patch.patch_start[q]);
+    });
+    return;
+  }
+  for_list_chunks(c, run);
 }
 
 }  // namespace
