@@ -144,11 +144,11 @@ module mpm3d_stage_common
     integer(c_int) :: prebinned = 0  ! 1: cell, lx and pscratch already hold the particles' binning
   end type step_ranks
 
-  ! sgmp, C++ kernels: patches at rest (docs/ARCHITECTURE.md); null when not looked for (struct StepRest).
+  ! C++ kernels: patches at rest (docs/ARCHITECTURE.md); null when not looked for (struct StepRest).
   type, bind(C), public :: step_rest
     ! (np) bit 0: the stress update changed nothing; bit 1: G2P changed nothing
-    type(c_ptr) :: sg_still = c_null_ptr
-    type(c_ptr) :: sg_rest = c_null_ptr  ! (npatch) 1 where every stage skips the patch
+    type(c_ptr) :: still = c_null_ptr
+    type(c_ptr) :: at_rest = c_null_ptr  ! (npatch) 1 where every stage skips the patch
   end type step_rest
 
   ! struct StepContext (cxx/stages/update_step.hpp): the groups above, in its order.
@@ -413,8 +413,8 @@ contains
     out(92) = transfer(c_loc(c%ranks%order), 0_c_intptr_t) - c0
     out(93) = transfer(c_loc(c%ranks%prebinned), 0_c_intptr_t) - c0
     out(94) = transfer(c_loc(c%rest), 0_c_intptr_t) - c0
-    out(95) = transfer(c_loc(c%rest%sg_still), 0_c_intptr_t) - c0
-    out(96) = transfer(c_loc(c%rest%sg_rest), 0_c_intptr_t) - c0
+    out(95) = transfer(c_loc(c%rest%still), 0_c_intptr_t) - c0
+    out(96) = transfer(c_loc(c%rest%at_rest), 0_c_intptr_t) - c0
     out(97) = c_sizeof(m(1))
     out(98) = transfer(c_loc(m(1)%eos_e0), 0_c_intptr_t) - m0
     out(99) = transfer(c_loc(m(1)%eos_type), 0_c_intptr_t) - m0

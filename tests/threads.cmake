@@ -48,10 +48,13 @@ mpm3d_thread_test(cook_membrane_sgmp ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/coo
 mpm3d_thread_test(sg_usf_blocks ${CMAKE_CURRENT_SOURCE_DIR}/decks/sg_usf_blocks.mpm 170)
 mpm3d_thread_test(current_cook_sg ${CMAKE_SOURCE_DIR}/../shared/decks/current/Cook_membrane_SG5776p_Cookmo_SG.mpm 200)
 mpm3d_thread_test(current_sgdeto1k ${CMAKE_SOURCE_DIR}/../shared/decks/current/SGDeto1k.mpm 300)
-# sgmp's patches at rest: a detonation sweeping a bar at rest (run to its end), a block
+# Patches at rest: a detonation sweeping a bar at rest (sgmp, run to its end), a block
 # striking a block at rest (two-cell patches: the thinnest ring around the moving ones).
 mpm3d_thread_test(bar_sgmp ${CMAKE_SOURCE_DIR}/inputs/explosives/bar_sgmp.mpm 983)
 mpm3d_thread_test(sg_rest_blocks ${CMAKE_CURRENT_SOURCE_DIR}/decks/sg_rest_blocks.mpm 510 --patch-cells 2)
+# The same bar, shorter and two cells thick, with the trilinear and the B-spline stencils.
+mpm3d_thread_test(bar_linear ${CMAKE_CURRENT_SOURCE_DIR}/decks/bar_linear.mpm 295)
+mpm3d_thread_test(bar_bimp ${CMAKE_CURRENT_SOURCE_DIR}/decks/bar_bimp.mpm 311)
 mpm3d_thread_test(dam_break_coarse ${CMAKE_SOURCE_DIR}/inputs/fluids/dam_break_coarse.mpm 297)
 mpm3d_thread_test(current_dam_break ${CMAKE_SOURCE_DIR}/../shared/decks/current/DamBreak_SGMPM_Dam_SGR2.mpm 300)
 # The particles' storage order (tests/particle_order.sh): deck order keeps every bit too.

@@ -62,7 +62,7 @@ const char* kUsage =
     "  --kernel cxx|fortran       take every step stage from one language\n"
     "  --kernels STAGE=LANG,...   take single stages from a language (see --list-stages)\n"
     "  --list-stages      print the stage names, one per line\n"
-    "  --no-rest-skip     sgmp: compute the patches at rest too (the same results, slower;\n"
+    "  --no-rest-skip     compute the patches at rest too (the same results, slower;\n"
     "                     see docs/PERFORMANCE.md)\n"
     "  --strict-energy    stop (exit 3) at the first energy warning: a body's internal energy\n"
     "                     below -0.1% of the initial total energy plus the external work, or\n"

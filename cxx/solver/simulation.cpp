@@ -22,14 +22,16 @@
 namespace mpm3d {
 namespace {
 
-// Patches at rest (sgmp): how far, in cells, the data of one step reaches. A particle's
-// update reads the cell centres of its auxiliary cell (one cell either side), which read
-// their corner nodes (one more), which gather the centres next to them (one more), which
-// the particles of their own and the neighbouring cells scatter to (one more): 3 cells from
-// the particles' start-of-step state to a G2P. MUSL's remap and stress go round once more
-// from the updated velocities (6 cells), and USF's G2P reads the forces of the stresses it
-// updated first (8). So a patch whose every patch within 8 cells holds only particles that
-// are still and at rest computes this step exactly what it computed in the step before.
+// Patches at rest: how far, in cells, the data of one step reaches. With sgmp a particle's
+// update reads the cell centres of its auxiliary cell (one cell either side),
+// which read their corner nodes (one more), which gather the centres next to them (one
+// more), which the particles of their own and the neighbouring cells scatter to (one more):
+// 3 cells from the particles' start-of-step state to a G2P. MUSL's remap and stress go
+// round once more from the updated velocities (6 cells), and USF's G2P reads the forces of
+// the stresses it updated first (8). A 27-node stencil reaches at most 2 cells each way
+// (the B-spline's node base - 1 of a particle near base + 1: 4, 8, 8), a trilinear one 1
+// (2, 4, 4). So a patch whose every patch within 8 cells holds only particles that are
+// still and at rest computes this step exactly what it computed in the step before.
 constexpr int kRestReachCells = 8;
 // The work of a particle of a patch at rest (binning, the scatter weights, the energy sums)
 // against one that is computed, for the threads' shares (thread_patches): about 1 to 8 on
@@ -41,7 +43,7 @@ constexpr int kMovingWork = 8;
 constexpr long kRestProbeSteps = 16;
 
 // Particle p, as it stands, would be left as it is by a step whose grid values near it are
-// all zero: its last G2P and stress update changed no bit of it (sg_still bits 0 and 1),
+// all zero: its last G2P and stress update changed no bit of it (still bits 0 and 1),
 // its velocity and stress are zero (either sign) and, an explosive, it is unlit at time t.
 inline bool particle_quiet(const StepContext* c, const unsigned char* still, int p, double t) {
   if (still[p] != 3) return false;
@@ -370,9 +372,9 @@ void Simulation::step() {
   int order[MPM3D_MAX_STEP_STAGES];
   const int nstage = mpm3d_step_order(c->method.scheme, order);
   if (nstage < 0) throw std::logic_error("unknown update scheme " + std::to_string(c->method.scheme));
-  c->rest.sg_rest = nullptr;  // the bin stage shares the patches by their particles
+  c->rest.at_rest = nullptr;  // the bin stage shares the patches by their particles
   c->patch.patch_work = nullptr;
-  c->rest.sg_still = nullptr;  // mark_rest sets it when this step keeps the still bits
+  c->rest.still = nullptr;  // mark_rest sets it when this step keeps the still bits
   for (int k = 0; k < nstage; ++k) {
     const int s = order[k];
     if (mpm3d_stage_needs_contact(s) && !contact) continue;
@@ -450,8 +452,8 @@ bool Simulation::rest_possible() const {
 void Simulation::forget_rest() {
   still_.assign(0, 0);  // allocated when first kept (mark_rest)
   quiet_before_.clear();
-  ctx.rest.sg_still = nullptr;
-  ctx.rest.sg_rest = nullptr;
+  ctx.rest.still = nullptr;
+  ctx.rest.at_rest = nullptr;
   ctx.patch.patch_work = nullptr;
   rest_on_ = false;
   track_ = any_quiet_ = false;
@@ -507,11 +509,11 @@ void Simulation::mark_rest() {
     patch_work_[size_t(q) + 1] = patch_work_[size_t(q)] + n * (rest_[size_t(q)] ? 1 : kMovingWork);
   }
   rest_particle_steps += resting;
-  c->rest.sg_still = still_.data();
+  c->rest.still = still_.data();
   // No particle at rest: the still bits are kept, but the stages run as without the rest
   // skip (one thread's plain scatter, no reach masks): a scene where nothing rests pays
   // only for the bits.
-  c->rest.sg_rest = resting > 0 ? rest_.data() : nullptr;
+  c->rest.at_rest = resting > 0 ? rest_.data() : nullptr;
   c->patch.patch_work = resting > 0 ? patch_work_.data() : nullptr;
 }
 

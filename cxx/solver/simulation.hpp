@@ -68,7 +68,7 @@ class Simulation {
   bool strict_energy = false;
   std::vector<std::string> new_energy_warnings;
   double stage_seconds[ST_COUNT] = {};  // wall time spent in each stage (regrids count as bin)
-  // sgmp: patches at rest skipped (StepContext::sg_rest; docs/ARCHITECTURE.md "Patches at
+  // Patches at rest skipped (StepContext::at_rest; docs/ARCHITECTURE.md "Patches at
   // rest"): the same bits as computing them, which false does (mpm3d --no-rest-skip).
   bool skip_rest = true;
   long rest_particle_steps = 0;  // particles of patches at rest, summed over the steps
@@ -144,7 +144,7 @@ class Simulation {
   bool reference_bin_holds_ = false;
   // The current version's dt from the particle velocities (Model::dt_per_step).
   double velocity_time_step();
-  // Patches at rest (sgmp): still_ (np) the kernels' bits (StepContext::sg_still); per patch
+  // Patches at rest: still_ (np) the kernels' bits (StepContext::still); per patch
   // of the last bin quiet_ (every particle still and at rest), quiet_before_ (the same at
   // the end of the step before, over that step's lists), rest_ and the work shares.
   std::vector<unsigned char> still_, quiet_, quiet_before_, rest_, ring_;
@@ -155,7 +155,7 @@ class Simulation {
   bool track_ = true, any_quiet_ = false;
   bool rest_possible() const;  // the deck and the stage table allow skipping patches at rest
   void quiet_patches(std::vector<unsigned char>& quiet) const;
-  void mark_rest();    // after the bin stage, when possible: sg_rest, patch_work for this step
+  void mark_rest();    // after the bin stage, when possible: at_rest, patch_work for this step
   void forget_rest();  // the particles or the grid changed: nothing is known still
 };
 

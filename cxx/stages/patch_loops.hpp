@@ -64,8 +64,8 @@ inline void for_patches(const StepContext* c, F&& f) {
   }
 }
 
-// Patch q is at rest this step (StepContext::sg_rest): no stage touches it.
-inline bool patch_at_rest(const StepContext* c, int q) { return c->rest.sg_rest && c->rest.sg_rest[q]; }
+// Patch q is at rest this step (StepContext::at_rest): no stage touches it.
+inline bool patch_at_rest(const StepContext* c, int q) { return c->rest.at_rest && c->rest.at_rest[q]; }
 
 // f(first, count) for every chunk of kListChunk entries of the patch lists (the last one
 // shorter); the static schedule gives each thread one contiguous run of chunks.

@@ -101,7 +101,7 @@ inline void for_patches_around(const StepContext* c, int q, F&& f) {
       }
 }
 
-// Patch q and its neighbours are at rest (StepContext::sg_rest): no stage reads what q's
+// Patch q and its neighbours are at rest (StepContext::at_rest): no stage reads what q's
 // particles would scatter (its buffer, its cell centres), so the scatters skip them.
 inline bool rest_around(const StepContext* c, int q) {
   if (!patch_at_rest(c, q)) return false;

@@ -29,7 +29,7 @@ void stress_run(StepContext* c, const CellDecoder& dec, const StressBlockArgs& a
       stress_block(mp, b, args);
     else
       for (int i = 0; i < n; ++i) stress_block_lane(mp, b, i, args);
-    if (c->rest.sg_still) mark_stress_still(c, mp, part, n, b);
+    if (c->rest.still) mark_stress_still(c, mp, part, n, b);
     for (int i = 0; i < n; ++i) stress_block_store(c, part[i], i, b);
     n = 0;
   };
@@ -56,7 +56,7 @@ template <class MakeGradient>
 void stress_particles(StepContext* c, MakeGradient&& make_gradient) {
   const CellDecoder dec(c);
   const StressBlockArgs args = stress_args(c);
-  if (c->rest.sg_rest) {  // the lists of the patches not at rest, shared by their work
+  if (c->rest.at_rest) {  // the lists of the patches not at rest, shared by their work
     const int* list = c->patch.patch_part;
     for_patches(c, [&](int q) {
       if (patch_at_rest(c, q)) return;

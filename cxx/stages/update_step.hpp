@@ -119,10 +119,10 @@ struct StepRanks {
   int prebinned;  // 1: cell, lx and pscratch already hold the particles' binning
 };
 
-// sgmp, C++ kernels: patches at rest (docs/ARCHITECTURE.md); null when not looked for.
+// C++ kernels: patches at rest (docs/ARCHITECTURE.md); null when not looked for.
 struct StepRest {
-  unsigned char *sg_still;  // (np) bit 0: the stress update changed nothing; bit 1: G2P changed nothing
-  const unsigned char *sg_rest;  // (npatch) 1 where every stage skips the patch
+  unsigned char *still;  // (np) bit 0: the stress update changed nothing; bit 1: G2P changed nothing
+  const unsigned char *at_rest;  // (npatch) 1 where every stage skips the patch
 };
 
 struct StepContext {

@@ -201,7 +201,7 @@ void scatter_in_order(StepContext* c, int first_field, int nfield, F&& add) {
 #ifdef _OPENMP
   threads = omp_get_max_threads();
 #endif
-  const bool masked = threads > 1 || c->rest.sg_rest;  // one thread's pass skips no centre
+  const bool masked = threads > 1 || c->rest.at_rest;  // one thread's pass skips no centre
   sg_ensure_weights(c, masked);
   if (masked) {
     for_contributions_in_order(c, first_field, nfield, add);
@@ -407,14 +407,14 @@ void sg_g2p(StepContext* c, bool remap) {
     }
     return advance_particle(c, c->patch.patch_part[e], ax, ay, az, ux, uy, uz);
   };
-  if (c->rest.sg_still) {
+  if (c->rest.still) {
     // The patches not at rest, each particle's still bit 1 set when x and v kept every bit.
     for_patches(c, [&](int q) {
       if (patch_at_rest(c, q)) return;
       for (int e = c->patch.patch_start[q]; e < c->patch.patch_start[q + 1]; ++e) {
         const int p = c->patch.patch_part[e];
         const bool same = update(e);
-        c->rest.sg_still[p] = static_cast<unsigned char>((c->rest.sg_still[p] & 1u) | (same ? 2u : 0u));
+        c->rest.still[p] = static_cast<unsigned char>((c->rest.still[p] & 1u) | (same ? 2u : 0u));
       }
     });
   } else {
@@ -467,7 +467,7 @@ void stress_sg(StepContext* c) {
   auto gradient = [&](const CellDecoder&, int e, int, double* L) {
     sg_velocity_gradient(c, c->sgmp.sg_cell + 8 * size_t(e), sg_p2g_weights(c, e), L);
   };
-  if (c->rest.sg_rest) {  // the patches not at rest, shared by their work
+  if (c->rest.at_rest) {  // the patches not at rest, shared by their work
     for_patches(c, [&](int q) {
       if (patch_at_rest(c, q)) return;
       const int first = c->patch.patch_start[q];

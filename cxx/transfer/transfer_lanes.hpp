@@ -138,7 +138,7 @@ __attribute__((always_inline)) inline void g2p_node_lanes(const StepContext* c, 
 
 // The end of a G2P in lanes (advance_particle's operations): v += acc[0..2] dt_int,
 // x += acc[3..5] dt for the particles part with vector entries i3 = 3 part; the new
-// velocities in v. While the still bits are kept (StepContext::sg_still), bit 1 of each
+// velocities in v. While the still bits are kept (StepContext::still), bit 1 of each
 // particle's says whether v and x kept every bit.
 template <class TL, class T>
 __attribute__((always_inline)) inline void advance_lanes(StepContext* c, const int* part, const int* i3,
@@ -149,7 +149,7 @@ __attribute__((always_inline)) inline void advance_lanes(StepContext* c, const i
     v[d] = TL::gather(c->part.v + d, i3) + acc[d] * dt_int;
     x[d] = TL::gather(c->part.x + d, i3) + acc[3 + d] * dt;
   }
-  unsigned char* still = c->rest.sg_still;
+  unsigned char* still = c->rest.still;
   for (int i = 0; i < TL::W; ++i) {
     uint64_t changed = 0;
     for (int d = 0; d < 3; ++d) {
@@ -292,7 +292,7 @@ inline void mark_stress_still(StepContext* c, const MaterialParams& mp, const in
   const bool unlit_or_inert = mp.type != MAT_HIEX;
   for (int i = 0; i < n; ++i) {
     const bool same = stress_state_same(c, part[i], i, b) && (unlit_or_inert || b.burn[i] == 0.0);
-    c->rest.sg_still[part[i]] = static_cast<unsigned char>((c->rest.sg_still[part[i]] & 2u) | (same ? 1u : 0u));
+    c->rest.still[part[i]] = static_cast<unsigned char>((c->rest.still[part[i]] & 2u) | (same ? 1u : 0u));
   }
 }
 
@@ -330,7 +330,7 @@ void stress_list(StepContext* c, const CellDecoder& dec, const int* list, int co
       stress_block_lanes<VL>(mp, b, 0, args);
     else
       for (int i = 0; i < n; ++i) stress_block_lanes<ScalarLane>(mp, b, i, args);
-    if (c->rest.sg_still) mark_stress_still(c, mp, part, n, b);
+    if (c->rest.still) mark_stress_still(c, mp, part, n, b);
     for (int i = 0; i < n; ++i) stress_block_store(c, part[i], i, b);
     n = 0;
   };
