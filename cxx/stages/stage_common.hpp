@@ -234,31 +234,6 @@ __attribute__((always_inline)) inline bool advance_particle(StepContext* c, int 
   return changed == 0;
 }
 
-// G2P of particle p over its kNodes nodes (grid node node(k) of stencil node k):
-// v_p += dt_int sum_k N_k f_k / m_k and x_p += dt sum_k N_k p_k / m_k over the nodes above
-// the mass cut-off. The GIMP stage; the trilinear stage runs
-// the same sums in lanes (g2p_values, transfer_lanes.hpp). Weights N[k kStride].
-template <int kNodes, int kStride = 1, class NodeOf>
-__attribute__((always_inline)) inline void g2p_particle(StepContext* c, int p, const double* N, NodeOf node) {
-  const double cutoff = c->grid.mass_cutoff;
-  double ax = 0.0, ay = 0.0, az = 0.0, ux = 0.0, uy = 0.0, uz = 0.0;
-  for (int k = 0; k < kNodes; ++k) {
-    const int n = node(k);
-    const double m = c->grid.gmass[n];
-    if (!(m > cutoff)) continue;
-    const double r = N[k * kStride] / m;
-    const double* f = c->grid.gforce + 3 * n;
-    const double* pm = c->grid.gmom + 3 * n;
-    ax += f[0] * r;
-    ay += f[1] * r;
-    az += f[2] * r;
-    ux += pm[0] * r;
-    uy += pm[1] * r;
-    uz += pm[2] * r;
-  }
-  advance_particle(c, p, ax, ay, az, ux, uy, uz);
-}
-
 // MUSL remap of particle p: its momentum m_p N_k v_p added to fields 1-3 of node(k).
 // Weights N[k kStride].
 template <int kNodes, int kStride = 1, class NodeOf>

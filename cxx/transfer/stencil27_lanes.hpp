@@ -93,8 +93,9 @@ inline int block_grid_corner(const StepContext* c, const Stencil27Block& s, int 
   return (s.ci[0][l] + s.o[0][l]) + c->grid.nn[0] * ((s.ci[1][l] + s.o[1][l]) + c->grid.nn[1] * (s.ci[2][l] + s.o[2][l]));
 }
 
-// G2P of the particles part[0 .. TL::W) in lanes first.. of s (g2p_particle's sums, node k
-// of a lane at its corner + of[k]: g2p_node_lanes), then advance_particle's update of each.
+// G2P of the particles part[0 .. TL::W) in lanes first.. of s: the sums of N f / m and
+// N p / m over the nodes above the mass cut-off (node k of a lane at its corner + of[k]:
+// g2p_node_lanes), then advance_particle's update of each (advance_lanes).
 template <class TL>
 void g2p27_lanes(StepContext* c, const Stencil27Block& s, const int* part, const int* of, int first) {
   typedef decltype(TL::splat(0.0)) T;
