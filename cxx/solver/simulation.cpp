@@ -33,10 +33,12 @@ namespace {
 // (2, 4, 4). So a patch whose every patch within 8 cells holds only particles that are
 // still and at rest computes this step exactly what it computed in the step before.
 constexpr int kRestReachCells = 8;
-// The work of a particle of a patch at rest (binning, the scatter weights, the energy sums)
-// against one that is computed, for the threads' shares (thread_patches): about 1 to 8 on
-// SGDeto1k (docs/PERFORMANCE.md).
-constexpr int kMovingWork = 8;
+// The work of a particle of a patch at rest (binning, the energy sums) against one that is
+// computed, for the threads' shares (thread_patches). Most stages skip the patches at rest,
+// so the shares follow the computed particles: 1 to 32 ran 0.86-0.92 of the time of 1 to 8
+// at 2 threads on the explosive columns, 1 to 64 and 1 to 1024 no faster
+// (docs/PERFORMANCE.md).
+constexpr int kMovingWork = 32;
 // Keeping the still bits costs every particle a comparison in G2P and the stress stage; a
 // scene where no patch is quiet (a vibrating beam) checks again only every this many steps.
 // Skipping begins at most this many steps later than it could; the results are the same.
@@ -502,11 +504,13 @@ void Simulation::mark_rest() {
     stride *= len;
   }
   patch_work_.assign(size_t(npatch) + 1, 0);
+  // The weighted sums as ints while they fit (else the threads share by particles).
+  const bool weigh = long(model.particles.np) * kMovingWork <= long(std::numeric_limits<int>::max());
   long resting = 0;
   for (int q = 0; q < npatch; ++q) {
     const int n = c->patch.patch_start[q + 1] - c->patch.patch_start[q];
     if (rest_[size_t(q)]) resting += n;
-    patch_work_[size_t(q) + 1] = patch_work_[size_t(q)] + n * (rest_[size_t(q)] ? 1 : kMovingWork);
+    if (weigh) patch_work_[size_t(q) + 1] = patch_work_[size_t(q)] + n * (rest_[size_t(q)] ? 1 : kMovingWork);
   }
   rest_particle_steps += resting;
   c->rest.still = still_.data();
@@ -514,7 +518,7 @@ void Simulation::mark_rest() {
   // skip (one thread's plain scatter, no reach masks): a scene where nothing rests pays
   // only for the bits.
   c->rest.at_rest = resting > 0 ? rest_.data() : nullptr;
-  c->patch.patch_work = resting > 0 ? patch_work_.data() : nullptr;
+  c->patch.patch_work = resting > 0 && weigh ? patch_work_.data() : nullptr;
 }
 
 void Simulation::run_stage(int s) {
