@@ -77,4 +77,18 @@ inline void for_list_chunks(const StepContext* c, F&& f) {
   for (int k = 0; k < nchunk; ++k) f(k * kListChunk, std::min(kListChunk, total - k * kListChunk));
 }
 
+// f(first, count) over the patch lists for the stress stage: with patches at rest the list
+// of each patch not at rest, each thread over its run of patches (shared by their work);
+// otherwise chunks of the lists (for_list_chunks).
+template <class F>
+inline void for_stress_lists(const StepContext* c, F&& f) {
+  if (!c->rest.at_rest) {
+    for_list_chunks(c, f);
+    return;
+  }
+  for_patches(c, [&](int q) {
+    if (!patch_at_rest(c, q)) f(c->patch.patch_start[q], c->patch.patch_start[q + 1] - c->patch.patch_start[q]);
+  });
+}
+
 }  // namespace mpm3d

@@ -210,9 +210,17 @@ __attribute__((always_inline)) inline void p2g_particle(const StepContext* c, in
   }
 }
 
+// The bits in which a and the double at b differ (0: the same bits, -0.0 and +0.0 differ).
+__attribute__((always_inline)) inline uint64_t bits_changed(double a, const double* b) {
+  uint64_t x, y;
+  std::memcpy(&x, &a, 8);
+  std::memcpy(&y, b, 8);
+  return x ^ y;
+}
+
 // The end of every G2P: v_p += dt_int a, x_p += dt u with a and u the particle's
 // interpolated acceleration and grid velocity. Returns whether v_p and x_p kept every bit
-// (sgmp's still bits; a caller that ignores it computes nothing for it).
+// (the still bits; a caller that ignores it computes nothing for it).
 __attribute__((always_inline)) inline bool advance_particle(StepContext* c, int p, double ax, double ay, double az,
                                                             double ux, double uy, double uz) {
   const double dt = c->clock.dt, dt_int = c->clock.dt_int;
@@ -222,12 +230,7 @@ __attribute__((always_inline)) inline bool advance_particle(StepContext* c, int 
   const double x[3] = {xp[0] + ux * dt, xp[1] + uy * dt, xp[2] + uz * dt};
   uint64_t changed = 0;
   for (int d = 0; d < 3; ++d) {
-    uint64_t a, b, e, f;
-    std::memcpy(&a, v + d, 8);
-    std::memcpy(&b, vp + d, 8);
-    std::memcpy(&e, x + d, 8);
-    std::memcpy(&f, xp + d, 8);
-    changed |= (a ^ b) | (e ^ f);
+    changed |= bits_changed(v[d], vp + d) | bits_changed(x[d], xp + d);
     vp[d] = v[d];
     xp[d] = x[d];
   }

@@ -56,13 +56,11 @@ template <class MakeGradient>
 void stress_particles(StepContext* c, MakeGradient&& make_gradient) {
   const CellDecoder dec(c);
   const StressBlockArgs args = stress_args(c);
-  if (c->rest.at_rest) {  // the lists of the patches not at rest, shared by their work
+  if (c->rest.at_rest) {  // the lists of the patches not at rest (for_stress_lists)
     const int* list = c->patch.patch_part;
-    for_patches(c, [&](int q) {
-      if (patch_at_rest(c, q)) return;
-      const int first = c->patch.patch_start[q], end = c->patch.patch_start[q + 1];
-      auto gradient = make_gradient(list, end);
-      stress_run(c, dec, args, list, first, end - first, gradient);
+    for_stress_lists(c, [&](int first, int count) {
+      auto gradient = make_gradient(list, first + count);
+      stress_run(c, dec, args, list, first, count, gradient);
     });
     return;
   }

@@ -467,15 +467,7 @@ void stress_sg(StepContext* c) {
   auto gradient = [&](const CellDecoder&, int e, int, double* L) {
     sg_velocity_gradient(c, c->sgmp.sg_cell + 8 * size_t(e), sg_p2g_weights(c, e), L);
   };
-  if (c->rest.at_rest) {  // the patches not at rest, shared by their work
-    for_patches(c, [&](int q) {
-      if (patch_at_rest(c, q)) return;
-      const int first = c->patch.patch_start[q];
-      stress_run(c, dec, args, c->patch.patch_part, first, c->patch.patch_start[q + 1] - first, gradient);
-    });
-    return;
-  }
-  for_list_chunks(c, [&](int first, int count) { stress_run(c, dec, args, c->patch.patch_part, first, count, gradient); });
+  for_stress_lists(c, [&](int first, int count) { stress_run(c, dec, args, c->patch.patch_part, first, count, gradient); });
 }
 
 void stress_smoothed_gradient(StepContext* c, const double* gvel) {

@@ -154,14 +154,7 @@ __attribute__((always_inline)) inline void advance_lanes(StepContext* c, const i
     uint64_t changed = 0;
     for (int d = 0; d < 3; ++d) {
       const double vn = TL::get(v[d], i), xn = TL::get(x[d], i);
-      if (still) {
-        uint64_t a, b, e, f;
-        std::memcpy(&a, &vn, 8);
-        std::memcpy(&b, c->part.v + i3[i] + d, 8);
-        std::memcpy(&e, &xn, 8);
-        std::memcpy(&f, c->part.x + i3[i] + d, 8);
-        changed |= (a ^ b) | (e ^ f);
-      }
+      if (still) changed |= bits_changed(vn, c->part.v + i3[i] + d) | bits_changed(xn, c->part.x + i3[i] + d);
       c->part.v[i3[i] + d] = vn;
       c->part.x[i3[i] + d] = xn;
     }

@@ -57,13 +57,7 @@ void stress_trilinear(StepContext* c, const double* gvel) {
     else
       stress_list<VectorLane<kLanes>>(c, dec, list, count, gvel, args);
   };
-  if (c->rest.at_rest) {  // the patches not at rest, shared by their work
-    for_patches(c, [&](int q) {
-      if (!patch_at_rest(c, q)) run(c->patch.patch_start[q], c->patch.patch_start[q + 1] - c->patch.patch_start[q]);
-    });
-    return;
-  }
-  for_list_chunks(c, run);
+  for_stress_lists(c, run);
 }
 
 }  // namespace
