@@ -107,7 +107,7 @@ class Simulation {
   std::vector<double> aux_;  // sgmp: the cell centres' fields (kAuxFields per cell)
   std::vector<double> sg_w_;  // sgmp: the weights per patch-list entry (P2G's 8, G2P's 8)
   std::vector<int> sg_cell_;  // sgmp: and their centres (8 each)
-  std::vector<unsigned char> sg_reach_;  // sgmp: and the neighbour patches they reach
+  std::vector<uint16_t> sg_reach_;  // sgmp: and the neighbour patches they reach
   std::vector<double> gravity_;
   std::vector<int> body_comp_;                        // contact: component of each body
   std::vector<double> gnormal1_, gnormal2_, cpartials_;  // contact only

@@ -100,7 +100,7 @@ void cache_weights(const StepContext* c) {
       if (!kReach) continue;
       unsigned reach = 0;
       for (int a = 0; a < 3; ++a) reach |= (r[a] < lo[a] ? 1u : 0u) << (2 * a) | (r[3 + a] >= hi[a] ? 2u : 0u) << (2 * a);
-      c->sgmp.sg_reach[e] = static_cast<unsigned char>(reach);
+      c->sgmp.sg_reach[e] = static_cast<uint16_t>(reach);
     }
   });
 }
