@@ -93,10 +93,16 @@ void cache_weights(const StepContext* c) {
     if (rest_around(c, q)) return;  // no stage reads these entries' weights
     int q3[3], lo[3], hi[3];
     patch_centres(c, q, q3, lo, hi);
+    const SgGeometry g(c);
+    const CellDecoder d = dec;  // local copies (SgGeometry)
+    const int* part_cell = c->part.cell;
+    const double* part_lx = c->part.lx;
+    int* corner_cells = c->sgmp.sg_cell;
     for (int e = c->patch.patch_start[q]; e < c->patch.patch_start[q + 1]; ++e) {
       int r[6];  // the corners' cells per axis: lo[3], hi[3]
-      sg_corner_weights(c, dec, c->patch.patch_part[e], r, r + 3, sg_p2g_weights(c, e), sg_g2p_weights(c, e));
-      for (int k = 0; k < 8; ++k) c->sgmp.sg_cell[8 * size_t(e) + k] = sg_corner_cell(c, r, r + 3, k);
+      const int p = c->patch.patch_part[e];
+      sg_corner_weights(g, d, part_cell[p], part_lx + 3 * p, r, r + 3, sg_p2g_weights(c, e), sg_g2p_weights(c, e));
+      for (int k = 0; k < 8; ++k) corner_cells[8 * size_t(e) + k] = sg_corner_cell(g, r, r + 3, k);
       if (!kReach) continue;
       unsigned reach = 0;
       for (int a = 0; a < 3; ++a) reach |= (r[a] < lo[a] ? 1u : 0u) << (2 * a) | (r[3 + a] >= hi[a] ? 2u : 0u) << (2 * a);

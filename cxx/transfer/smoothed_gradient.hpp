@@ -46,11 +46,22 @@ inline double* sg_g2p_weights(const StepContext* c, int e) { return sg_p2g_weigh
 // The weights of particle p's eight auxiliary nodes, corner k = a + 2 b + 4 c of its
 // auxiliary cell, under the P2G rule (w) and the G2P rule (wg, which differs on held axes
 // alone), and the cells of its corners per axis (lower lo[a], upper hi[a]).
-__attribute__((always_inline)) inline void sg_corner_weights(const StepContext* c, const CellDecoder& dec, int p, int lo[3], int hi[3],
-                              double w[8], double wg[8]) {
+// The grid sizes and held faces they read, as a value: the caller's loop stores ints (the
+// corners' cells), which could alias the grid's own fields and make it reload them.
+struct SgGeometry {
+  int nc[3], nn[3];
+  bool fix[6];
+  explicit SgGeometry(const StepContext* c) {
+    for (int a = 0; a < 3; ++a) nc[a] = c->grid.nc[a], nn[a] = c->grid.nn[a];
+    for (int f = 0; f < 6; ++f) fix[f] = c->grid.fix[f] != 0;
+  }
+};
+
+__attribute__((always_inline)) inline void sg_corner_weights(const SgGeometry& g, const CellDecoder& dec, int cell,
+                                                             const double* lx, int lo[3], int hi[3], double w[8],
+                                                             double wg[8]) {
   int ci[3];
-  dec(c->part.cell[p], ci[0], ci[1], ci[2]);
-  const double* lx = c->part.lx + 3 * p;
+  dec(cell, ci[0], ci[1], ci[2]);
   double w0[3], w1[3], g0[3], g1[3];
   bool any_held = false;
   for (int a = 0; a < 3; ++a) {
@@ -58,7 +69,7 @@ __attribute__((always_inline)) inline void sg_corner_weights(const StepContext* 
     const int al = s < 0.5 ? ci[a] - 1 : ci[a];  // lower centre of the auxiliary cell
     const int near = al + 1;                      // nearest grid node
     const double X = s < 0.5 ? 2.0 * s : 2.0 * (s - 1.0);
-    const bool held = (c->grid.fix[2 * a] != 0 && near <= 1) || (c->grid.fix[2 * a + 1] != 0 && near >= c->grid.nn[a] - 2);
+    const bool held = (g.fix[2 * a] && near <= 1) || (g.fix[2 * a + 1] && near >= g.nn[a] - 2);
     if (held) {
       const double Xp = X > 0.0 ? 1.0 : (X < 0.0 ? -1.0 : 0.0);
       const double xn = 2.0 * s - 1.0;
@@ -72,7 +83,7 @@ __attribute__((always_inline)) inline void sg_corner_weights(const StepContext* 
       w0[a] = g0[a] = 0.5 * (1.0 - X);
       w1[a] = g1[a] = 0.5 * (1.0 + X);
     }
-    const int last = c->grid.nc[a] - 1;
+    const int last = g.nc[a] - 1;
     lo[a] = al < 0 ? 0 : (al > last ? last : al);
     hi[a] = al + 1 > last ? last : al + 1;
   }
@@ -92,9 +103,9 @@ __attribute__((always_inline)) inline void sg_corner_weights(const StepContext* 
 }
 
 // Cell index of corner k of an auxiliary cell with corner cells lo, hi per axis.
-__attribute__((always_inline)) inline int sg_corner_cell(const StepContext* c, const int lo[3], const int hi[3], int k) {
+__attribute__((always_inline)) inline int sg_corner_cell(const SgGeometry& g, const int lo[3], const int hi[3], int k) {
   const int i = (k & 1) ? hi[0] : lo[0], j = ((k >> 1) & 1) ? hi[1] : lo[1], l = ((k >> 2) & 1) ? hi[2] : lo[2];
-  return i + c->grid.nc[0] * (j + c->grid.nc[1] * l);
+  return i + g.nc[0] * (j + g.nc[1] * l);
 }
 
 inline double* aux_cell(const StepContext* c, int cell) { return c->sgmp.aux + size_t(cell) * kAuxFields; }
