@@ -279,7 +279,51 @@ void scatter_to_centres(StepContext* c, bool with_mass_mom, bool with_forces) {
 // remapped momentum.
 enum GatherWhat { GATHER_MASS_MOM = 1, GATHER_FORCES = 2, GATHER_REMAP = 4 };
 
-// One instance per field set and stress layout (the per-cell tests then fold away).
+// One cell's share of a node: mass and momentum (above the mass cut-off), the remapped
+// momentum, and the force with the node's gradient (gx, gy, gz) at the cell's centre, each
+// +-1/(4h) (+ where the node is the cell's upper corner).
+template <int what, bool pk1>
+__attribute__((always_inline)) inline void add_cell_share(const double* a, double cutoff, double gx, double gy,
+                                                          double gz, double& m, double pm[3], double f[3]) {
+  if ((what & GATHER_MASS_MOM) && a[AUX_M] > cutoff) {
+    m += 0.125 * a[AUX_M];
+    for (int d = 0; d < 3; ++d) pm[d] += 0.125 * a[AUX_P + d];
+  }
+  if (what & GATHER_REMAP)
+    for (int d = 0; d < 3; ++d) pm[d] += 0.125 * a[AUX_RP + d];
+  if (what & GATHER_FORCES) {
+    const double* sv = a + AUX_S;
+    double fx, fy, fz;
+    if (pk1) {  // V0 P: row a gives force component a
+      fx = -((sv[0] * gx + sv[1] * gy) + sv[2] * gz);
+      fy = -((sv[3] * gx + sv[4] * gy) + sv[5] * gz);
+      fz = -((sv[6] * gx + sv[7] * gy) + sv[8] * gz);
+    } else {
+      fx = -((sv[0] * gx + sv[5] * gy) + sv[4] * gz);
+      fy = -((sv[5] * gx + sv[1] * gy) + sv[3] * gz);
+      fz = -((sv[4] * gx + sv[3] * gy) + sv[2] * gz);
+    }
+    f[0] += 0.125 * a[AUX_FB + 0] + fx;
+    f[1] += 0.125 * a[AUX_FB + 1] + fy;
+    f[2] += 0.125 * a[AUX_FB + 2] + fz;
+  }
+}
+
+// Node n's sums into the node arrays.
+template <int what>
+__attribute__((always_inline)) inline void store_node(StepContext* c, int n, double m, const double pm[3],
+                                                      const double f[3]) {
+  if (what & GATHER_MASS_MOM) c->grid.gmass[n] = m;
+  if (what & (GATHER_MASS_MOM | GATHER_REMAP))
+    for (int d = 0; d < 3; ++d) c->grid.gmom[3 * n + d] = pm[d];
+  if (what & GATHER_FORCES)
+    for (int d = 0; d < 3; ++d) c->grid.gforce[3 * n + d] = f[d];
+}
+
+// One instance per field set and stress layout (the per-cell tests then fold away). A grid
+// one cell thick along z (the current decks' plane models) has two node layers that gather
+// the same cells in the same order, with opposite z gradients: both are summed in one pass
+// over the cells, each node with its own operations (the same bits as two passes).
 template <int what, bool pk1>
 void gather_to_nodes(StepContext* c) {
   const double cutoff = c->grid.mass_cutoff, gs = 0.25 * c->grid.inv_h;
@@ -287,6 +331,30 @@ void gather_to_nodes(StepContext* c) {
     if (patch_at_rest(c, q)) return;
     const OwnedNodes o = owned_nodes(c, q);
     if (!o.active) return;
+    if (c->grid.nc[2] == 1 && o.lo[2] == 0 && o.hi[2] == 2) {
+      const int layer = c->grid.nn[0] * c->grid.nn[1];
+      for (int j = o.lo[1]; j < o.hi[1]; ++j)
+        for (int i = o.lo[0]; i < o.hi[0]; ++i) {
+          // Node (i, j, 0) is the lower corner of cell z = 0 (gz = -gs), node (i, j, 1) its
+          // upper corner (gz = +gs).
+          double m0 = 0.0, pm0[3] = {0, 0, 0}, f0[3] = {0, 0, 0};
+          double m1 = 0.0, pm1[3] = {0, 0, 0}, f1[3] = {0, 0, 0};
+          for (int cy = j - 1; cy <= j; ++cy) {
+            if (cy < 0 || cy >= c->grid.nc[1]) continue;
+            for (int cx = i - 1; cx <= i; ++cx) {
+              if (cx < 0 || cx >= c->grid.nc[0]) continue;
+              const double* a = aux_cell(c, cx + c->grid.nc[0] * cy);
+              const double gx = cx == i - 1 ? gs : -gs, gy = cy == j - 1 ? gs : -gs;
+              add_cell_share<what, pk1>(a, cutoff, gx, gy, -gs, m0, pm0, f0);
+              add_cell_share<what, pk1>(a, cutoff, gx, gy, gs, m1, pm1, f1);
+            }
+          }
+          const int n = i + c->grid.nn[0] * j;
+          store_node<what>(c, n, m0, pm0, f0);
+          store_node<what>(c, n + layer, m1, pm1, f1);
+        }
+      return;
+    }
     for (int k = o.lo[2]; k < o.hi[2]; ++k)
       for (int j = o.lo[1]; j < o.hi[1]; ++j)
         for (int i = o.lo[0]; i < o.hi[0]; ++i) {
@@ -298,40 +366,12 @@ void gather_to_nodes(StepContext* c) {
               for (int cx = i - 1; cx <= i; ++cx) {
                 if (cx < 0 || cx >= c->grid.nc[0]) continue;
                 const double* a = aux_cell(c, cx + c->grid.nc[0] * (cy + c->grid.nc[1] * cz));
-                if ((what & GATHER_MASS_MOM) && a[AUX_M] > cutoff) {
-                  m += 0.125 * a[AUX_M];
-                  for (int d = 0; d < 3; ++d) pm[d] += 0.125 * a[AUX_P + d];
-                }
-                if (what & GATHER_REMAP)
-                  for (int d = 0; d < 3; ++d) pm[d] += 0.125 * a[AUX_RP + d];
-                if (what & GATHER_FORCES) {
-                  // grad N of this node at the cell's centre: +-1/(4h) per axis (+ for the
-                  // cell's upper corner).
-                  const double gx = cx == i - 1 ? gs : -gs, gy = cy == j - 1 ? gs : -gs, gz = cz == k - 1 ? gs : -gs;
-                  const double* sv = a + AUX_S;
-                  double fx, fy, fz;
-                  if (pk1) {  // V0 P: row a gives force component a
-                    fx = -((sv[0] * gx + sv[1] * gy) + sv[2] * gz);
-                    fy = -((sv[3] * gx + sv[4] * gy) + sv[5] * gz);
-                    fz = -((sv[6] * gx + sv[7] * gy) + sv[8] * gz);
-                  } else {
-                    fx = -((sv[0] * gx + sv[5] * gy) + sv[4] * gz);
-                    fy = -((sv[5] * gx + sv[1] * gy) + sv[3] * gz);
-                    fz = -((sv[4] * gx + sv[3] * gy) + sv[2] * gz);
-                  }
-                  f[0] += 0.125 * a[AUX_FB + 0] + fx;
-                  f[1] += 0.125 * a[AUX_FB + 1] + fy;
-                  f[2] += 0.125 * a[AUX_FB + 2] + fz;
-                }
+                const double gx = cx == i - 1 ? gs : -gs, gy = cy == j - 1 ? gs : -gs, gz = cz == k - 1 ? gs : -gs;
+                add_cell_share<what, pk1>(a, cutoff, gx, gy, gz, m, pm, f);
               }
             }
           }
-          const int n = i + c->grid.nn[0] * (j + c->grid.nn[1] * k);
-          if (what & GATHER_MASS_MOM) c->grid.gmass[n] = m;
-          if (what & (GATHER_MASS_MOM | GATHER_REMAP))
-            for (int d = 0; d < 3; ++d) c->grid.gmom[3 * n + d] = pm[d];
-          if (what & GATHER_FORCES)
-            for (int d = 0; d < 3; ++d) c->grid.gforce[3 * n + d] = f[d];
+          store_node<what>(c, i + c->grid.nn[0] * (j + c->grid.nn[1] * k), m, pm, f);
         }
   });
 }
