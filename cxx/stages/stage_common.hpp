@@ -148,6 +148,23 @@ __attribute__((always_inline)) inline void particle_body_force(const StepContext
   }
 }
 
+// The internal force -(sigma V) g of one node with gradient g (sigma V in Voigt order xx yy
+// zz yz xz xy), or under TLmp -(V0 P) g (kPk1: V0 P row-major, row a giving component a):
+// the particles' scatter and the sgmp centres' gather share these operations.
+template <bool kPk1>
+__attribute__((always_inline)) inline void internal_force(const double* s, double gx, double gy, double gz,
+                                                          double& fx, double& fy, double& fz) {
+  if (kPk1) {
+    fx = -((s[0] * gx + s[1] * gy) + s[2] * gz);
+    fy = -((s[3] * gx + s[4] * gy) + s[5] * gz);
+    fz = -((s[6] * gx + s[7] * gy) + s[8] * gz);
+  } else {
+    fx = -((s[0] * gx + s[5] * gy) + s[4] * gz);
+    fy = -((s[5] * gx + s[1] * gy) + s[3] * gz);
+    fz = -((s[4] * gx + s[3] * gy) + s[2] * gz);
+  }
+}
+
 // P2G contributions of particle p (weights N, gradients G) added to its kNodes nodes (8
 // trilinear, 27 GIMP), node(k) the 7 fields of stencil node k: mass and momentum
 // (with_mass_mom) and the force -V sigma G + N (m g + f_ext) (with_forces; body forces with
@@ -189,15 +206,10 @@ __attribute__((always_inline)) inline void p2g_particle(const StepContext* c, in
     if (with_forces) {
       const double gx = G[(3 * k) * kStride], gy = G[(3 * k + 1) * kStride], gz = G[(3 * k + 2) * kStride];
       double fx, fy, fz;
-      if (pk) {
-        fx = -((pk[0] * gx + pk[1] * gy) + pk[2] * gz);
-        fy = -((pk[3] * gx + pk[4] * gy) + pk[5] * gz);
-        fz = -((pk[6] * gx + pk[7] * gy) + pk[8] * gz);
-      } else {
-        fx = -((vs[0] * gx + vs[5] * gy) + vs[4] * gz);
-        fy = -((vs[5] * gx + vs[1] * gy) + vs[3] * gz);
-        fz = -((vs[4] * gx + vs[3] * gy) + vs[2] * gz);
-      }
+      if (pk)
+        internal_force<true>(pk, gx, gy, gz, fx, fy, fz);
+      else
+        internal_force<false>(vs, gx, gy, gz, fx, fy, fz);
       if (with_body) {
         fx = N[k * kStride] * fb[0] + fx;
         fy = N[k * kStride] * fb[1] + fy;

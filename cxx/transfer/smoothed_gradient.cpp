@@ -292,17 +292,8 @@ __attribute__((always_inline)) inline void add_cell_share(const double* a, doubl
   if (what & GATHER_REMAP)
     for (int d = 0; d < 3; ++d) pm[d] += 0.125 * a[AUX_RP + d];
   if (what & GATHER_FORCES) {
-    const double* sv = a + AUX_S;
     double fx, fy, fz;
-    if (pk1) {  // V0 P: row a gives force component a
-      fx = -((sv[0] * gx + sv[1] * gy) + sv[2] * gz);
-      fy = -((sv[3] * gx + sv[4] * gy) + sv[5] * gz);
-      fz = -((sv[6] * gx + sv[7] * gy) + sv[8] * gz);
-    } else {
-      fx = -((sv[0] * gx + sv[5] * gy) + sv[4] * gz);
-      fy = -((sv[5] * gx + sv[1] * gy) + sv[3] * gz);
-      fz = -((sv[4] * gx + sv[3] * gy) + sv[2] * gz);
-    }
+    internal_force<pk1>(a + AUX_S, gx, gy, gz, fx, fy, fz);
     f[0] += 0.125 * a[AUX_FB + 0] + fx;
     f[1] += 0.125 * a[AUX_FB + 1] + fy;
     f[2] += 0.125 * a[AUX_FB + 2] + fz;
