@@ -43,11 +43,8 @@ enum : int {
 inline double* sg_p2g_weights(const StepContext* c, int e) { return c->sgmp.sg_w + size_t(kSgWeights) * size_t(e); }
 inline double* sg_g2p_weights(const StepContext* c, int e) { return sg_p2g_weights(c, e) + 8; }
 
-// The weights of particle p's eight auxiliary nodes, corner k = a + 2 b + 4 c of its
-// auxiliary cell, under the P2G rule (w) and the G2P rule (wg, which differs on held axes
-// alone), and the cells of its corners per axis (lower lo[a], upper hi[a]).
-// The grid sizes and held faces they read, as a value: the caller's loop stores ints (the
-// corners' cells), which could alias the grid's own fields and make it reload them.
+// The grid sizes and held faces that the weights read, as a value: the caller's loop stores
+// ints (the corners' cells), which could alias the grid's own fields and make it reload them.
 struct SgGeometry {
   int nc[3], nn[3];
   bool fix[6];
@@ -57,6 +54,10 @@ struct SgGeometry {
   }
 };
 
+// The weights of a particle's eight auxiliary nodes (its cell and local coordinates lx),
+// corner k = a + 2 b + 4 c of its auxiliary cell, under the P2G rule (w) and the G2P rule
+// (wg, which differs on held axes alone), and the cells of its corners per axis (lower
+// lo[a], upper hi[a]).
 __attribute__((always_inline)) inline void sg_corner_weights(const SgGeometry& g, const CellDecoder& dec, int cell,
                                                              const double* lx, int lo[3], int hi[3], double w[8],
                                                              double wg[8]) {
