@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "core/grid.hpp"
+#include "core/lanes.hpp"
 #include "materials/constitution.hpp"
 #include "stages/patch_index.hpp"
 #include "stages/patch_loops.hpp"
@@ -150,7 +151,8 @@ __attribute__((always_inline)) inline void particle_body_force(const StepContext
 
 // The internal force -(sigma V) g of one node with gradient g (sigma V in Voigt order xx yy
 // zz yz xz xy), or under TLmp -(V0 P) g (kPk1: V0 P row-major, row a giving component a):
-// the particles' scatter and the sgmp centres' gather share these operations.
+// the sgmp centres' gather; the particles' scatter takes the same operations in lanes
+// (force_columns).
 template <bool kPk1>
 __attribute__((always_inline)) inline void internal_force(const double* s, double gx, double gy, double gz,
                                                           double& fx, double& fy, double& fz) {
@@ -165,6 +167,22 @@ __attribute__((always_inline)) inline void internal_force(const double* s, doubl
   }
 }
 
+// internal_force's operations for all three components at once: columns col[0..2] with
+// -((col[0] gx + col[1] gy) + col[2] gz) giving component a in lane a (lane 3: +0.0 terms).
+template <bool kPk1>
+__attribute__((always_inline)) inline void force_columns(const double* s, LaneTypes<4>::D col[3]) {
+  typedef LaneTypes<4>::D D4;
+  if (kPk1) {
+    col[0] = D4{s[0], s[3], s[6], 0.0};
+    col[1] = D4{s[1], s[4], s[7], 0.0};
+    col[2] = D4{s[2], s[5], s[8], 0.0};
+  } else {
+    col[0] = D4{s[0], s[5], s[4], 0.0};
+    col[1] = D4{s[5], s[1], s[3], 0.0};
+    col[2] = D4{s[4], s[3], s[2], 0.0};
+  }
+}
+
 // P2G contributions of particle p (weights N, gradients G) added to its kNodes nodes (8
 // trilinear, 27 GIMP), node(k) the 7 fields of stencil node k: mass and momentum
 // (with_mass_mom) and the force -V sigma G + N (m g + f_ext) (with_forces; body forces with
@@ -175,49 +193,43 @@ template <int kNodes, int kStride = 1, class NodeOf>
 __attribute__((always_inline)) inline void p2g_particle(const StepContext* c, int p, const double* N,
                                                         const double* G, bool with_mass_mom, bool with_forces,
                                                         bool with_body, NodeOf node) {
+  typedef LaneTypes<4>::D D4;
   const double mp = c->part.mass[p];
-  // The buffer stores below could alias the particle arrays, so the compiler reloads what it
-  // reads from them at every node. USF's pass of mass and momentum alone keeps the velocity
-  // in registers; in the pass with forces the registers are better spent on sigma V
-  // (docs/PERFORMANCE.md).
   const double* vp = c->part.v + 3 * p;
-  double v_local[3];
-  if (with_mass_mom && !with_forces) {
-    for (int a = 0; a < 3; ++a) v_local[a] = vp[a];
-    vp = v_local;
-  }
-  // sigma V (Voigt), or under TLmp V0 P (pk, a 3x3 matrix, row i giving force component i).
-  double vs[6] = {0, 0, 0, 0, 0, 0}, fb[3] = {0, 0, 0};
-  const double* pk = c->part.pk1 ? c->part.pk1 + 9 * size_t(p) : nullptr;
+  // (1, v): m N (1, v) is the node's mass and momentum share in one vector (m N 1.0 == m N).
+  const D4 one_v = {1.0, vp[0], vp[1], vp[2]};
+  // The force -(sigma V) g (TLmp: -(V0 P) g) as columns (force_columns), and the body force.
+  D4 col[3] = {}, fb4 = {};
   if (with_forces) {
-    const double volp = c->part.vol[p];
-    for (int s = 0; s < 6; ++s) vs[s] = c->part.sig[6 * p + s] * volp;
-    if (with_body) particle_body_force(c, p, fb);
+    if (c->part.pk1) {
+      force_columns<true>(c->part.pk1 + 9 * size_t(p), col);
+    } else {
+      const double volp = c->part.vol[p];
+      double vs[6];
+      for (int s = 0; s < 6; ++s) vs[s] = c->part.sig[6 * p + s] * volp;
+      force_columns<false>(vs, col);
+    }
+    if (with_body) {
+      double fb[3];
+      particle_body_force(c, p, fb);
+      fb4 = D4{fb[0], fb[1], fb[2], 0.0};
+    }
   }
   for (int k = 0; k < kNodes; ++k) {
     double* b = node(k);
     if (with_mass_mom) {
-      const double mn = mp * N[k * kStride];
-      b[0] += mn;
-      b[1] += mn * vp[0];
-      b[2] += mn * vp[1];
-      b[3] += mn * vp[2];
+      D4 mm;
+      std::memcpy(&mm, b, sizeof mm);
+      mm = mm + (mp * N[k * kStride]) * one_v;
+      std::memcpy(b, &mm, sizeof mm);
     }
     if (with_forces) {
       const double gx = G[(3 * k) * kStride], gy = G[(3 * k + 1) * kStride], gz = G[(3 * k + 2) * kStride];
-      double fx, fy, fz;
-      if (pk)
-        internal_force<true>(pk, gx, gy, gz, fx, fy, fz);
-      else
-        internal_force<false>(vs, gx, gy, gz, fx, fy, fz);
-      if (with_body) {
-        fx = N[k * kStride] * fb[0] + fx;
-        fy = N[k * kStride] * fb[1] + fy;
-        fz = N[k * kStride] * fb[2] + fz;
-      }
-      b[4] += fx;
-      b[5] += fy;
-      b[6] += fz;
+      D4 f = -((col[0] * gx + col[1] * gy) + col[2] * gz);
+      if (with_body) f = N[k * kStride] * fb4 + f;
+      b[4] += f[0];
+      b[5] += f[1];
+      b[6] += f[2];
     }
   }
 }

@@ -212,10 +212,12 @@ void g2p_patch(StepContext* c, const CellDecoder& dec, int q, bool remap) {
       for (int i = 0; i < n; ++i) {
         const int base = patch_base(c, dec, q3, c->part.cell[list[idx + i]]);
         for (int k = 0; k < 8; ++k) {
+          // Fields 0-3 as one vector: field 0 (the mass, never -0.0, read by no remap) adds +0.0.
           double* b = buf + size_t(base + local[k]) * kNodeFields;
-          b[1] += rm[0][k][i];
-          b[2] += rm[1][k][i];
-          b[3] += rm[2][k][i];
+          typename LaneTypes<4>::D mm;
+          std::memcpy(&mm, b, sizeof mm);
+          mm = mm + typename LaneTypes<4>::D{0.0, rm[0][k][i], rm[1][k][i], rm[2][k][i]};
+          std::memcpy(b, &mm, sizeof mm);
         }
       }
     idx += n;
