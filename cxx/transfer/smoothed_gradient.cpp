@@ -56,6 +56,15 @@ void for_active_cells(const StepContext* c, F&& f) {
   });
 }
 
+// Corner k of a cell: its node's index minus that of corner 0.
+struct CornerOffsets {
+  int of[8];
+  explicit CornerOffsets(const StepContext* c) {
+    const int row = c->grid.nn[0], layer = c->grid.nn[0] * c->grid.nn[1];
+    for (int k = 0; k < 8; ++k) of[k] = (k & 1) + row * ((k >> 1) & 1) + layer * ((k >> 2) & 1);
+  }
+};
+
 // Corner k = a + 2 b + 4 c of cell (i, j, k): its node index.
 inline int corner_node(const StepContext* c, int i, int j, int k, int corner) {
   return (i + (corner & 1)) + c->grid.nn[0] * ((j + ((corner >> 1) & 1)) + c->grid.nn[1] * (k + ((corner >> 2) & 1)));
@@ -395,31 +404,40 @@ void sg_g2p(StepContext* c, bool remap) {
   const double cutoff = c->grid.mass_cutoff;
   // Cell centres: the corners' velocities and accelerations, each 1/8 (a cell on a held
   // face: the weights of the cell's point at natural coordinates cxx).
+  const CornerOffsets off(c);
+  const double *gmass = c->grid.gmass, *gmom = c->grid.gmom, *gforce = c->grid.gforce;
   for_active_cells(c, [&](int cell, int i, int j, int k) {
     const int ijk[3] = {i, j, k};
-    double cxx[3] = {0, 0, 0};
     bool face = false;
-    for (int a = 0; a < 3; ++a) {
-      if (c->grid.nc[a] == 1) continue;
-      if (ijk[a] == 0) cxx[a] = 1.0;
-      if (ijk[a] == c->grid.nc[a] - 1) cxx[a] = -1.0;
-      face = face || (ijk[a] == 0 && c->grid.fix[2 * a] != 0) || (ijk[a] == c->grid.nc[a] - 1 && c->grid.fix[2 * a + 1] != 0);
-    }
+    for (int a = 0; a < 3; ++a)
+      face = face || (c->grid.nc[a] > 1 && ((ijk[a] == 0 && c->grid.fix[2 * a] != 0) ||
+                                            (ijk[a] == c->grid.nc[a] - 1 && c->grid.fix[2 * a + 1] != 0)));
     double v[3] = {0, 0, 0}, acc[3] = {0, 0, 0};
-    for (int corner = 0; corner < 8; ++corner) {
-      const int n = corner_node(c, i, j, k, corner);
-      const double m = c->grid.gmass[n];
-      if (!(m > cutoff)) continue;
-      double w = 0.125;
-      if (face) {
-        w = 1.0;
-        for (int a = 0; a < 3; ++a) w = w * (0.5 * (1.0 + (((corner >> a) & 1) ? cxx[a] : -cxx[a])));
-      }
+    const int n0 = corner_node(c, i, j, k, 0);
+    auto add_corner = [&](int n, double w) __attribute__((always_inline)) {
+      const double m = gmass[n];
+      if (!(m > cutoff)) return;
       const double r = w / m;
       for (int d = 0; d < 3; ++d) {
-        v[d] += c->grid.gmom[3 * n + d] * r;
-        acc[d] += c->grid.gforce[3 * n + d] * r;
+        v[d] += gmom[3 * n + d] * r;
+        acc[d] += gforce[3 * n + d] * r;
       }
+    };
+    if (face) {
+      double cxx[3] = {0, 0, 0};
+      for (int a = 0; a < 3; ++a) {
+        if (c->grid.nc[a] == 1) continue;
+        if (ijk[a] == 0) cxx[a] = 1.0;
+        if (ijk[a] == c->grid.nc[a] - 1) cxx[a] = -1.0;
+      }
+      for (int corner = 0; corner < 8; ++corner) {
+        double w = 1.0;
+        for (int a = 0; a < 3; ++a) w = w * (0.5 * (1.0 + (((corner >> a) & 1) ? cxx[a] : -cxx[a])));
+        add_corner(n0 + off.of[corner], w);
+      }
+    } else {
+#pragma GCC unroll 8
+      for (int corner = 0; corner < 8; ++corner) add_corner(n0 + off.of[corner], 0.125);
     }
     double* a = aux_cell(c, cell);
     for (int d = 0; d < 3; ++d) {
@@ -479,11 +497,15 @@ void sg_g2p(StepContext* c, bool remap) {
 
 void sg_cell_gradients(StepContext* c, const double* gvel) {
   const double cutoff = c->grid.mass_cutoff, gs = 0.25 * c->grid.inv_h;
+  const CornerOffsets off(c);
+  const double* gmass = c->grid.gmass;
   for_active_cells(c, [&](int cell, int i, int j, int k) {
     double L[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    const int n0 = corner_node(c, i, j, k, 0);
+#pragma GCC unroll 8
     for (int corner = 0; corner < 8; ++corner) {
-      const int n = corner_node(c, i, j, k, corner);
-      if (!(c->grid.gmass[n] > cutoff)) continue;
+      const int n = n0 + off.of[corner];
+      if (!(gmass[n] > cutoff)) continue;
       const double g[3] = {(corner & 1) ? gs : -gs, ((corner >> 1) & 1) ? gs : -gs, ((corner >> 2) & 1) ? gs : -gs};
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b) L[3 * a + b] += gvel[3 * n + a] * g[b];
