@@ -56,19 +56,15 @@ void for_active_cells(const StepContext* c, F&& f) {
   });
 }
 
-// Corner k of a cell: its node's index minus that of corner 0.
+// The nodes of a cell's corners k = a + 2 b + 4 c: corner 0's index, and each corner's
+// offset from it.
 struct CornerOffsets {
-  int of[8];
-  explicit CornerOffsets(const StepContext* c) {
-    const int row = c->grid.nn[0], layer = c->grid.nn[0] * c->grid.nn[1];
+  int row, layer, of[8];
+  explicit CornerOffsets(const StepContext* c) : row(c->grid.nn[0]), layer(c->grid.nn[0] * c->grid.nn[1]) {
     for (int k = 0; k < 8; ++k) of[k] = (k & 1) + row * ((k >> 1) & 1) + layer * ((k >> 2) & 1);
   }
+  int first(int i, int j, int k) const { return i + row * j + layer * k; }
 };
-
-// Corner k = a + 2 b + 4 c of cell (i, j, k): its node index.
-inline int corner_node(const StepContext* c, int i, int j, int k, int corner) {
-  return (i + (corner & 1)) + c->grid.nn[0] * ((j + ((corner >> 1) & 1)) + c->grid.nn[1] * (k + ((corner >> 2) & 1)));
-}
 
 // The scatters to the cell centres, in parallel with the bits of one thread. The canonical
 // order of every centre's sum is that of one pass over the particles, patches in index
@@ -413,7 +409,7 @@ void sg_g2p(StepContext* c, bool remap) {
       face = face || (c->grid.nc[a] > 1 && ((ijk[a] == 0 && c->grid.fix[2 * a] != 0) ||
                                             (ijk[a] == c->grid.nc[a] - 1 && c->grid.fix[2 * a + 1] != 0)));
     double v[3] = {0, 0, 0}, acc[3] = {0, 0, 0};
-    const int n0 = corner_node(c, i, j, k, 0);
+    const int n0 = off.first(i, j, k);
     auto add_corner = [&](int n, double w) __attribute__((always_inline)) {
       const double m = gmass[n];
       if (!(m > cutoff)) return;
@@ -501,7 +497,7 @@ void sg_cell_gradients(StepContext* c, const double* gvel) {
   const double* gmass = c->grid.gmass;
   for_active_cells(c, [&](int cell, int i, int j, int k) {
     double L[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-    const int n0 = corner_node(c, i, j, k, 0);
+    const int n0 = off.first(i, j, k);
 #pragma GCC unroll 8
     for (int corner = 0; corner < 8; ++corner) {
       const int n = n0 + off.of[corner];
