@@ -57,11 +57,11 @@ void for_active_cells(const StepContext* c, F&& f) {
 }
 
 // The nodes of a cell's corners k = a + 2 b + 4 c: corner 0's index, and each corner's
-// offset from it.
+// offset from it (node_of), once per loop rather than per cell.
 struct CornerOffsets {
   int row, layer, of[8];
   explicit CornerOffsets(const StepContext* c) : row(c->grid.nn[0]), layer(c->grid.nn[0] * c->grid.nn[1]) {
-    for (int k = 0; k < 8; ++k) of[k] = (k & 1) + row * ((k >> 1) & 1) + layer * ((k >> 2) & 1);
+    for (int k = 0; k < 8; ++k) of[k] = node_of(c, 0, k);
   }
   int first(int i, int j, int k) const { return i + row * j + layer * k; }
 };
