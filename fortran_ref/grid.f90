@@ -2,8 +2,7 @@
 ! Node and cell numbers are x fastest, then y, then z. The patch decomposition
 ! (cubes of patch_cells^3 cells) depends on the grid only, never on threads.
 module mpm3d_grid
-  use, intrinsic :: iso_c_binding, only: c_int
-  use mpm3d_material, only: dp
+  use, intrinsic :: iso_c_binding, only: c_int, dp => c_double  ! dp: as mpm3d_material's
   implicit none
   private
 

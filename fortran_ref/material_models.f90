@@ -1,14 +1,13 @@
 ! The material models, one entry each (as cxx/materials/material_models.cpp): the deck keyword of
-! the 'mate' card, the type, what kind of solid or fluid it is, the card's parameters in
-! deck order with the checks of their values, and the derived constants. The deck reader
-! asks this module; the stress update of a type is in its family's module (eos.f90,
-! j2_plasticity.f90, drucker_prager.f90, neo_hookean.f90), which stress_update in
-! constitution.f90 dispatches to. Adding a model: a MAT_ value (material.f90, and
-! cxx/materials/material.hpp), one row in MODELS and one case in read_material_card here, its
+! the 'mate' card, the type, what kind of solid or fluid it is, and the derived constants. The
+! deck reader (read_material_card in data_in_cards.f90: the card's numbers in deck order, with
+! the checks of their values) asks this module; the stress update of a type is in its family's
+! module (eos.f90, j2_plasticity.f90, drucker_prager.f90, neo_hookean.f90), which stress_update
+! in constitution.f90 dispatches to. Adding a model: a MAT_ value (material.f90, and
+! cxx/materials/material.hpp), one row in MODELS here and one case in read_material_card, its
 ! stress update (a family module and its branch in constitution.f90), and the same in C++.
 module mpm3d_material_models
   use mpm3d_material
-  use mpm3d_ffi, only: token_stream
   implicit none
   private
 
@@ -34,7 +33,7 @@ module mpm3d_material_models
     material_model_t('neoh', MAT_NEOH, .false., .false., .false.)]
 
   public :: material_type_of, material_keyword, material_is_fluid, material_is_johnson_cook, &
-            material_is_thermal, read_material_card, material_derive
+            material_is_thermal, material_derive
 
 contains
 
@@ -82,77 +81,6 @@ contains
     material_is_thermal = .false.
     if (row_of(mtype) > 0) material_is_thermal = MODELS(row_of(mtype))%thermal
   end function material_is_thermal
-
-  ! The numbers of a 'mate' card of type mp%type, in deck order, and the checks of the
-  ! card's own values (errors name the card's line); current_version: the current version's
-  ! card where it differs (null: density, bulk modulus, viscosity).
-  subroutine read_material_card(ts, mp, line, current_version)
-    type(token_stream), intent(inout) :: ts
-    type(material_params), intent(inout) :: mp
-    integer, intent(in) :: line
-    logical, intent(in) :: current_version
-    real(dp) :: et
-    if (.not. material_is_fluid(mp%type)) then
-      mp%rho0 = ts%real('density')
-      mp%young = ts%real("Young's modulus")
-      mp%poisson = ts%real("Poisson's ratio")
-    end if
-    select case (mp%type)
-    case (MAT_ELAS, MAT_NEOH)
-    case (MAT_PLA1)
-      mp%yield0 = ts%real('yield stress')
-    case (MAT_PLA2)
-      mp%yield0 = ts%real('yield stress')
-      et = ts%real('tangent modulus')
-      if (.not. (et >= 0.0_dp .and. et < mp%young)) call ts%fail(line, 'tangent modulus must lie in [0, E)')
-      mp%hardening = (mp%young * et) / (mp%young - et)
-    case (MAT_JOHN, MAT_JCF)
-      call read_johnson_cook(ts, mp)
-      mp%jc_m = ts%real('m')
-      mp%t_room = ts%real('room temperature')
-      mp%t_melt = ts%real('melting temperature')
-      mp%heat_cap = ts%real('specific heat')
-      mp%eps0dot = ts%real('reference strain rate')
-      if (mp%type == MAT_JCF) mp%fail_strain = ts%real('failure strain')
-      if (.not. (mp%t_melt > mp%t_room)) call ts%fail(line, 'melting temperature must exceed room temperature')
-      if (.not. (mp%heat_cap > 0.0_dp)) call ts%fail(line, 'specific heat must be positive')
-    case (MAT_SJC, MAT_SJCF)
-      call read_johnson_cook(ts, mp)
-      mp%eps0dot = ts%real('reference strain rate')
-      if (mp%type == MAT_SJCF) mp%fail_strain = ts%real('failure strain')
-    case (MAT_HIEX)
-      mp%rho0 = ts%real('density')
-      mp%wave_speed = ts%real('the detonation velocity')
-      mp%det_vel = mp%wave_speed
-    case (MAT_NULL)
-      mp%rho0 = ts%real('density')
-      if (current_version) then
-        mp%bulk_modulus = ts%real('the bulk modulus')
-        mp%viscosity = ts%real('the viscosity')
-        if (.not. (mp%rho0 > 0.0_dp)) call ts%fail(line, 'density must be positive')
-        if (.not. (mp%bulk_modulus > 0.0_dp)) call ts%fail(line, 'bulk modulus must be positive')
-        if (.not. (mp%viscosity >= 0.0_dp)) call ts%fail(line, 'viscosity must not be negative')
-        mp%wave_speed = sqrt(mp%bulk_modulus / mp%rho0)
-      else
-        mp%wave_speed = ts%real('the wave speed')
-      end if
-    case (MAT_DPM)
-      mp%dp_qphi = ts%real('q_phi')
-      mp%dp_kphi = ts%real('k_phi')
-      mp%dp_qpsi = ts%real('q_psi')
-      mp%dp_tension = ts%real('the tension cut-off')
-    end select
-  end subroutine read_material_card
-
-  ! The Johnson-Cook flow-stress numbers every JC card starts with.
-  subroutine read_johnson_cook(ts, mp)
-    type(token_stream), intent(inout) :: ts
-    type(material_params), intent(inout) :: mp
-    mp%yield0 = ts%real('A')
-    mp%hardening = ts%real('B')
-    mp%jc_n = ts%real('n')
-    mp%jc_c = ts%real('C')
-  end subroutine read_johnson_cook
 
   ! Fills the derived constants of m from the deck values (same operation order as
   ! cxx/materials/material.cpp); returns an error text or ''.

@@ -2,9 +2,8 @@
 ! with the C++ side: x(3,np), v(3,np), sig(6,np) in Voigt order xx yy zz yz xz xy,
 ! scalars (np). Material and body numbers are stored 0-based, as in C++.
 module mpm3d_particle
-  use, intrinsic :: iso_c_binding, only: c_int
+  use, intrinsic :: iso_c_binding, only: c_int, dp => c_double  ! dp: as mpm3d_material's
   use, intrinsic :: iso_fortran_env, only: int64
-  use mpm3d_material, only: dp
   implicit none
   private
 

@@ -135,7 +135,7 @@ module mpm3d_stage_common
     integer(c_int) :: sg_cached = 0
   end type step_sgmp
 
-  ! Distributed runs (cxx/parallel/ranks.hpp); null / 0 with one rank (struct StepRanks).
+  ! Distributed runs (cxx/solver/ranks.hpp); null / 0 with one rank (struct StepRanks).
   type, bind(C), public :: step_ranks
     ! called between a scatter and its assembly, and before the energy and contact columns are folded
     type(c_funptr) :: exchange = c_null_funptr

@@ -64,7 +64,7 @@ contains
     real(dp) :: sn(27), sg(3, 27), vs(9), fb(3), mp, volp, mn, gx, gy, gz, fx, fy, fz
     real(dp), pointer :: pk1(:,:)
     ! The stress times the volume as a 3x3 matrix (row i: force component i): sigma V from
-    ! the Voigt stress, or V0 P under TLmp (as p2g_particle, cxx/stages/stage_common.hpp).
+    ! the Voigt stress, or V0 P under TLmp (as p2g_particle, cxx/transfer/transfer_common.hpp).
     integer, parameter :: VOIGT(9) = [1, 6, 5, 6, 2, 4, 5, 4, 3]
     integer :: pc, qq, q, slot, idx, p, base, s, k, ln, nk
     integer :: ci(3), o(3)

@@ -19,7 +19,7 @@
 #include "input/ffi.hpp"
 #include "mpm3d.hpp"
 #include "test_util.hpp"
-#include "stages/patch_loops.hpp"
+#include "core/patch_loops.hpp"
 
 using testutil::RunResult;
 using testutil::same_bits;

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "io/analysis.hpp"
-#include "io/checkpoint.hpp"
+#include "solver/checkpoint.hpp"
 #include "input/data_in.hpp"
 #include "io/data_out.hpp"
 #include "mpm3d.hpp"

@@ -9,7 +9,7 @@
 
 #include "input/data_in.hpp"
 #include "mpm3d.hpp"
-#include "stages/stage_common.hpp"
+#include "transfer/transfer_common.hpp"
 #include "test_util.hpp"
 
 namespace {

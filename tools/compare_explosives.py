@@ -13,8 +13,8 @@ runs. Decks come from ../shared/decks, the original's results from ../shared/ref
 and prints the comparison of docs/EXPLOSIVES.md: Deto1k's four pressure curves (peak of the
 detonation wave, i.e. the largest pressure up to 0.5 microseconds after the particle's
 lighting time, and the time of that peak), TNT3D's kinetic and internal energy at 0.006 ms.
-Exit status 1 when a criterion of issue 5 fails (peaks within 10 % of the original's, peak
-times within 2 %, TNT3D energies within 10 %).
+Exit status 1 when one of its criteria fails: Deto1k's peaks within 10 % of the original's,
+its peak times within 2 %, TNT3D's energies within 10 %.
 """
 import json
 import os

@@ -162,7 +162,7 @@ def section_lines():
           "the top right particle at t = 200; the kinetic share of the energy then says whether the run "
           "has come to rest (the current version's rule stops a run below 0.005 after t = 100). The public decks of the current version are the h = 1 bimp and sgmp cases: the "
           "original gives 0.2620 (B-spline) and 0.2678 (smoothed gradient) for them "
-          "(`../shared/reference/current`)." % when, "",
+          "(its own results, published with the public decks, not in the repository)." % when, "",
           "| method | h | particles | tip vertical displacement | against the reference %.4f | "
           "kinetic share at t = 200 | run time (s) |" % REF_TIP,
           "|---|---|---|---|---|---|---|"]

@@ -16,9 +16,9 @@ CXX=${FUZZ_CXX:-clang++}
 mkdir -p "$OUT/corpus" "$OUT/artifacts"
 HDF5_INC=$(pkg-config --cflags hdf5 2>/dev/null || echo -I/usr/include/hdf5/serial)
 HDF5_LIB=$(pkg-config --libs hdf5 2>/dev/null || echo -lhdf5_serial)
-SRC="cxx/input/ffi.cpp cxx/input/data_in.cpp cxx/input/data_in_cards.cpp cxx/input/data_in_finish.cpp cxx/input/particle_gen.cpp cxx/core/particle.cpp cxx/core/grid.cpp cxx/materials/material.cpp cxx/materials/material_models.cpp cxx/materials/constitution.cpp
+SRC="cxx/input/ffi.cpp cxx/input/data_in.cpp cxx/input/data_in_cards.cpp cxx/input/data_in_finish.cpp cxx/input/particle_gen.cpp cxx/input/output_variables.cpp cxx/core/particle.cpp cxx/core/grid.cpp cxx/materials/material.cpp cxx/materials/material_models.cpp cxx/materials/constitution.cpp
      cxx/stages/stages.cpp cxx/stages/stage_bin.cpp cxx/stages/stage_p2g.cpp cxx/stages/stage_grid.cpp cxx/stages/stage_g2p.cpp cxx/stages/stage_stress.cpp
-     cxx/stages/stage_energy.cpp cxx/stages/assembly.cpp cxx/transfer/trilinear.cpp cxx/transfer/stencil27.cpp
+     cxx/stages/stage_energy.cpp cxx/transfer/assembly.cpp cxx/transfer/trilinear.cpp cxx/transfer/stencil27.cpp
      cxx/transfer/smoothed_gradient.cpp cxx/io/data_out.cpp cxx/solver/simulation.cpp cxx/io/analysis.cpp"
 BIN="$OUT/fuzz_deck"
 newest=$(ls -t $SRC cxx/*.hpp cxx/*/*.hpp tests/fuzz/fuzz_deck.cpp "$0" | head -1)

@@ -174,18 +174,19 @@ def section_lines():
         L += ["", f"Over the whole record ({full[-1, 0] * 1e3:.1f} us) the full deck's kinetic energy differs from "
               f"the original's by at most {d:.3g} N mm ({100 * d / ref[0, 1]:.2f} % of the initial total; the "
               "original prints four digits)."]
-    L += ["", "Two causes made the internal energy go negative before (-8.1e7 at 2 us, the kinetic energy rising "
-          "to 5.94e8, above the initial 5.13e8, while the total stayed conserved, so nothing stopped the run):", "",
+    L += ["", "Two rules keep this deck's internal energy physical. With the other choice of both, it goes "
+          "negative (-8.1e7 at 2 us, the kinetic energy rising to 5.94e8, above the initial 5.13e8, while the "
+          "total stays conserved, so nothing stops the run; measured 2026-11-24):", "",
           "1. **Pre-compressed bodies.** The deck's particle cards carry the density 13.518e-3 and its material "
           "11.35e-3. The book version takes the particle mass from the card and the volume from the material "
-          "(mass / 11.35e-3); we took the volume as dp^3, so every particle started at mu = 0.19 and, through the "
-          "EOS, at 11.4 GPa at rest: both bodies flew apart, their stress work drawing on an internal energy "
-          "they never had.",
-          "2. **The EOS form.** We evaluated the closed Hugoniot form "
-          "`rho0 c0^2 mu (1 + (1 - g0/2) mu) / (1 - (s - 1) mu)^2` with `g0 e` in tension too; the book and the "
-          "original use the cubic `(C1 mu + C2 mu^2 + C3 mu^3)(1 - g0 mu / (2 (1 + mu)))` and `C1 mu` without "
-          "an energy term in tension. With the volume fixed but the closed form kept, the kinetic energy ran "
-          "8 % above the original's at 1 us and 13 % at 1.2 us.", "",
+          "(mass / 11.35e-3), and so does mpm3d. With the volume taken as dp^3 instead, every particle starts "
+          "at mu = 0.19 and, through the EOS, at 11.4 GPa at rest: both bodies fly apart, their stress work "
+          "drawing on an internal energy they never had.",
+          "2. **The EOS form.** The book and the original use the cubic "
+          "`(C1 mu + C2 mu^2 + C3 mu^3)(1 - g0 mu / (2 (1 + mu)))` and `C1 mu` without an energy term in "
+          "tension, and so does mpm3d. With the closed Hugoniot form "
+          "`rho0 c0^2 mu (1 + (1 - g0/2) mu) / (1 - (s - 1) mu)^2` and `g0 e` in tension too (the volume taken "
+          "from the material), the kinetic energy runs 8 % above the original's at 1 us and 13 % at 1.2 us.", "",
           "With both as the book has them the curves agree to the original's four printed digits. The closed "
           "form is the exact Hugoniot of the linear `Us = c0 + s up` fit, the cubic its expansion to third order "
           "in mu; at this impact they part (right panel): at the symmetric-impact particle velocity of "
@@ -196,10 +197,11 @@ def section_lines():
           f"{100 * (1 - st['cubic']['p'] / st['marsh']['p']):.0f} % low in pressure and "
           f"{100 * (st['cubic']['mu'] / st['marsh']['mu'] - 1):.0f} % high in compression there, and "
           "the gap grows with the impact speed. The cubic is what the legacy decks' parameters were used with "
-          "and what the original computes, so it stays the one EOS of type 2; a user modelling a real lead "
+          "and what the original computes, so it is the one EOS of type 2; a user modelling a real lead "
           "impact at several km/s should know the difference (a closed-form EOS would be a new, explicit EOS "
           "type, not a silent default).", "",
-          "The health check now watches what went unseen: a body's internal energy below -0.1 % of the initial "
+          "The health check watches for this failure, which a conserved total hides: a body's internal energy "
+          "below -0.1 % of the initial "
           "total energy plus the external work, or the kinetic energy above that total, is a warning with the "
           "step, the body and the figures (`--strict-energy` stops the run there). Test "
           "`Hypervelocity.LeadSphereEnergiesStayPhysicalAndFollowTheFullDeck` runs the small case at every "

@@ -362,10 +362,10 @@ NOTES = {
         "viscosity (its JWL adds the particle's q, which only the other materials' branches "
         "compute). `bulk 0 0` "
         "alone changes little (kinetic energy still 10-11.5 % apart; the pressure curve at "
-        "mid-column, which the ramp delays, 97-99 %). With a step burn (a test build, not "
-        "kept: the ramp width set to 1e-300, run with `--mpm3d`) every method agrees within "
-        "0.94 % with the default viscosity, and to the printed digits (0.000 %) with "
-        "`bulk 0 0`."),
+        "mid-column, which the ramp delays, 97-99 %). Cause: the burn rule (shown by "
+        "experiment, 2026-11-27: with a step burn, our ramp width set to 1e-300 in an mpm3d "
+        "build passed with `--mpm3d`, every method agrees within 0.94 % with the default "
+        "viscosity, and to the printed digits (0.000 %) with `bulk 0 0`)."),
     "dp": (
         "Drucker-Prager near the tension cut-off. The current program picks the shear "
         "return whenever the trial stress lies above the corner line `h > 0`, and leaves the "
@@ -373,10 +373,13 @@ NOTES = {
         "its trial value); we take the tension return there. And its tension return sets "
         "`sm = sigma_t` and keeps the deviator, where ours caps `tau` at `tau_P` "
         "(Model notes, `dpm`, above). `bulk 0 0` alone changes little (kinetic energy "
-        "24-52 % apart). A test build (not kept) with the current program's branches agrees "
-        "to the printed digits (0.000 %) with `bulk 0 0` and within 1.3-2.3 % (kinetic "
-        "energy) with the default viscosity; with only the first of the two changes the "
-        "kinetic energy stays 11-34 % apart, with only the second 92-99 %."),
+        "24-52 % apart). Cause: the two branches (shown by experiment, 2026-11-27: with the "
+        "current program's branches in our code the runs agree to the printed digits "
+        "(0.000 %) with `bulk 0 0` and within 1.3-2.3 % (kinetic energy) with the default "
+        "viscosity; with only the first of the two branches the kinetic energy stays "
+        "11-34 % apart, with only the second 92-99 %). The current program's first branch "
+        "leaves stresses outside its own tension cut-off, so we keep our returns, which end "
+        "on the yield surface."),
     "tl": (
         "TLmp. The current program's trilinear TLmp never computes the particles' natural "
         "coordinates in their reference cells (only its sgmp branch does; they stay zero, as "
@@ -387,7 +390,8 @@ NOTES = {
         "the internal energy within 0.8 %, the current program weighing the work of P on "
         "dF by the current volume, we by V0). The column of the other neoh decks, two "
         "particles per cell (`run --variant tl-coarse`): kinetic energy 32 %, internal "
-        "energy 42 %, the tip's vertical displacement 44 % apart."),
+        "energy 42 %, the tip's vertical displacement 44 % apart. We keep the shape "
+        "functions at the particles' own reference positions."),
 }
 # The notes of each deck, in order.
 NOTE_OF = {"j2eos_linear": ["bulk"], "j2eos_gimp": ["bulk"], "j2eos_bimp": ["bulk"],

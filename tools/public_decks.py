@@ -79,7 +79,7 @@ DECKS = [
 _spec = importlib.util.spec_from_file_location("current_decks", os.path.join(HERE, "current_decks.py"))
 _current = importlib.util.module_from_spec(_spec)
 _spec.loader.exec_module(_current)
-NOTES = dict(_current.NOTES)  # the six decks of ../shared, studied step by step
+NOTES = dict(_current.NOTES)  # the six decks of shared/decks/current, studied step by step
 NOTES.update({
     "DamBreak_MPM_Dam_R2": (
         "Linear MPM dam break, the current version's null water. Kinetic and total energy and the "
@@ -89,20 +89,22 @@ NOTES.update({
         "same run with the water's density perturbed by 6e-8 (997.5 -> 997.50006, the size of the "
         "original's single-precision rounding of deck reals) moves our own internal energy by up to "
         "5.7 % (final 4.7 %); with the bulk viscosity off in both programs the difference stays "
-        "(6.3 %), and reading the deck's reals in single precision as the original does (a test "
-        "build) does not close it either (10.7 %): the splashing surge amplifies any last-digit "
+        "(6.3 %), and reading the deck's reals in single precision as the original does "
+        "(experiment, 2026-11-27) does not close it either (10.7 %): the splashing surge amplifies "
+        "any last-digit "
         "difference."),
     "FreeSoftBeam_MPM_v0p499_FreeSB_MPM": (
         "The free soft beam at nu 0.499 (linear MPM). The original stores deck reals in single "
         "precision, we in double; near incompressibility (1 - 2 nu = 0.002) that moves lambda and the "
         "wave speed by 1e-5 relative, and over the run's 53,604 steps the beam's phase drifts: total "
         "2.3 %, kinetic 1.2 %, internal 4.8 % apart at most. With every deck real rounded to single "
-        "precision as the original reads it (a test build of the reader, not kept) the same run "
+        "precision as the original reads it (our reader changed to do so, experiment of "
+        "2026-11-27) the same run "
         "agrees within 0.68 % (total), 0.53 % (kinetic) and 1.3 % (internal)."),
     "SoftBeam_SBTL_0p05mesh_SBTL": (
         "The same beam on the finer grid: kinetic and internal energy up to 12.5 % and 14 % apart, "
         "the current program's TLmp taking every particle's shape functions at its cell's centre "
-        "(the 0.1 mesh's note); the test build that does the same agrees within 0.70 % (kinetic) "
+        "(the 0.1 mesh's note); the same experiment (2026-11-27) agrees within 0.70 % (kinetic) "
         "and 0.83 % (internal), 0.07 % at the end."),
     "Slopefail": (
         "Drucker-Prager slope under gravity. The book program reads `bulk 1.5 0.06` but does not "
@@ -110,8 +112,9 @@ NOTES.update({
         "steps against 15,888). With the card removed the kinetic energy is still up to 4.4 % apart "
         "(total 1.1 %): the original's Drucker-Prager return takes the shear branch wherever the trial "
         "stress is above the corner line, leaving mean stresses beyond its tension cut-off, and its "
-        "tension return keeps the deviator (docs/DECK_FORMAT.md, the method table's note 5). A test "
-        "build with the original's two branches, on the deck without `bulk`, agrees within 0.73 % "
+        "tension return keeps the deviator (docs/DECK_FORMAT.md, the method table's note 5). With "
+        "the original's two branches in our code (experiment, 2026-11-27), the deck without "
+        "`bulk` agrees within 0.73 % "
         "(kinetic) and 0.18 % (total and internal). We keep our returns, which end on the yield "
         "surface."),
     "Deto1k (current program)": (
@@ -119,12 +122,14 @@ NOTES.update({
         "(28,852 steps), gives `hiex` no bulk viscosity and burns by a step; we read the deck as the "
         "book does (fixed step, `bulk` applied: 22,075 steps). Our run made current (a `smoo` card) "
         "with `bulk 0 0` agrees within 0.16 % (total), 0.50 % (internal) and 4.5 % (kinetic, 0.8 % at "
-        "the end); with a step burn too (a test build) 3.9 %: the rounding noise behind the front that "
+        "the end); with a step burn in our code too (experiment, 2026-11-27) 3.9 %: the rounding "
+        "noise behind the front that "
         "the book deck's note describes."),
     "TNT3D (current program)": (
         "The current program on the book deck: its step burn, its time step every step (237 steps "
         "against the book's 208) and its default bulk viscosity on the copper plates (none on the "
-        "explosive). Our run made current (`smoo`) with `bulk 0 0` and a step burn (a test build) "
+        "explosive). Our run made current (`smoo`) with `bulk 0 0` and a step burn in our code "
+        "(experiment, 2026-11-27) "
         "agrees within 1.25 % (kinetic), 0.50 % (internal) and 0.05 % (total); the rest is the "
         "plates' viscosity, which the current program switches by its own rule (docs/DECK_FORMAT.md, "
         "the method table's note 2)."),
@@ -138,19 +143,22 @@ NOTES.update({
         "Our run made current (`smoo`, so the time step is computed every step) with "
         "`bulk 1.5 0` agrees within 1.56 % (kinetic) and 8.0 % (internal). Adding the current "
         "program's switch gives q only where the rotated old mean stress is compressive as well "
-        "as the volume shrinking; our rule asks only the latter. With that switch (a test build, "
-        "not kept) the run agrees within 0.19 % (kinetic), 0.96 % (internal) and 0.00 % "
+        "as the volume shrinking; our rule asks only the latter. With that switch in our code "
+        "(experiment, 2026-11-27) the run agrees within 0.19 % (kinetic), 0.96 % (internal) and "
+        "0.00 % "
         "(total) over the whole run (docs/DECK_FORMAT.md, the method table's note 2)."),
     "Slopefail (current program)": (
         "The current program on the book deck: its time step every step (16,016 steps against our "
         "book-mode 16,870), its Drucker-Prager branches (the book deck's note) and its bulk viscosity "
         "without the linear term for `dpm`. Our run made current (`smoo`), with `bulk 1.5 0` and the "
-        "original's branches (a test build), agrees within 0.70 % (kinetic) and 0.18 % (total and "
+        "original's branches in our code (experiment, 2026-11-27), agrees within 0.70 % (kinetic) "
+        "and 0.18 % (total and "
         "internal)."),
     "TNT3D": (
         "Kinetic energy up to 3.9 % apart (internal 1.5 %): the original's burn fraction is a step "
         "(the whole pressure at the lighting time), ours a ramp over 1.5 cells; with a step burn "
-        "(a test build) every energy agrees to the last printed digit (docs/EXPLOSIVES.md, 'What "
+        "in our code (experiment, 2026-11-27) every energy agrees to the last printed digit "
+        "(docs/EXPLOSIVES.md, 'What "
         "remains'). Refining the cell, the two rules converge to each other."),
     "Deto1k": (
         "The book program reads `bulk 1.5 0.06` but does not apply it; we do (docs/EXPLOSIVES.md): "

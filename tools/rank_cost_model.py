@@ -7,7 +7,7 @@ usage: tools/rank_cost_model.py [--ns-per-particle-step 150] [--latency-us 2] [-
 The particles of a Taylor bar (radius 3.8, length 25.4, the lattice spacing dp of each model,
 cells of 2 dp, patches of 4^3 cells, the decks' boxes) are counted per patch; the ranks' patch
 runs are drawn by mpm3d's rule (contiguous patch indices, equal particle shares); for every
-rank the model counts what it sends in one MUSL step as cxx/parallel/ranks_mpi.cpp does:
+rank the model counts what it sends in one MUSL step as cxx/parallel/ does:
 - of the buffers of its non-empty patches next to another rank's patches, the nodes inside
   the node spans of that rank's patches (8 bytes x 7 fields for P2G, 3 for the remap; a
   face neighbour's share is one layer of 25 of the 125 nodes), one copy per neighbouring

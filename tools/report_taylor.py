@@ -73,9 +73,11 @@ class TaylorStudy:
         if self.legacy:
             g = self.legacy
             L += ["### Legacy deck `Taylor.mpm` against the original program", "",
-                  f"`../shared/decks/Taylor.mpm` (21,172 particles, MUSL, `sjc` + Mie-Gruneisen, 190 m/s, "
-                  f"{g['steps']} steps to 0.08 ms). Measures as defined in `../shared/reference/README.md` "
-                  "(particle-centre extent plus one spacing, dp 0.38 mm):", "",
+                  f"`Taylor.mpm` (21,172 particles, MUSL, `sjc` + Mie-Gruneisen, 190 m/s, "
+                  f"{g['steps']} steps to 0.08 ms), from the public decks folder beside the checkout "
+                  "(`shared/decks`, not in the repository; `make report` leaves this comparison out without "
+                  "it). Measures as defined in the README of the reference folder beside it "
+                  "(`shared/reference`): particle-centre extent plus one spacing, dp 0.38 mm:", "",
                   "| quantity | original MPM3D | MPM3D-CXX (this run) | difference |", "|---|---|---|---|",
                   f"| final length L (mm) | 16.58 | {g['L']:.3f} | {g['L'] - 16.58:+.3f} |",
                   f"| impact-end diameter D (mm) | 13.51 | {g['D']:.3f} | {g['D'] - 13.51:+.3f} |",

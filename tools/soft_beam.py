@@ -158,7 +158,7 @@ def section_lines():
         L_ += ["", f"At nu 0.3 the beam vibrates in its first mode with a period {q03:.3f} times the "
                "Euler-Bernoulli one (softer: Timoshenko's shear correction at h/L = 1/6 accounts for a few "
                f"per cent, the coarse discretisation for the rest) and keeps its amplitude ({float(r03['amplitude_ratio']):.2f}). At nu 0.499 linear MPM locks: the "
-               "constant-strain cells cannot bend without changing volume; the tip no longer swings through "
+               "constant-strain cells cannot bend without changing volume; the tip does not swing through "
                f"its first mode ({r05['crossings']} upward crossing{'' if int(r05['crossings']) == 1 else 's'} in {END_TIME} s where the free beam gives "
                f"{int(END_TIME / float(r05['theory']))}, its amplitude down to {float(r05['amplitude_ratio']):.2f} "
                "of the first swing) and high-frequency pressure ringing dominates."]

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "io/checkpoint.hpp"
+#include "solver/checkpoint.hpp"
 #include "input/data_in.hpp"
 #include "io/data_out.hpp"
 #include "input/ffi.hpp"

@@ -1,6 +1,6 @@
-// The program mpm3d (run_main, cxx/mpm3d.hpp): command-line options and usage text, the
+// The program mpm3d (run_main, app/cli.hpp): command-line options and usage text, the
 // stop signals, the output loop around Simulation::step, the summary JSON.
-#include "mpm3d.hpp"
+#include "app/cli.hpp"
 
 #include <algorithm>
 #include <sys/stat.h>
@@ -16,9 +16,11 @@
 #include <iostream>
 #include <sstream>
 
-#include "io/checkpoint.hpp"
-#include "io/data_out.hpp"
 #include "input/ffi.hpp"
+#include "io/data_out.hpp"
+#include "io/json_text.hpp"
+#include "mpm3d.hpp"
+#include "solver/checkpoint.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -214,30 +216,13 @@ bool dir_writable(const std::string& dir) {
 
 }  // namespace
 
-std::string json_escape(const std::string& s) {
-  std::string r;
-  for (char ch : s) {
-    if (ch == '"' || ch == '\\') r += '\\', r += ch;
-    else if (static_cast<unsigned char>(ch) < 32) r += ' ';
-    else r += ch;
-  }
-  return r;
-}
-
-std::string json_number(double v) {
-  if (!std::isfinite(v)) return "null";
-  char b[40];
-  std::snprintf(b, sizeof b, "%.17g", v);
-  return b;
-}
-
 // An error every rank meets at once (after a collective decided it): each returns 1, the
 // root prints it.
 struct AllRanksError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// What several ranks cannot run yet (cxx/parallel/ranks_mpi.cpp): the first such feature, or "".
+// What several ranks cannot run yet (app/mpi_main.cpp, cxx/parallel/): the first such feature, or "".
 std::string not_distributed(const Options& opt, const Model& m) {
   for (const auto& c : m.curves)
     if (c.var == "spre" && !opt.no_output) return "the curve variable spre (smoothed pressure) (give --no-output)";

@@ -1,4 +1,4 @@
-#include "mpm3d.hpp"
+#include "app/cli.hpp"
 
 int main(int argc, char** argv) {
 #ifdef MPM3D_HAVE_MPI

@@ -65,7 +65,7 @@ void gather_rows(const T* src, int ncomp, int n, From&& from, T* dst) {
 
 // Every array of Particles by name, for generic code (the checkpoint stores and restores
 // each allocated one). Exactly one of d, i is set; ncomp values per particle. A new array
-// in Particles must be listed in particle_fields() (cxx/core/particle.cpp); cxx/io/checkpoint.cpp
+// in Particles must be listed in particle_fields() (cxx/core/particle.cpp); cxx/solver/checkpoint.cpp
 // checks sizeof(Particles) so a forgotten one stops the build.
 struct ParticleField {
   const char* name;

@@ -11,11 +11,11 @@
 #include <limits>
 
 #include "input/data_in_reader.hpp"
-#include "io/data_out.hpp"
+#include "input/output_variables.hpp"
 
 namespace mpm3d {
 
-// The names of outr, curv and curx: those of the one list of output variables (data_out.cpp).
+// The names of outr, curv and curx: those of the one list of output variables (output_variables.cpp).
 bool is_output_variable(const std::string& name) { return output_variable(name) != nullptr; }
 
 // The process-wide default of the memory budget (set_deck_memory_budget): the one piece of

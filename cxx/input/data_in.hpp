@@ -4,9 +4,9 @@
 #include <string>
 #include <vector>
 
-#include "materials/material.hpp"
 #include "core/particle.hpp"
-#include "stages/update_step.hpp"
+#include "materials/material.hpp"
+#include "stages/step_order.h"
 
 namespace mpm3d {
 

@@ -1,4 +1,4 @@
-// DataOut: the output variables, the HDF5 state file, and Output, which runs the writers of
+// DataOut: the curve values, the HDF5 state file, and Output, which runs the writers of
 // the result files (output_writer.hpp: curves, TecPlot, ParaView, HDF5 series).
 #pragma once
 #include <cstdio>
@@ -6,39 +6,13 @@
 #include <vector>
 
 #include "input/data_in.hpp"
+#include "input/output_variables.hpp"
 #include "io/output_writer.hpp"
 
 namespace mpm3d {
 
 // Fortran E12.4 (e.g. "  0.1326E-03"), as the original writes its plot files.
 std::string fortran_e12_4(double v);
-
-// The output variables of outr/curv/curx, one function each, computed from the particle
-// arrays and the material's MaterialParams only (a new material needs no change here):
-//   seqv von Mises stress sqrt(3/2 s:s)      epef equivalent plastic strain
-//   mat  material number (1-based)           pres pressure -(sxx + syy + szz)/3
-//   volu volume                              engk kinetic energy m |v|^2 / 2
-//   engi internal energy                     velx vely velz velocity components
-//   cels temperature (0 without a thermal material)
-//   fail 1 when the material has a failure strain eps_f (sjcf, jcf) and epeff >= eps_f
-//   damg epeff / eps_f clipped to [0, 1] (0 without eps_f)
-//   stsx stress xx (tension positive)
-//   disx disy disz displacement from the initial position
-//   spre pressure smoothed through the grid ('smoo'; update_smoothed_pressure)
-//   sspd longitudinal wave speed sqrt((K + 4G/3) / rho) at the current density, K the
-//        EOS's reference bulk modulus (rho0 c0^2 Mie-Gruneisen, C1 polynomial) or
-//        lambda + 2G/3 without an EOS; the material's wave speed when K + 4G/3 <= 0
-// output_variables() is the one list of them: the deck reader accepts its names
-// (is_output_variable), the writers look their functions up in it. A new variable is its
-// function and one entry there (data_out.cpp).
-using ParticleVarFn = double (*)(const Model& m, int p);
-struct OutputVariable {
-  const char* name;
-  ParticleVarFn fn;
-};
-const std::vector<OutputVariable>& output_variables();
-ParticleVarFn output_variable(const std::string& name);  // nullptr for an unknown name
-double particle_variable(const Model& m, const std::string& var, int p);
 
 // Fills m.spre: the pressure smoothed through the grid (smoothed_pressure.cpp).
 void update_smoothed_pressure(const Model& m);

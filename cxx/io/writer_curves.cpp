@@ -2,8 +2,8 @@
 // EnergyPlot.dat, MomentumPlot.dat, and ContforcPlot.dat for contact decks.
 #include <cstdio>
 
-#include "io/checkpoint.hpp"
 #include "io/data_out.hpp"
+#include "io/output_schedule.hpp"
 #include "io/output_writer.hpp"
 
 namespace mpm3d {

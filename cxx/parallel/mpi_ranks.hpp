@@ -1,9 +1,9 @@
-// MpiRanks, the ranks of a distributed run over MPI (cxx/parallel/ranks.hpp): the class, its
+// MpiRanks, the ranks of a distributed run over MPI (cxx/solver/ranks.hpp): the class, its
 // collectives and the state its files share. Its work is in three files by concern:
 // ranks_partition.cpp (the ranks' patch runs and the nodes their neighbours need),
 // ranks_migrate.cpp (particles placed on and moved between ranks) and ranks_exchange.cpp
 // (patch buffers, per-patch columns, node values and the gather of the particles);
-// ranks_mpi.cpp starts MPI. Linked into the mpm3d program only when CMake finds MPI.
+// app/mpi_main.cpp starts MPI. Linked into the mpm3d program only when CMake finds MPI.
 //
 // Ownership: rank r owns the patches [first_[r], first_[r+1]) (runs of consecutive patch
 // indices with equal shares of the particles, the rule OpenMP threads use inside a rank),
@@ -26,8 +26,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "mpm3d.hpp"
-#include "parallel/ranks.hpp"
+#include "solver/ranks.hpp"
 #include "solver/simulation.hpp"
 
 namespace mpm3d {

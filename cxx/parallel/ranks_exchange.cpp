@@ -1,8 +1,8 @@
 // MpiRanks (mpi_ranks.hpp): what travels during a step: the patch buffers' shared nodes, the
 // per-patch columns of the energy and contact stages, owned node values, and the particles
 // gathered on the root for output.
+#include "core/patch_index.hpp"
 #include "parallel/mpi_ranks.hpp"
-#include "stages/patch_index.hpp"
 
 namespace mpm3d {
 

@@ -1,7 +1,7 @@
 // MpiRanks (mpi_ranks.hpp): the particles placed on their ranks at the start (distribute), moved
 // between ranks before a step (migrate), and the ghost patches' buffer slots.
+#include "core/patch_index.hpp"
 #include "parallel/mpi_ranks.hpp"
-#include "stages/patch_index.hpp"
 
 namespace mpm3d {
 

@@ -1,7 +1,7 @@
 // MpiRanks (mpi_ranks.hpp): the ranks' patch runs, with equal shares of the particles, and per
 // neighbouring rank the patches and buffer nodes that travel between them.
+#include "core/patch_index.hpp"
 #include "parallel/mpi_ranks.hpp"
-#include "stages/patch_index.hpp"
 #include "transfer/transfer_lanes.hpp"
 
 namespace mpm3d {

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "input/data_in.hpp"
 #include "core/grid.hpp"
-#include "parallel/ranks.hpp"
+#include "input/data_in.hpp"
+#include "solver/ranks.hpp"
 #include "stages/update_step.hpp"
 
 namespace mpm3d {
@@ -90,7 +90,7 @@ class Simulation {
   // wholesale (a restart), before a measure().
   void bin_particles();
 
-  // A distributed run (cxx/parallel/ranks.hpp): the other ranks, or null (one process). distribute
+  // A distributed run (cxx/solver/ranks.hpp): the other ranks, or null (one process). distribute
   // keeps this rank's share of the particles; from then on the model holds those only.
   Ranks* ranks = nullptr;
   void distribute(Ranks& r);

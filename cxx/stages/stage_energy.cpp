@@ -5,7 +5,7 @@
 #include <cstddef>
 
 #include "core/lanes.hpp"
-#include "stages/patch_loops.hpp"
+#include "core/patch_loops.hpp"
 #include "stages/update_step.hpp"
 
 using namespace mpm3d;

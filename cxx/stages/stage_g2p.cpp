@@ -1,9 +1,9 @@
 // The g2p stage: particle velocities and positions from the grid, through the deck's
 // shape-function family (transfer/transfer.hpp), and with MUSL the remap of the particle
 // momenta to the nodes and their boundary conditions.
-#include "stages/stage_common.hpp"
 #include "stages/update_step.hpp"
 #include "transfer/transfer.hpp"
+#include "transfer/transfer_common.hpp"
 
 using namespace mpm3d;
 

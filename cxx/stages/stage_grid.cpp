@@ -7,9 +7,9 @@
 #include <omp.h>
 #endif
 
-#include "stages/stage_common.hpp"
 #include "stages/update_step.hpp"
 #include "transfer/transfer.hpp"
+#include "transfer/transfer_common.hpp"
 
 namespace mpm3d {
 

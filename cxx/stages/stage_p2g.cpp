@@ -1,8 +1,8 @@
 // The p2g and forces stages: the scatter of mass, momentum and forces into the nodes, through
 // the deck's shape-function family (transfer/transfer.hpp), and the boundary conditions.
-#include "stages/stage_common.hpp"
 #include "stages/update_step.hpp"
 #include "transfer/transfer.hpp"
+#include "transfer/transfer_common.hpp"
 
 using namespace mpm3d;
 

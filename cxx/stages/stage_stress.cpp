@@ -2,10 +2,10 @@
 // (transfer/transfer.hpp) each particle's velocity gradient and the constitutive update of
 // strain and spin increments, volume, stress and internal energy (stress_block,
 // constitution.cpp).
-#include "stages/patch_loops.hpp"
-#include "stages/stage_common.hpp"
+#include "core/patch_loops.hpp"
 #include "stages/update_step.hpp"
 #include "transfer/transfer.hpp"
+#include "transfer/transfer_common.hpp"
 
 namespace mpm3d {
 namespace {

@@ -28,11 +28,11 @@
 #include <omp.h>
 #endif
 
-#include "stages/stage_common.hpp"
-#include "stages/stress_loop.hpp"
-#include "stages/update_step.hpp"
+#include "core/step_state.hpp"
 #include "transfer/smoothed_gradient.hpp"
+#include "transfer/stress_loop.hpp"
 #include "transfer/transfer.hpp"
+#include "transfer/transfer_common.hpp"
 
 namespace mpm3d {
 

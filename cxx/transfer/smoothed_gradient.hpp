@@ -7,8 +7,8 @@
 #include <emmintrin.h>
 #endif
 
-#include "stages/patch_index.hpp"
-#include "stages/update_step.hpp"
+#include "core/patch_index.hpp"
+#include "core/step_state.hpp"
 
 namespace mpm3d {
 

@@ -6,8 +6,8 @@
 #include <cstring>
 #include <vector>
 
-#include "stages/stress_loop.hpp"
 #include "transfer/stencil27_lanes.hpp"
+#include "transfer/stress_loop.hpp"
 #include "transfer/transfer.hpp"
 
 namespace mpm3d {

@@ -8,7 +8,7 @@
 #pragma once
 #include "core/grid.hpp"
 #include "core/lanes.hpp"
-#include "stages/patch_index.hpp"
+#include "core/patch_index.hpp"
 #include "transfer/transfer_lanes.hpp"
 
 namespace mpm3d {

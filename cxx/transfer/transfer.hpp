@@ -9,18 +9,18 @@
 //   stencil27.cpp          the 27-node stencils of uGIMP and the quadratic B-spline
 //   smoothed_gradient.cpp  sgmp: every exchange through the cell centres
 // A new point-shape function of the 27-node kind is a shape in core/grid.hpp and a branch
-// of gimp_stencil (stages/patch_index.hpp). A new family is one file here, one row of
-// enum TransferFamily (stages/update_step.hpp, with its Fortran twin in stage_common.f90)
+// of gimp_stencil (core/patch_index.hpp). A new family is one file here, one row of
+// enum TransferFamily (core/step_state.hpp, with its Fortran twin in stage_common.f90)
 // and of transfer_of's table, its choice in Simulation::bind, and in Fortran its calls in
 // the stage files and its choice in mpm3d_ref.f90.
 #pragma once
-#include "stages/update_step.hpp"
+#include "core/step_state.hpp"
 
 namespace mpm3d {
 
 struct Transfer {
   // Scatter of the particles into their patches' buffers and the canonical assembly into
-  // the nodes (assemble, stage_common.hpp): mass and momentum (with_mass_mom) and/or forces (with_forces).
+  // the nodes (assemble, transfer_common.hpp): mass and momentum (with_mass_mom) and/or forces (with_forces).
   void (*p2g)(StepContext* c, bool with_mass_mom, bool with_forces);
   // Particle velocities and positions from the grid; with remap (MUSL) the nodes' momenta
   // from the updated velocities again (before their boundary conditions).

@@ -14,10 +14,10 @@
 // declared at the end); each unit has its own copies (internal linkage).
 #pragma once
 #include <cstring>
+#include "core/lanes.hpp"
 #include "materials/constitution.hpp"
 #include "materials/constitution_lanes.hpp"
-#include "core/lanes.hpp"
-#include "stages/stage_common.hpp"
+#include "transfer/transfer_common.hpp"
 
 namespace mpm3d {
 namespace {

@@ -2,8 +2,8 @@
 // halo, the hot loops in vector lanes (transfer_lanes.hpp, with their AVX2 build).
 #include <cstddef>
 
-#include "stages/stage_common.hpp"
 #include "transfer/transfer.hpp"
+#include "transfer/transfer_common.hpp"
 #include "transfer/transfer_lanes.hpp"
 
 namespace mpm3d {

@@ -46,6 +46,7 @@
 #include "io/analysis.hpp"
 #include "input/data_in.hpp"
 #include "input/ffi.hpp"
+#include "io/json_text.hpp"
 #include "mpm3d.hpp"
 
 using namespace mpm3d;

@@ -1,6 +1,6 @@
-// What several step stages and transfer families share: the scalar P2G and G2P of one
-// particle, the patch and buffer loops, and the canonical assembly and boundary conditions
-// (defined in assembly.cpp and stage_grid.cpp).
+// What the transfer families share with each other and with the stages above them: the
+// scalar P2G and G2P of one particle, the patch and buffer loops, and the canonical
+// assembly (assembly.cpp) that ends every scatter.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -8,10 +8,10 @@
 
 #include "core/grid.hpp"
 #include "core/lanes.hpp"
+#include "core/patch_index.hpp"
+#include "core/patch_loops.hpp"
+#include "core/step_state.hpp"
 #include "materials/constitution.hpp"
-#include "stages/patch_index.hpp"
-#include "stages/patch_loops.hpp"
-#include "stages/update_step.hpp"
 
 namespace mpm3d {
 
@@ -39,10 +39,6 @@ inline StressBlockArgs stress_args(const StepContext* c) {
                          c->method.bulk_q1,  c->method.bulk_q2,       c->grid.h,
                          c->method.uvf != 0, c->method.tl != 0};
 }
-
-// Boundary conditions of the box faces on a nodal vector field (3,nnode): 1 fixed (all
-// components zero), 2 symmetry (normal component zero). stage_grid.cpp.
-void apply_bc(const StepContext* c, double* a);
 
 namespace {
 

@@ -17,7 +17,7 @@
 #include <omp.h>
 #endif
 
-#include "stages/update_step.hpp"
+#include "core/step_state.hpp"
 
 namespace mpm3d {
 

@@ -6,7 +6,7 @@
 #include <cstdint>
 
 #include "core/grid.hpp"
-#include "stages/update_step.hpp"
+#include "core/step_state.hpp"
 
 namespace mpm3d {
 namespace {

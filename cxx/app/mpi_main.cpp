@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <iostream>
 
+#include "app/cli.hpp"
 #include "parallel/mpi_ranks.hpp"
 
 namespace mpm3d {

@@ -6,7 +6,7 @@
 #include <algorithm>
 
 #include "materials/constitution.hpp"
-#include "stages/stage_common.hpp"
+#include "transfer/transfer_common.hpp"
 #include "transfer/transfer_lanes.hpp"
 
 namespace mpm3d {

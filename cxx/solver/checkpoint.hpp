@@ -3,24 +3,13 @@
 // the C API.
 #pragma once
 #include <string>
-#include <utility>
-#include <vector>
+
+#include "io/output_schedule.hpp"
 
 namespace mpm3d {
 
 class Simulation;
 struct Particles;
-
-// The driver's output schedule at the checkpoint: when the next animation frame and
-// progress line fall due, the times of the frames written so far (TecPlot zones, ParaView
-// files and HDF5 series groups share one schedule), and the sizes of the appended text
-// files (a restart truncates them back to these sizes, so rows written after the
-// checkpoint by the interrupted run are not repeated).
-struct OutputSchedule {
-  double next_out = 0.0, next_rpt = 0.0;
-  std::vector<double> frame_times;
-  std::vector<std::pair<std::string, long long>> files;  // file name (no directory), bytes
-};
 
 // Writes the checkpoint atomically (temporary file + rename): format tag and version, the
 // simulation counters (step, time, dt, energies, external work), the grid definition, every

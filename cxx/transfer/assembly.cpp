@@ -1,4 +1,4 @@
-// The canonical assembly of the patch buffers into the node arrays (stage_common.hpp
+// The canonical assembly of the patch buffers into the node arrays (transfer_common.hpp
 // assemble; docs/DESIGN.md section 4), for buffers without a halo (the trilinear family)
 // and with one (the 27-node stencils, sgmp). The P2G of every family, the G2P remap and
 // the contact's mass gradients end with it.
@@ -6,8 +6,8 @@
 #include <cstddef>
 #include <stdexcept>
 
-#include "stages/stage_common.hpp"
-#include "stages/update_step.hpp"
+#include "core/step_state.hpp"
+#include "transfer/transfer_common.hpp"
 
 namespace mpm3d {
 namespace {

@@ -1,4 +1,4 @@
-#include "io/checkpoint.hpp"
+#include "solver/checkpoint.hpp"
 
 #include <hdf5.h>
 

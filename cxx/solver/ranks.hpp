@@ -1,5 +1,6 @@
-// Ranks: what a Simulation asks of the other processes of a distributed run (MPI ranks,
-// cxx/parallel/ranks_mpi.cpp, linked into the mpm3d program only). A Simulation without one
+// Ranks: what a Simulation asks of the other processes of a distributed run. The solver
+// calls this interface; MPI ranks implement it above it (MpiRanks, cxx/parallel/, linked into
+// the mpm3d program only). A Simulation without one
 // (Simulation::ranks null) is the whole run on one process and calls none of this.
 //
 // Each rank owns a contiguous run of patches and the particles inside them. The bits of a
