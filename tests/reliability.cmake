@@ -45,3 +45,16 @@ if(Python3_FOUND)
            COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/check_xdmf.py $<TARGET_FILE:mpm3d>
                    ${CMAKE_CURRENT_SOURCE_DIR}/decks/small.mpm ${CMAKE_CURRENT_BINARY_DIR}/series_xdmf)
 endif()
+
+# Nothing lost on a failure: a run killed after a report keeps every reported step in
+# name.out and the curves; a result file on a full device stops the run with status 1 and
+# the file's name (tests/output_loss.sh).
+add_test(NAME output.kill_keeps_reports
+         COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/output_loss.sh $<TARGET_FILE:mpm3d>
+                 ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks.mpm kill)
+foreach(file two_blocks.out EnergyPlot.dat two_blocks_curv.dat)
+  add_test(NAME output.full_disk_${file}
+           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/output_loss.sh $<TARGET_FILE:mpm3d>
+                   ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks.mpm full ${file})
+  set_tests_properties(output.full_disk_${file} PROPERTIES SKIP_RETURN_CODE 77)
+endforeach()

@@ -446,6 +446,7 @@ int run_main(int argc, char** argv, Ranks* ranks) {
                       sim.steps, sim.time, sim.kinetic, sim.internal, sim.kinetic + sim.internal, sim.outside,
                       left > 0 ? left : 0.0);
         out.log(line);
+        out.flush();  // a killed run keeps every reported step; a full disk stops the run here
         if (!opt.quiet) std::cout << line << std::endl;
       }
       if (opt.checkpoint_every > 0 && sim.steps % opt.checkpoint_every == 0) save_checkpoint(ckpt_path);
@@ -555,6 +556,7 @@ int run_main(int argc, char** argv, Ranks* ranks) {
       if (!opt.quiet && !printed && w != failure && w != stop_note) std::cerr << "mpm3d: warning: " << w << "\n";
     }
     if (!stop_note.empty() || !failure.empty()) out.log(stop_note.empty() ? failure : stop_note);
+    out.flush();
     out.close();
     if (!failure.empty()) {
       err << "mpm3d: " << failure << "\n";

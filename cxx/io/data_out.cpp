@@ -8,6 +8,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -107,6 +109,13 @@ void write_state_h5(const std::string& path, const Model& m, double time, long s
 
 // ---------------------------------------------------------------- the writers
 
+void flush_file(FILE* f, const std::string& path) {
+  errno = 0;
+  if (std::fflush(f) == 0 && !std::ferror(f)) return;
+  const int e = errno;
+  throw std::runtime_error("cannot write " + path + (e ? std::string(": ") + std::strerror(e) : std::string()));
+}
+
 FILE* OutputFiles::create(const std::string& name, bool& appended) const {
   const std::string p = path(name);
   appended = false;
@@ -154,6 +163,10 @@ void Output::open(const Model& m, const std::string& dir, bool legacy, bool seri
 
 void Output::log(const std::string& line) {
   for (auto& w : writers_) w->log(line);
+}
+
+void Output::flush() {
+  for (auto& w : writers_) w->flush();
 }
 
 void Output::step(const Model& m, const StepRecord& s) {

@@ -41,6 +41,9 @@ class Output {
   void open(const Model& m, const std::string& dir, bool legacy, bool series, const OutputSchedule* resume,
             bool vtu_binary = false);
   void log(const std::string& line);  // name.out
+  // Every appended file handed to the system (OutputWriter::flush): at every report and
+  // before close; throws std::runtime_error naming a file that cannot be written.
+  void flush();
   void step(const Model& m, const StepRecord& s);
   void frame(const Model& m, double time, long step);  // one frame of every animation format
   // Whether open(m, ..., legacy, series) opens an animation (known to every rank, which all

@@ -3,6 +3,7 @@
 // each at every step, every animation time and every checkpoint. A new format is a new
 // writer file plus one line in Output::open.
 #pragma once
+#include <cstdio>
 #include <memory>
 #include <string>
 #include <utility>
@@ -55,7 +56,14 @@ class OutputWriter {
   virtual void frame(const Model&, const std::vector<int>& /*at*/, double /*time*/, long /*step*/) {}
   // Flushes and adds (file name, bytes) of each appended file, for a checkpoint.
   virtual void record_sizes(std::vector<std::pair<std::string, long long>>&) {}
+  // Hands what the appended files hold to the system (at every report and at the end), so
+  // that a killed run keeps every reported step; throws std::runtime_error naming a file
+  // that cannot be written (a full disk).
+  virtual void flush() {}
 };
+
+// fflush(f) and its error state; throws std::runtime_error "cannot write PATH: reason".
+void flush_file(FILE* f, const std::string& path);
 
 // The legacy curves: name.out (the log), name_curv.dat (curv/curx variables),
 // EnergyPlot.dat and MomentumPlot.dat; one line per step, E12.4 as the original.

@@ -17,7 +17,10 @@ void record(FILE* f, const std::string& name, std::vector<std::pair<std::string,
 
 class CurveWriter : public OutputWriter {
  public:
-  CurveWriter(const Model& m, const OutputFiles& files) : base_(m.base_name) {
+  CurveWriter(const Model& m, const OutputFiles& files)
+      : base_(m.base_name),
+        paths_{files.path(base_ + ".out"), files.path(base_ + "_curv.dat"), files.path("EnergyPlot.dat"),
+               files.path("MomentumPlot.dat")} {
     bool appended;
     out_ = files.create(base_ + ".out", appended);
     if (appended) std::fprintf(out_, "(restarted)\n");
@@ -48,6 +51,11 @@ class CurveWriter : public OutputWriter {
     std::fprintf(curv_, "\n");
   }
 
+  void flush() override {
+    FILE* const order[4] = {out_, curv_, energy_, momentum_};
+    for (int i = 0; i < 4; ++i) flush_file(order[i], paths_[i]);
+  }
+
   void record_sizes(std::vector<std::pair<std::string, long long>>& files) override {
     record(out_, base_ + ".out", files);
     record(curv_, base_ + "_curv.dat", files);
@@ -57,12 +65,13 @@ class CurveWriter : public OutputWriter {
 
  private:
   std::string base_;
+  std::string paths_[4];  // of out_, curv_, energy_, momentum_
   FILE *out_, *curv_, *energy_, *momentum_;
 };
 
 class ContactWriter : public OutputWriter {
  public:
-  explicit ContactWriter(const OutputFiles& files) {
+  explicit ContactWriter(const OutputFiles& files) : path_(files.path("ContforcPlot.dat")) {
     bool appended;
     f_ = files.create("ContforcPlot.dat", appended);
   }
@@ -77,8 +86,10 @@ class ContactWriter : public OutputWriter {
   void record_sizes(std::vector<std::pair<std::string, long long>>& files) override {
     record(f_, "ContforcPlot.dat", files);
   }
+  void flush() override { flush_file(f_, path_); }
 
  private:
+  std::string path_;
   FILE* f_;
 };
 

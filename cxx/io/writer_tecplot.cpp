@@ -11,7 +11,7 @@ namespace {
 
 class TecplotWriter : public OutputWriter {
  public:
-  TecplotWriter(const Model& m, const OutputFiles& files) : name_(m.base_name + "_anim.dat") {
+  TecplotWriter(const Model& m, const OutputFiles& files) : name_(m.base_name + "_anim.dat"), path_(files.path(name_)) {
     for (const auto& v : m.anim_vars) fn_.push_back(output_variable(v));
     bool appended;
     f_ = files.create(name_, appended);
@@ -39,13 +39,15 @@ class TecplotWriter : public OutputWriter {
     }
   }
 
+  void flush() override { flush_file(f_, path_); }
+
   void record_sizes(std::vector<std::pair<std::string, long long>>& files) override {
     std::fflush(f_);
     files.emplace_back(name_, (long long)std::ftell(f_));
   }
 
  private:
-  std::string name_;
+  std::string name_, path_;
   FILE* f_;
   std::vector<ParticleVarFn> fn_;
 };
