@@ -1,5 +1,5 @@
 // FFI: free-format deck tokenizer (the original's FFI module).
-// Rules (DECK_FORMAT.md): lines <= 256 characters, tabs are blanks, '!' comments,
+// Rules (DECK_FORMAT.md): lines <= 4096 characters, tabs are blanks, '!' comments,
 // tokens separated by blanks and/or commas, keywords recognised by their first four
 // characters case-insensitively, Fortran list-directed numbers (d/D exponents).
 #pragma once
