@@ -1,12 +1,20 @@
 #!/usr/bin/env bash
-# make run: runs a Taylor deck and prints the final length and impact-end diameter next
-# to the paper's (Huang et al., MPM3DMP) and the experiment's (Johnson & Cook 1983).
+# make run: runs a deck into out/NAME (NAME: the deck's file name without its extension,
+# wherever the deck lives); for a Taylor bar deck (file name or title with "taylor") it then
+# prints the final length and impact-end diameter next to the paper's (Huang et al.,
+# MPM3DMP) and the experiment's (Johnson & Cook 1983).
 # usage: tools/taylor_run.sh BUILD_DIR DECK [extra mpm3d options]
 set -euo pipefail
 build=$1; deck=$2; shift 2
-out=${OUT_DIR:-out/$(basename "${deck%%.*}")}
+name=$(basename "$deck"); name=${name%.*}
+out=${OUT_DIR:-out/$name}
 mkdir -p "$out"
 "$build/cxx/mpm3d" --out-dir "$out" --summary "$out/summary.json" --state "$out/state.h5" "$@" "$deck"
+title=$(grep -v '^[[:space:]]*\(!\|$\)' "$deck" | head -1 || true)
+if ! printf '%s %s' "$name" "$title" | grep -qi taylor; then
+  printf 'results in %s/\n' "$out"
+  exit 0
+fi
 # Particle spacing: from the deck's cyli card, else from the run's dcell / 2.
 dp=$(awk 'tolower(substr($1,1,4))=="part" && tolower(substr($2,1,4))=="cyli" {print $6; exit}' "$deck")
 [ -n "$dp" ] || dp=$(awk 'tolower(substr($1,1,4))=="dcel" {print $2/2; exit}' "$deck")
