@@ -70,9 +70,10 @@ def check_cxx(rank, errors):
                 if ".." in inc.split("/"):
                     errors.append(f"{rel}:{lineno}: includes \"{inc}\": a path with '..'")
                     continue
-                target = inc.split("/")[0] if "/" in inc else (own if rel_dir != "." else ROOT_LAYER)
-                if "/" not in inc and inc == "mpm3d.hpp":
-                    target = ROOT_LAYER
+                if "/" in inc:
+                    target = inc.split("/")[0]
+                else:  # a file of the including folder, or the root's mpm3d.hpp
+                    target = ROOT_LAYER if inc == "mpm3d.hpp" else own
                 if target not in rank:
                     if os.path.exists(os.path.join(cxx, inc)):
                         errors.append(f"{rel}:{lineno}: includes \"{inc}\" of a folder not in the layer order")

@@ -1,4 +1,4 @@
-// The program's command line (cli.cpp), linked into the mpm3d program (and its tests) only:
+// The program's command line (cli.cpp), linked into the mpm3d program only:
 // the library (mpm3d.hpp) keeps what the C API, the Fortran bindings and the programs share.
 #pragma once
 

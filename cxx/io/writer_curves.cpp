@@ -18,55 +18,53 @@ void record(FILE* f, const std::string& name, std::vector<std::pair<std::string,
 class CurveWriter : public OutputWriter {
  public:
   CurveWriter(const Model& m, const OutputFiles& files)
-      : base_(m.base_name),
-        paths_{files.path(base_ + ".out"), files.path(base_ + "_curv.dat"), files.path("EnergyPlot.dat"),
-               files.path("MomentumPlot.dat")} {
-    bool appended;
-    out_ = files.create(base_ + ".out", appended);
-    if (appended) std::fprintf(out_, "(restarted)\n");
-    bool curv_appended;
-    curv_ = files.create(base_ + "_curv.dat", curv_appended);
-    energy_ = files.create("EnergyPlot.dat", appended);
-    momentum_ = files.create("MomentumPlot.dat", appended);
-    if (!curv_appended) {
-      std::fprintf(curv_, "Time %-12s%-12s", "engk1", "engi1");
-      for (const auto& c : m.curves) std::fprintf(curv_, "%-12s", (c.var + std::to_string(c.particle + 1)).c_str());
-      std::fprintf(curv_, "\n");
+      : names_{m.base_name + ".out", m.base_name + "_curv.dat", "EnergyPlot.dat", "MomentumPlot.dat"} {
+    bool appended[4];
+    for (int i = 0; i < 4; ++i) {
+      paths_[i] = files.path(names_[i]);
+      f_[i] = files.create(names_[i], appended[i]);
+    }
+    if (appended[0]) std::fprintf(out(), "(restarted)\n");
+    if (!appended[1]) {
+      std::fprintf(curv(), "Time %-12s%-12s", "engk1", "engi1");
+      for (const auto& c : m.curves) std::fprintf(curv(), "%-12s", (c.var + std::to_string(c.particle + 1)).c_str());
+      std::fprintf(curv(), "\n");
     }
   }
   ~CurveWriter() override {
-    for (FILE* f : {out_, curv_, energy_, momentum_}) std::fclose(f);
+    for (FILE* f : f_) std::fclose(f);
   }
 
-  void log(const std::string& line) override { std::fprintf(out_, "%s\n", line.c_str()); }
+  void log(const std::string& line) override { std::fprintf(out(), "%s\n", line.c_str()); }
 
   void step(const Model& m, const StepRecord& s) override {
     const std::string t = fortran_e12_4(s.time);
-    std::fprintf(energy_, "%s%s%s%s\n", t.c_str(), fortran_e12_4(s.kinetic + s.internal).c_str(),
+    std::fprintf(energy(), "%s%s%s%s\n", t.c_str(), fortran_e12_4(s.kinetic + s.internal).c_str(),
                  fortran_e12_4(s.kinetic).c_str(), fortran_e12_4(s.internal).c_str());
-    std::fprintf(momentum_, "%s%s%s%s\n", t.c_str(), fortran_e12_4(s.momentum[0]).c_str(),
+    std::fprintf(momentum(), "%s%s%s%s\n", t.c_str(), fortran_e12_4(s.momentum[0]).c_str(),
                  fortran_e12_4(s.momentum[1]).c_str(), fortran_e12_4(s.momentum[2]).c_str());
-    std::fprintf(curv_, "%s%s%s", t.c_str(), fortran_e12_4(s.kinetic).c_str(), fortran_e12_4(s.internal).c_str());
-    for (size_t c = 0; c < m.curves.size(); ++c) std::fprintf(curv_, "%s", fortran_e12_4(s.curve_values[c]).c_str());
-    std::fprintf(curv_, "\n");
+    std::fprintf(curv(), "%s%s%s", t.c_str(), fortran_e12_4(s.kinetic).c_str(), fortran_e12_4(s.internal).c_str());
+    for (size_t c = 0; c < m.curves.size(); ++c) std::fprintf(curv(), "%s", fortran_e12_4(s.curve_values[c]).c_str());
+    std::fprintf(curv(), "\n");
   }
 
   void flush() override {
-    FILE* const order[4] = {out_, curv_, energy_, momentum_};
-    for (int i = 0; i < 4; ++i) flush_file(order[i], paths_[i]);
+    for (int i = 0; i < 4; ++i) flush_file(f_[i], paths_[i]);
   }
 
   void record_sizes(std::vector<std::pair<std::string, long long>>& files) override {
-    record(out_, base_ + ".out", files);
-    record(curv_, base_ + "_curv.dat", files);
-    record(energy_, "EnergyPlot.dat", files);
-    record(momentum_, "MomentumPlot.dat", files);
+    for (int i = 0; i < 4; ++i) record(f_[i], names_[i], files);
   }
 
  private:
-  std::string base_;
-  std::string paths_[4];  // of out_, curv_, energy_, momentum_
-  FILE *out_, *curv_, *energy_, *momentum_;
+  // name.out (the log), name_curv.dat, EnergyPlot.dat, MomentumPlot.dat: the order of a
+  // checkpoint's record.
+  FILE* out() const { return f_[0]; }
+  FILE* curv() const { return f_[1]; }
+  FILE* energy() const { return f_[2]; }
+  FILE* momentum() const { return f_[3]; }
+  std::string names_[4], paths_[4];
+  FILE* f_[4];
 };
 
 class ContactWriter : public OutputWriter {
