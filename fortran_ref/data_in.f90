@@ -8,6 +8,7 @@ module mpm3d_data_in
   use mpm3d_particle
   use mpm3d_ffi
   use mpm3d_particle_gen
+  use mpm3d_rules, only: step_rules, rule_request, resolve_rules
   use mpm3d_update_step, only: SCHEME_MUSL, SCHEME_USL, SCHEME_USF
   implicit none
   private
@@ -58,6 +59,10 @@ module mpm3d_data_in
     logical :: current_version = .false.  ! a keyword only the current MPM3D-F90 knows: its
                                           ! behaviours (bloc x fastest, dt_per_step)
     logical :: dt_per_step = .false.    ! the current version's dt, recomputed every step
+    ! The rules in force (rules.f90), resolved when the deck is read: current_version is
+    ! rules%program, dt_per_step rules%time_step. deck_current: what the deck's keywords name.
+    type(step_rules) :: rules
+    logical :: deck_current = .false.
     real(dp) :: load_ramp_time = 0.0_dp ! QuLo: loads ramp over this time (0: off)
     real(dp) :: damping = 0.0_dp        ! Damp: -damping m v joins the body force
     logical :: dynamic_relaxation = .false.  ! drda: stop every particle when KE did not grow
@@ -196,9 +201,10 @@ contains
   end function has_current_keyword
 
   ! Reads the deck at path; input errors end the program (mpm3d_ffi: fatal).
-  subroutine read_deck(path, m)
+  subroutine read_deck(path, m, rules)
     character(len=*), intent(in) :: path
     type(model_t), intent(out) :: m
+    type(rule_request), intent(in), optional :: rules   ! --rules and --rule (default: ours)
     type(token_stream) :: ts
     type(token_t) :: key, t
     character(len=:), allocatable :: k, kt
@@ -210,8 +216,15 @@ contains
     integer :: box_line(3), dcell_line   ! where the box and the cell size were set
 
     call ts_open(ts, path)
-    m%current_version = has_current_keyword(ts)
-    m%dt_per_step = m%current_version
+    m%deck_current = has_current_keyword(ts)
+    if (present(rules)) then
+      m%rules = resolve_rules(rules, m%deck_current)
+    else
+      m%rules = resolve_rules(rule_request(), m%deck_current)
+    end if
+    m%current_version = m%rules%program == 1
+    m%dt_per_step = m%rules%time_step == 1
+    ts%single_reals = m%rules%deck_reals == 1
     m%deck_path = path
     m%title = ''
     allocate(m%bodies(4), m%curves(4))

@@ -120,6 +120,12 @@ contains
       m%particles%x0 = m%particles%x
     end if
     ! The current version has bulk viscosity on by default (1.5, 0.06), applied to the stress.
+    ! Rule bulk_book=ignore: the book program reads 'bulk' and does not apply it.
+    if (m%has_bulk .and. .not. m%current_version .and. m%rules%bulk_book == 1) then
+      m%has_bulk = .false.
+      m%bulk_q1 = 0.0_dp
+      m%bulk_q2 = 0.0_dp
+    end if
     if (m%current_version .and. .not. m%has_bulk) then
       m%has_bulk = .true.
       m%bulk_q1 = 1.5_dp

@@ -24,6 +24,9 @@ module mpm3d_ffi
     type(token_t), allocatable :: tok(:)
     integer :: ntok = 0
     integer :: pos = 1                              ! next token
+    ! Rule deck_reals=single: every real rounded to single precision, as the original's
+    ! GetReal (a default real) reads it.
+    logical :: single_reals = .false.
   contains
     procedure :: at_end => ts_at_end
     procedure :: peek => ts_peek
@@ -265,11 +268,18 @@ contains
     class(token_stream), intent(inout) :: ts
     character(len=*), intent(in) :: what
     type(token_t) :: t
+    real :: v4   ! a default real, as the original's GetReal
+    character(len=:), allocatable :: text
     if (ts%at_end()) call ts%fail(ts%line(), 'unexpected end of file while reading ' // what)
     t = ts%next()
     if (.not. parse_real(ts%text_of(t), v)) &
       call ts%fail(t%line, "Non Numeric Field '" // ts%text_of(t) // "' where " // what // &
                    ' was expected')
+    if (ts%single_reals) then   ! the decimal text rounded once to single precision
+      text = ts%text_of(t)
+      read (text, *) v4
+      v = real(v4, dp)
+    end if
   end function ts_real
 
   ! Next token as an integer.

@@ -10,11 +10,11 @@
 // placeholders), so that the Fortran stages reach the ranks' hooks. Every group's and every
 // member's offset is compared: padding after a short group cannot hide a missing member.
 
-extern "C" void mpm3d_f_context_layout(size_t out[100]);
+extern "C" void mpm3d_f_context_layout(size_t out[113]);
 extern "C" void mpm3d_f_step_constants(int out[17]);
 
 int main() {
-  constexpr int kChecks = 100;
+  constexpr int kChecks = 113;
   size_t f[kChecks];
   mpm3d_f_context_layout(f);
   const size_t c[kChecks] = {
@@ -117,7 +117,20 @@ int main() {
       sizeof(MaterialParams),
       offsetof(MaterialParams, eos_e0),
       offsetof(MaterialParams, eos_type),
-      offsetof(MaterialParams, dp_tension)};
+      offsetof(MaterialParams, dp_tension),
+      offsetof(StepContext, rules),
+      offsetof(StepContext, rules.program),
+      offsetof(StepContext, rules.time_step),
+      offsetof(StepContext, rules.bulk_book),
+      offsetof(StepContext, rules.bulk_switch),
+      offsetof(StepContext, rules.bulk_linear),
+      offsetof(StepContext, rules.burn),
+      offsetof(StepContext, rules.dp_return),
+      offsetof(StepContext, rules.deck_reals),
+      offsetof(StepContext, rules.tl_shape),
+      offsetof(StepContext, rules.sg_lower),
+      offsetof(StepContext, rules.sg_beyond),
+      offsetof(StepContext, rules.fluid_viscous)};
   const char* what[kChecks] = {
       "sizeof(StepContext)",
       "offsetof(part)",
@@ -218,7 +231,20 @@ int main() {
       "sizeof(MaterialParams)",
       "offsetof(MaterialParams::eos_e0)",
       "offsetof(MaterialParams::eos_type)",
-      "offsetof(MaterialParams::dp_tension)"};
+      "offsetof(MaterialParams::dp_tension)",
+      "offsetof(rules)",
+      "offsetof(rules.program)",
+      "offsetof(rules.time_step)",
+      "offsetof(rules.bulk_book)",
+      "offsetof(rules.bulk_switch)",
+      "offsetof(rules.bulk_linear)",
+      "offsetof(rules.burn)",
+      "offsetof(rules.dp_return)",
+      "offsetof(rules.deck_reals)",
+      "offsetof(rules.tl_shape)",
+      "offsetof(rules.sg_lower)",
+      "offsetof(rules.sg_beyond)",
+      "offsetof(rules.fluid_viscous)"};
   int bad = 0;
   for (int i = 0; i < kChecks; ++i) {
     const bool ok = c[i] == f[i];

@@ -20,6 +20,7 @@ program mpm3d_ref
   use mpm3d_data_in
   use mpm3d_update_step
   use mpm3d_data_out
+  use mpm3d_rules, only: rule_request, parse_rule_preset, add_rule_setting
   implicit none
 
   integer(c_int) :: step_order(MPM3D_MAX_STEP_STAGES)   ! the deck's scheme's row of the step table
@@ -34,7 +35,7 @@ program mpm3d_ref
   character(len=:), allocatable :: deck, state_path, init_path, energy_path, err
   integer(int64) :: max_steps, steps, iv
   integer :: patch_cells, i, nargs, np, b, rc, regrid_every, halo
-  integer :: time_step        ! --time-step: -1 the deck's choice, 0 book, 1 current
+  type(rule_request) :: rules  ! --rules, --rule, --time-step (rules.f90)
   integer :: woff(3), wnc(3)
   real(dp) :: end_time, time, eps, kinetic, internal, rv, initial_total, momentum(3)
   real(dp) :: external_work    ! bound of the work of gravity and loads: sum |f.v| dt (health check)
@@ -52,7 +53,6 @@ program mpm3d_ref
   patch_cells = 4
   order_blocks = .true.
   regrid_every = -1
-  time_step = -1
   quiet = .false.
   nargs = command_argument_count()
   i = 1
@@ -62,7 +62,8 @@ program mpm3d_ref
     case ('--help', '-h')
       write (output_unit, '(a)') 'usage: mpm3d_ref [--steps N] [--end-time T] [--state F.h5] ' // &
         '[--init-state F.h5] [--energies F.txt] [--patch-cells N] [--regrid-every N] ' // &
-        '[--particle-order blocks|deck] [--time-step book|current] [--quiet] DECK.mpm'
+        '[--particle-order blocks|deck] [--time-step book|current] ' // &
+        '[--rules ours|original|book|current] [--rule NAME=VALUE] [--quiet] DECK.mpm'
       stop
     case ('--steps')
       call value(i, arg)
@@ -100,7 +101,15 @@ program mpm3d_ref
     case ('--time-step')
       call value(i, arg)
       if (trim(arg) /= 'book' .and. trim(arg) /= 'current') call usage('--time-step must be book or current')
-      time_step = merge(1, 0, trim(arg) == 'current')
+      call add_rule_setting(rules, 'time_step=' // trim(arg), err)
+    case ('--rules')
+      call value(i, arg)
+      call parse_rule_preset(trim(arg), rules, err)
+      if (len(err) > 0) call usage(err)
+    case ('--rule')
+      call value(i, arg)
+      call add_rule_setting(rules, trim(arg), err)
+      if (len(err) > 0) call usage(err)
     case ('--quiet', '-q')
       quiet = .true.
     case default
@@ -113,12 +122,11 @@ program mpm3d_ref
   if (len(deck) == 0) call usage('no deck given')
 
   ! ---------------------------------------------------------------- set-up
-  call read_deck(deck, model)
+  call read_deck(deck, model, rules)
   end_time_given = end_time > 0.0_dp
   if (end_time <= 0.0_dp) end_time = model%endtime
   np = model%particles%np
   if (regrid_every < 0) regrid_every = model%regrid_every
-  if (time_step >= 0) model%dt_per_step = time_step == 1
   if (model%tl .and. regrid_every > 0) &
     call fatal(deck // ": --regrid-every with 'TLmp': the reference grid of TLmp cannot move")
   if (model%sg .and. regrid_every > 0) &
@@ -361,6 +369,7 @@ contains
     if (allocated(model%particles%defgrad)) ctx%part%defgrad = c_loc(model%particles%defgrad)
     ctx%method%uvf = merge(1, 0, model%uvf)
     ctx%method%tl = merge(1, 0, model%tl)
+    ctx%rules = model%rules
     ctx%part%pk1 = c_null_ptr
     if (model%tl) then
       ctx%part%xbin = c_loc(model%particles%x0)   ! the particles stay in their reference cells

@@ -10,8 +10,10 @@ module mpm3d_stage_common
   use, intrinsic :: iso_c_binding
   use mpm3d_material
   use mpm3d_grid, only: NODE_FIELDS, stencil_27
+  use mpm3d_rules, only: step_rules
   implicit none
   private
+  public :: step_rules
 
   integer, parameter, public :: SCHEME_MUSL = 0, SCHEME_USL = 1, SCHEME_USF = 2
   ! The shape-function families (enum TransferFamily, cxx/stages/update_step.hpp): the stages
@@ -163,6 +165,7 @@ module mpm3d_stage_common
     type(step_sgmp) :: sgmp
     type(step_ranks) :: ranks
     type(step_rest) :: rest
+    type(step_rules) :: rules
   end type step_context
 
   ! step_context%exchange's kinds (cxx/stages/update_step.hpp ExchangeKind).
@@ -313,7 +316,7 @@ contains
   ! The layout of step_context (its size, then every group's and every member's offset, in
   ! the order of layout_check.cpp) and of material_params (size, eos_e0, eos_type, dp_tension).
   subroutine mpm3d_f_context_layout(out) bind(C, name='mpm3d_f_context_layout')
-    integer(c_size_t), intent(out) :: out(100)
+    integer(c_size_t), intent(out) :: out(113)
     type(step_context), target :: c
     type(material_params), target :: m(2)
     integer(c_intptr_t) :: c0, m0
@@ -419,6 +422,19 @@ contains
     out(98) = transfer(c_loc(m(1)%eos_e0), 0_c_intptr_t) - m0
     out(99) = transfer(c_loc(m(1)%eos_type), 0_c_intptr_t) - m0
     out(100) = transfer(c_loc(m(1)%dp_tension), 0_c_intptr_t) - m0
+    out(101) = transfer(c_loc(c%rules), 0_c_intptr_t) - c0
+    out(102) = transfer(c_loc(c%rules%program), 0_c_intptr_t) - c0
+    out(103) = transfer(c_loc(c%rules%time_step), 0_c_intptr_t) - c0
+    out(104) = transfer(c_loc(c%rules%bulk_book), 0_c_intptr_t) - c0
+    out(105) = transfer(c_loc(c%rules%bulk_switch), 0_c_intptr_t) - c0
+    out(106) = transfer(c_loc(c%rules%bulk_linear), 0_c_intptr_t) - c0
+    out(107) = transfer(c_loc(c%rules%burn), 0_c_intptr_t) - c0
+    out(108) = transfer(c_loc(c%rules%dp_return), 0_c_intptr_t) - c0
+    out(109) = transfer(c_loc(c%rules%deck_reals), 0_c_intptr_t) - c0
+    out(110) = transfer(c_loc(c%rules%tl_shape), 0_c_intptr_t) - c0
+    out(111) = transfer(c_loc(c%rules%sg_lower), 0_c_intptr_t) - c0
+    out(112) = transfer(c_loc(c%rules%sg_beyond), 0_c_intptr_t) - c0
+    out(113) = transfer(c_loc(c%rules%fluid_viscous), 0_c_intptr_t) - c0
   end subroutine mpm3d_f_context_layout
 
 end module mpm3d_stage_common

@@ -25,7 +25,7 @@ ROOT_LAYER = "solver"
 
 # The Fortran reference has no folders: each file's layer, as its C++ twin's folder.
 FORTRAN_LAYERS = {
-    "grid.f90": "core", "particle.f90": "core",
+    "grid.f90": "core", "particle.f90": "core", "rules.f90": "core",
     "material.f90": "materials", "eos.f90": "materials", "j2_plasticity.f90": "materials",
     "drucker_prager.f90": "materials", "neo_hookean.f90": "materials", "stress_ops.f90": "materials",
     "constitution.f90": "materials", "material_models.f90": "materials",

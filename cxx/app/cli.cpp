@@ -47,12 +47,17 @@ const char* kUsage =
     "                     the largest particle share exceeds R times the mean (default 1.03)\n"
     "  --regrid-every N   adaptive background grid: redefine the grid from the particles'\n"
     "                     extent every N steps (0: off; default: the deck's 'adgr', else off)\n"
-    "  --time-step book|current  book: the initial dt for the whole run; current: dt\n"
-    "                     recomputed after every step from the wave speed plus the largest\n"
-    "                     particle velocity, as the current MPM3D-F90 (default: current for\n"
-    "                     decks with a keyword of the current version: neoh, UVFp, vsin,\n"
-    "                     QuLo, Damp, smoo, bimp, sgmp, TLmp, drda, blod, cicl, ksin, nuli;\n"
-    "                     else book)\n"
+    "  --rules ours|original|book|current  where mpm3d differs from the original programs:\n"
+    "                     ours (default) our rules; original: the rules of the program the\n"
+    "                     deck's keywords name (current for decks with a keyword of the current\n"
+    "                     version: neoh, UVFp, vsin, QuLo, Damp, smoo, bimp, sgmp, TLmp, drda,\n"
+    "                     blod, cicl, ksin, nuli; else book); book, current: that program's\n"
+    "                     rules whatever the deck's keywords (the rules are listed below)\n"
+    "  --rule NAME=VALUE  set one rule, after --rules (repeatable)\n"
+    "  --time-step book|current  the same as --rule time_step=...: book keeps the initial dt\n"
+    "                     for the whole run; current recomputes dt after every step from the\n"
+    "                     wave speed plus the largest particle velocity (default: the\n"
+    "                     program's, see --rules)\n"
     "  --particle-order blocks|deck  storage order of the particles (default blocks: sorted by\n"
     "                     patch-sized blocks of cells, so each thread's patches hold a run of\n"
     "                     memory; deck: as read). Outputs are in deck order either way\n"
@@ -81,7 +86,7 @@ struct Options {
   int threads = 0, patch_cells = 4;
   long regrid_every = -1;  // -1: the deck's
   std::string particle_order = "blocks";
-  std::string time_step;  // "", "book" or "current"
+  RuleRequest rules;  // --rules, --rule, --time-step
   bool no_output = false, quiet = false, hdf5 = false, vtu_binary = false, patch_given = false, strict_energy = false, no_rest_skip = false;
 };
 
@@ -120,7 +125,7 @@ Options parse_args(int argc, char** argv, bool& exit_now) {
       return argv[++i];
     };
     if (a == "--help" || a == "-h") {
-      std::cout << kUsage;
+      std::cout << kUsage << "rules (--rule NAME=VALUE; the first value is ours):\n" << rules_usage();
       exit_now = true;
       return o;
     } else if (a == "--version") {
@@ -168,8 +173,21 @@ Options parse_args(int argc, char** argv, bool& exit_now) {
       if (o.particle_order != "blocks" && o.particle_order != "deck")
         throw UsageError("--particle-order must be blocks or deck");
     } else if (a == "--time-step") {
-      o.time_step = value();
-      if (o.time_step != "book" && o.time_step != "current") throw UsageError("--time-step must be book or current");
+      const std::string v = value();
+      if (v != "book" && v != "current") throw UsageError("--time-step must be book or current");
+      add_rule_setting(o.rules, "time_step=" + v);
+    } else if (a == "--rules") {
+      try {
+        o.rules.preset = parse_rule_preset(value());
+      } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+      }
+    } else if (a == "--rule") {
+      try {
+        add_rule_setting(o.rules, value());
+      } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+      }
     } else if (a == "--regrid-every") {
       o.regrid_every = to_long(a, value());
       if (o.regrid_every < 0 || o.regrid_every > 1000000000) throw UsageError("--regrid-every must lie in 0..1000000000");
@@ -253,9 +271,8 @@ int run_main(int argc, char** argv, Ranks* ranks) {
   }
   bool stepping = false;  // from the first step on, an error may be one rank's alone
   try {
-    Model model = read_deck(opt.deck);
+    Model model = read_deck(opt.deck, deck_memory_budget(), opt.rules);
     if (opt.regrid_every >= 0) model.regrid_every = int(opt.regrid_every);
-    if (!opt.time_step.empty()) model.dt_per_step = opt.time_step == "current";
     if (model.sg && model.regrid_every > 0)
       throw std::runtime_error(opt.deck + ": --regrid-every with 'sgmp': the cell-centre grid of sgmp does not move");
     if (model.tl && model.regrid_every > 0)
@@ -355,6 +372,10 @@ int run_main(int argc, char** argv, Ranks* ranks) {
     if (restarted) head << "\n  restarted from " << opt.restart << " at step " << sim.steps << ", t " << sim.time;
     if (opt.patch_given && restarted && opt.patch_cells != patch_cells)
       head << "\n  warning: --patch-cells ignored: a restart keeps the checkpoint's " << patch_cells;
+    {
+      const std::string changed = rules_changed(m.rules, m.deck_current);
+      head << "\n  rules: " << (changed.empty() ? std::string("ours") : changed) << " (" << rules_text(m.rules) << ")";
+    }
     if (m.gimp) head << "\n  GIMP shape functions (27 nodes)";
     if (m.bspline) head << "\n  quadratic B-spline shape functions (27 nodes)";
     if (m.sg) head << "\n  smoothed-gradient MPM (sgmp): through the cell centres";
@@ -506,6 +527,12 @@ int run_main(int argc, char** argv, Ranks* ranks) {
       std::ostringstream js;
       js << "{\n  \"deck\": \"" << json_escape(opt.deck) << "\",\n  \"title\": \"" << json_escape(m.title)
          << "\",\n  \"particles\": " << P.np << ",\n  \"steps\": " << sim.steps << ",\n  \"time\": " << json_number(sim.time)
+         << ",\n  \"rules\": {" << [&] {
+              std::string s;
+              for (int i = 0; i < kRuleCount; ++i)
+                s += std::string(i ? ", " : "") + "\"" + kRules[i].name + "\": \"" + kRules[i].value[rule_value(m.rules, i)] + "\"";
+              return s;
+            }() << "}"
          << ",\n  \"dt_min\": " << json_number(dt_min) << ",\n  \"dt_max\": " << json_number(dt_max) << ",\n  \"threads\": " << threads
          << ",\n  \"ranks\": " << (ranks ? ranks->size() : 1)
          << ",\n  \"rank_imbalance\": " << json_number(ranks ? ranks->imbalance() : 1.0)

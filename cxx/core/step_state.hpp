@@ -124,6 +124,28 @@ struct StepRest {
   const unsigned char *at_rest;  // (npatch) 1 where every stage skips the patch
 };
 
+// Where we deliberately differ from the original programs: one named rule each, chosen once
+// when the deck is bound (core/rules.hpp: names, values, presets; docs/FROM_MPM3D_F90.md).
+// 0 is always our own value, the default; each member is read where its rule acts and
+// nowhere else. The deck-level rules (program .. bulk_book, deck_reals) act in the reader
+// and the solver; the others in the stages.
+struct StepRules {
+  int program;        // 0 the book program's conventions, 1 the current program's
+  int time_step;      // 0 the initial dt kept (book), 1 recomputed every step (current)
+  int bulk_book;      // book program: 0 'bulk' applied, 1 read and ignored (the book program)
+  int bulk_switch;    // bulk viscosity where 0 the volume shrinks, 1 the old mean stress is compressive too
+  int bulk_linear;    // linear term: 0 every material's wave speed, 1 the current program's (none on
+                      // hiex, no linear term on sjc and dpm)
+  int burn;           // programmed burn: 0 ramp over 1.5 cells, 1 step at the lighting time
+  int dp_return;      // Drucker-Prager: 0 returns end on the yield surface, 1 the original's branches
+  int deck_reals;     // 0 deck reals read in double precision, 1 rounded to single as the original
+  int tl_shape;       // TLmp: 0 shape functions at the reference position, 1 at the cell's centre
+                      // with the current volume in the work of P on dF (the current program)
+  int sg_lower;       // sgmp auxiliary cell next to a lower face: 0 the nearest centre, 1 truncated toward 0
+  int sg_beyond;      // sgmp weights of centres beyond a one-layer grid: 0 to the nearest centre, 1 dropped
+  int fluid_viscous;  // viscous null: 0 stress 2 mu dev(D), 1 2 mu D (the original's integer 1/3)
+};
+
 struct StepContext {
   struct StepParticles part;
   struct StepGrid grid;
@@ -135,6 +157,7 @@ struct StepContext {
   struct StepSgmp sgmp;
   struct StepRanks ranks;
   struct StepRest rest;
+  struct StepRules rules;
 };
 
 // The shape-function families of the transfer layer (cxx/transfer/transfer.hpp).

@@ -55,8 +55,11 @@ static const std::vector<std::string> kCurrentKeywords = {"neoh", "uvfp", "vsin"
 
 Model DeckReader::read() {
   m_.deck_path = ts_.name();
-  m_.current_version = ts_.has_keyword(kCurrentKeywords);
-  m_.dt_per_step = m_.current_version;
+  m_.deck_current = ts_.has_keyword(kCurrentKeywords);
+  m_.rules = resolve_rules(rules_, m_.deck_current);
+  m_.current_version = m_.rules.program == 1;
+  m_.dt_per_step = m_.rules.time_step == 1;
+  ts_.set_single_reals(m_.rules.deck_reals == 1);
   while (!ts_.at_end()) {
     const Token key = ts_.next();
     const std::string k = key4(key.text);
@@ -271,12 +274,13 @@ int DeckReader::particle_index(const Token& at, long pid) {
   return int(pid - 1);
 }
 
-Model read_deck(const std::string& path, double memory_budget) {
-  return DeckReader(TokenStream::from_file(path), memory_budget).read();
+Model read_deck(const std::string& path, double memory_budget, const RuleRequest& rules) {
+  return DeckReader(TokenStream::from_file(path), memory_budget, rules).read();
 }
 
-Model read_deck_text(const std::string& text, const std::string& name, double memory_budget) {
-  return DeckReader(TokenStream::from_string(text, name), memory_budget).read();
+Model read_deck_text(const std::string& text, const std::string& name, double memory_budget,
+                     const RuleRequest& rules) {
+  return DeckReader(TokenStream::from_string(text, name), memory_budget, rules).read();
 }
 
 }  // namespace mpm3d

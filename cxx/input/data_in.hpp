@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/particle.hpp"
+#include "core/rules.hpp"
 #include "materials/material.hpp"
 #include "stages/step_order.h"
 
@@ -68,6 +69,10 @@ struct Model {
   // initial dt throughout. current_version unless the command line says otherwise
   // (--time-step).
   bool dt_per_step = false;
+  // The rules in force (core/rules.hpp), resolved when the deck is read: current_version is
+  // rules.program, dt_per_step rules.time_step. deck_current: what the deck's keywords name.
+  StepRules rules{};
+  bool deck_current = false;
   // Quasi-static loading (QuLo T, Damp c): loads ramp over T; -c m v joins the body force.
   // With QuLo the run goes on past endtime, as the current version's, until the kinetic
   // share of the energy is below 0.005 and the time above 100 (quasi_static_done).
@@ -95,8 +100,11 @@ double deck_memory_budget();
 
 // Reads the deck; throws DeckError (file, line, problem) on any input error. memory_budget:
 // the memory limit above in bytes, taken once for the whole deck.
-Model read_deck(const std::string& path, double memory_budget = deck_memory_budget());
-Model read_deck_text(const std::string& text, const std::string& name, double memory_budget = deck_memory_budget());
+// rules: the --rules preset and --rule settings (default: ours).
+Model read_deck(const std::string& path, double memory_budget = deck_memory_budget(),
+                const RuleRequest& rules = RuleRequest());
+Model read_deck_text(const std::string& text, const std::string& name, double memory_budget = deck_memory_budget(),
+                     const RuleRequest& rules = RuleRequest());
 // Estimated bytes per particle and per grid node of a run (reader, grid and solver arrays).
 constexpr double kBytesPerParticle = 256.0;
 constexpr double kBytesPerNode = 160.0;

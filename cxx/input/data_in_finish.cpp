@@ -88,6 +88,11 @@ void DeckReader::finish(int line) {
   }
   // The current version has artificial bulk viscosity on by default (1.5, 0.06), applied to
   // the stress (the book computes it only where 'bulk' asks).
+  // Rule bulk_book=ignore: the book program reads 'bulk' and does not apply it.
+  if (m_.has_bulk && !m_.current_version && m_.rules.bulk_book == 1) {
+    m_.has_bulk = false;
+    m_.bulk_q1 = m_.bulk_q2 = 0.0;
+  }
   if (m_.current_version && !m_.has_bulk) {
     m_.has_bulk = true;
     m_.bulk_q1 = 1.5;

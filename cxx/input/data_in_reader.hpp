@@ -15,8 +15,8 @@ namespace mpm3d {
 // naming the deck and the line (fail).
 class DeckReader {
  public:
-  DeckReader(TokenStream ts, double memory_budget)
-      : ts_(std::move(ts)), memory_budget_(memory_budget), parts_(m_.particles, ts_.name()) {}
+  DeckReader(TokenStream ts, double memory_budget, RuleRequest rules)
+      : ts_(std::move(ts)), memory_budget_(memory_budget), rules_(std::move(rules)), parts_(m_.particles, ts_.name()) {}
   Model read();
   // Bytes as "N MB", for the memory errors.
   static std::string megabytes(double bytes);
@@ -24,6 +24,7 @@ class DeckReader {
  private:
   TokenStream ts_;
   const double memory_budget_;  // bytes (deck_memory_budget)
+  const RuleRequest rules_;     // resolved into m_.rules once the deck's version is known
   Model m_;
   ParticleAppender parts_;  // appends the particle cards' particles to m_.particles
   bool ended_ = false;

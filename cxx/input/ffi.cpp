@@ -117,6 +117,12 @@ double TokenStream::real(const char* what) {
   double v;
   if (!parse_real(t.text, v))
     fail(t.line, std::string("Non Numeric Field '") + t.text + "' where " + what + " was expected");
+  if (single_reals_) {  // the decimal text rounded once to single precision (strtof), as a Fortran read
+    std::string e = t.text;
+    for (char& ch : e)
+      if (ch == 'd' || ch == 'D') ch = 'e';
+    v = double(std::strtof(e.c_str(), nullptr));
+  }
   return v;
 }
 

@@ -42,7 +42,10 @@ class TokenStream {
   bool has_keyword(const std::vector<std::string>& keys) const;
   const std::string& name() const { return name_; }
 
-  double real(const char* what);   // next token as a real number
+  double real(const char* what);   // next token as a real number (rounded to single: set_single_reals)
+  // Rule deck_reals=single: every real rounded to the nearest single-precision number, as
+  // the original's GetReal (a default real) reads it.
+  void set_single_reals(bool on) { single_reals_ = on; }
   long integer(const char* what);  // next token as an integer
   std::string word(const char* what);
 
@@ -53,6 +56,7 @@ class TokenStream {
   std::vector<Token> tokens_;
   std::vector<std::string> lines_;
   size_t pos_ = 0;
+  bool single_reals_ = false;
 };
 
 // First four characters, lower case: the keyword as the original recognises it.

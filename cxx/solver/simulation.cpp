@@ -202,6 +202,7 @@ void Simulation::bind() {
   me.uvf = model.uvf ? 1 : 0;
   me.sg = model.sg ? 1 : 0;
   me.family = model.sg ? TRANSFER_SMOOTHED_GRADIENT : me.shape != 0 ? TRANSFER_STENCIL27 : TRANSFER_TRILINEAR;
+  c.rules = model.rules;
   // Contact: set below when the deck has it.
   c.contact.body_comp = nullptr;
   c.contact.other = nullptr;
