@@ -13,6 +13,10 @@
 #   regrid   `mpm3d OPTIONS` against `mpm3d_ref OPTIONS` (e.g. --regrid-every 5): the same
 #            states and the same adaptive-grid windows at the same steps (the 'regrid step K
 #            window ...' lines both print).
+#   rules    a rule setting (OPTIONS: --rules ..., --rule NAME=VALUE): `mpm3d OPTIONS` on 1 and
+#            2 threads, with every stage from Fortran, and `mpm3d_ref OPTIONS` write the same
+#            state after STEPS steps, and that state differs from the plain run's (the
+#            setting does something).
 #   init     `mpm3d --steps 0 --state` against `mpm3d_ref --init-state` (the two readers).
 #   crlf     as init, on a copy of DECK with CRLF line ends and tabs for blanks.
 #   unstable DECK with 'dtscale 0.9' (USL decks diverge): both programs must stop at the
@@ -81,6 +85,22 @@ case $kind in
       echo "the regrid windows differ (or there were none)"
       exit 1
     fi
+    ;;
+  rules)
+    run "$mpm3d" --threads 1 --steps "$steps" --no-output --quiet "$@" --state "$a" "$deck"
+    run "$mpm3d" --threads 2 --steps "$steps" --no-output --quiet "$@" --state "$b" "$deck"
+    run "$h5diff" "$a" "$b"
+    run "$mpm3d" --threads 2 --kernel fortran --steps "$steps" --no-output --quiet "$@" --state "$b" "$deck"
+    run "$h5diff" "$a" "$b"
+    run "$ref" --quiet --steps "$steps" "$@" --state "$b" "$deck"
+    run "$h5diff" "$a" "$b"
+    run "$mpm3d" --threads 1 --steps "$steps" --no-output --quiet --state "$b" "$deck"
+    if "$h5diff" -q "$a" "$b"; then
+      echo "the rule setting $* changed nothing in $steps steps"
+      exit 1
+    fi
+    echo "the same state in every run under $*; it differs from the plain run's"
+    exit 0
     ;;
   init)
     run "$mpm3d" --threads 1 --steps 0 --no-output --quiet --state "$a" "$deck"

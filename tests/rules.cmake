@@ -1,0 +1,26 @@
+# The rules (cxx/core/rules.hpp, fortran_ref/rules.f90; docs/FROM_MPM3D_F90.md "The rules").
+# rules_add(NAME DECK STEPS OPTIONS...): under OPTIONS (--rules ..., --rule NAME=VALUE) mpm3d
+# on 1 and 2 threads, mpm3d with every stage from Fortran and mpm3d_ref give the same state
+# bit for bit, and a state that differs from the plain run's (fortran_ref/xcheck.sh rules).
+# Included from tests/CMakeLists.txt; each group of rules adds its cases in its own file.
+if(TARGET mpm3d AND TARGET mpm3d_ref AND MPM3D_H5DIFF)
+  function(rules_add name deck steps)
+    add_test(NAME rules.${name}
+             COMMAND sh ${CMAKE_SOURCE_DIR}/fortran_ref/xcheck.sh rules
+                     ${CMAKE_CURRENT_BINARY_DIR}/rules/${name} ${deck}
+                     $<TARGET_FILE:mpm3d> $<TARGET_FILE:mpm3d_ref> ${MPM3D_H5DIFF} ${steps} ${ARGN})
+    set_tests_properties(rules.${name} PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300 LABELS rules)
+  endfunction()
+  set(_rules_inputs ${CMAKE_SOURCE_DIR}/inputs)
+  set(_rules_shared ${CMAKE_SOURCE_DIR}/../shared/decks)
+  # Deck-level rules (both readers).
+  rules_add(bulk_book ${_rules_inputs}/explosives/slab_small.mpm 40 --rule bulk_book=ignore)
+  rules_add(deck_reals ${_rules_inputs}/impact/two_blocks.mpm 40 --rule deck_reals=single)
+  rules_add(time_step ${_rules_inputs}/taylor/taylor_coarse.mpm 40 --rule time_step=current)
+  rules_add(program_current ${_rules_inputs}/taylor/taylor_coarse.mpm 40 --rules current)
+  rules_add(original_book ${_rules_inputs}/explosives/slab_small.mpm 40 --rules original)
+  file(GLOB _rules_groups ${CMAKE_CURRENT_SOURCE_DIR}/rules_*.cmake)
+  foreach(_g ${_rules_groups})
+    include(${_g})
+  endforeach()
+endif()
