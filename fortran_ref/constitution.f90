@@ -11,6 +11,7 @@ module mpm3d_constitution
   use mpm3d_j2_plasticity, only: yield_stress, radial_return, adiabatic_heating
   use mpm3d_drucker_prager, only: dp_return
   use mpm3d_neo_hookean, only: neo_hookean, neo_hookean_tl
+  use mpm3d_rules, only: step_rules
   implicit none
   private
 
@@ -73,9 +74,11 @@ contains
   ! vol_old/vol_new: particle volume before and after the increment. temp is read and
   ! written only when has_temp; q (bulk viscosity pressure) only when has_q. burn: the
   ! programmed-burn fraction (hiex); q1, q2, qlen: bulk viscosity coefficients and length.
+  ! rules: the rules in force (rules.f90; read: bulk_switch, bulk_linear, dp_return, fluid_viscous).
   subroutine stress_update(m, de, dw, dt, mass, vol_old, vol_new, sig, epeff, ie, has_temp, temp, &
-                           has_q, q, burn, q1, q2, qlen)
+                           has_q, q, burn, q1, q2, qlen, rules)
     type(material_params), intent(in) :: m
+    type(step_rules), intent(in) :: rules
     real(dp), intent(in) :: de(6), dw(3), dt, mass, vol_old, vol_new, burn, q1, q2, qlen
     real(dp), intent(inout) :: sig(6), epeff, ie, temp, q
     logical, intent(in) :: has_temp, has_q

@@ -123,16 +123,20 @@ contains
       if (has_tl) burn = burn_fraction(mats(mat(p) + 1), tlight(p), c%clock%time)
       if (has_temp .and. has_q) then
         call stress_update(mats(mat(p) + 1), de, dw, dt, mass(p), vol_old, vol_new, sig(:, p), &
-                           epeff(p), ie(p), .true., temp(p), .true., qv(p), burn, c%method%bulk_q1, c%method%bulk_q2, c%grid%h)
+                           epeff(p), ie(p), .true., temp(p), .true., qv(p), burn, c%method%bulk_q1, c%method%bulk_q2, &
+                           c%grid%h, c%rules)
       else if (has_temp) then
         call stress_update(mats(mat(p) + 1), de, dw, dt, mass(p), vol_old, vol_new, sig(:, p), &
-                           epeff(p), ie(p), .true., temp(p), .false., qdummy, burn, c%method%bulk_q1, c%method%bulk_q2, c%grid%h)
+                           epeff(p), ie(p), .true., temp(p), .false., qdummy, burn, c%method%bulk_q1, c%method%bulk_q2, &
+                           c%grid%h, c%rules)
       else if (has_q) then
         call stress_update(mats(mat(p) + 1), de, dw, dt, mass(p), vol_old, vol_new, sig(:, p), &
-                           epeff(p), ie(p), .false., tdummy, .true., qv(p), burn, c%method%bulk_q1, c%method%bulk_q2, c%grid%h)
+                           epeff(p), ie(p), .false., tdummy, .true., qv(p), burn, c%method%bulk_q1, c%method%bulk_q2, &
+                           c%grid%h, c%rules)
       else
         call stress_update(mats(mat(p) + 1), de, dw, dt, mass(p), vol_old, vol_new, sig(:, p), &
-                           epeff(p), ie(p), .false., tdummy, .false., qdummy, burn, c%method%bulk_q1, c%method%bulk_q2, c%grid%h)
+                           epeff(p), ie(p), .false., tdummy, .false., qdummy, burn, c%method%bulk_q1, c%method%bulk_q2, &
+                           c%grid%h, c%rules)
       end if
       vol(p) = vol_new
     end do

@@ -1,6 +1,7 @@
 // MaterialModel (Constitution): stress update of one particle, Jaumann rotation, EOS.
 // Pure functions of their arguments: no module state, callable from any thread.
 #pragma once
+#include "core/step_state.hpp"
 #include "materials/material.hpp"
 
 namespace mpm3d {
@@ -20,9 +21,11 @@ struct StressState {
 // before and after the increment.
 // burn: programmed-burn fraction F in [0, 1] (hiex only, see burn_fraction); it multiplies
 // the EOS pressure. q1, q2, qlen: bulk viscosity coefficients and length (used when s.q).
+// rules: the rules in force (core/rules.hpp; the stress update reads bulk_switch,
+// bulk_linear, dp_return and fluid_viscous).
 void stress_update(const MaterialParams& m, const double de[6], const double dw[3], double dt,
                    double mass, double vol_old, double vol_new, StressState s, double burn = 1.0,
-                   double q1 = 0.0, double q2 = 0.0, double qlen = 0.0);
+                   double q1 = 0.0, double q2 = 0.0, double qlen = 0.0, const StepRules& rules = StepRules{});
 
 // The stress stage's batch of particles of one material, one array per quantity with a
 // lane per particle (the layout the vector code loads directly).
@@ -49,6 +52,7 @@ struct StressBlockArgs {
   // Total Lagrangian (TLmp, neoh only): L is the velocity gradient in the reference
   // configuration, F += L dt, and the stress comes with V0 P (pk1).
   bool tl;
+  StepRules rules;  // the rules in force (core/rules.hpp)
 };
 // Strain and spin increments dt sym(L), dt skew(L), new volume and stress update of all
 // kStressLanes particles of b (vector code; every lane computes what stress_update

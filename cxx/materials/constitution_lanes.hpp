@@ -45,7 +45,8 @@ struct LaneUpdate {
   // read and written only when has_temp / has_q.
   static void update(const MaterialParams& m, const T de[6], const T dw[3], double dt, T mass,
                      T vol_old, T vol_new, T sig[6], T& epeff, T& ie, T& temp, bool has_temp,
-                     T& qv, bool has_q, T burn, double q1, double q2, double qlen) {
+                     T& qv, bool has_q, T burn, double q1, double q2, double qlen, const StepRules& rules) {
+    (void)rules;
     Ops::jaumann_rotate(sig, dw);
     T sig_r[6];
     for (int c = 0; c < 6; ++c) sig_r[c] = sig[c];
@@ -209,7 +210,7 @@ void stress_block_lanes(const MaterialParams& m, StressBlock& b, int first, cons
   T epeff = TL::load(b.epeff + first), ie = TL::load(b.ie + first);
   T temp = TL::load(b.temp + first), qv = TL::load(b.qv + first);
   U::update(m, de, dw, dt, TL::load(b.mass + first), vol_old, vol_new, sig, epeff, ie, temp,
-            a.has_temp, qv, a.has_q, TL::load(b.burn + first), a.q1, a.q2, a.qlen);
+            a.has_temp, qv, a.has_q, TL::load(b.burn + first), a.q1, a.q2, a.qlen, a.rules);
   TL::store(b.vol + first, vol_new);
   for (int c = 0; c < 6; ++c) TL::store(b.sig[c] + first, sig[c]);
   TL::store(b.epeff + first, epeff);

@@ -37,7 +37,7 @@ inline void assemble_p2g(const StepContext* c, bool with_mass_mom, bool with_for
 inline StressBlockArgs stress_args(const StepContext* c) {
   return StressBlockArgs{c->clock.dt,        c->part.temp != nullptr, c->part.qv != nullptr,
                          c->method.bulk_q1,  c->method.bulk_q2,       c->grid.h,
-                         c->method.uvf != 0, c->method.tl != 0};
+                         c->method.uvf != 0, c->method.tl != 0,       c->rules};
 }
 
 namespace {
