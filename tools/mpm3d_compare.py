@@ -42,6 +42,13 @@ marked, and not compared.
 Also printed: both wall times, mpm3d's ns per particle-step (its --summary) and the
 original's 'Time per particle cycle' (its output or NAME.out).
 
+--rules and --rule are passed to mpm3d (mpm3d --help lists the rules: the places where
+mpm3d deliberately differs from the original programs). --explain answers why a column is
+beyond the tolerance: mpm3d runs again with each rule in turn set to the original program's
+value (the value under --rules original, or under the --rules given if it is book or
+current), then with all of them, and a table gives each column's largest difference under
+each.
+
 Exit status: 0 every compared column within tolerance; 1 some column beyond it;
 2 bad input (a program missing or not executable, a missing deck, a deck either
 program rejects)."""
@@ -365,11 +372,12 @@ def run_original(exe, deck_name, run_dir):
     return wall, original_ns(run_dir, os.path.splitext(deck_name)[0])
 
 
-def run_mpm3d(exe, deck_name, run_dir, threads):
-    """Run mpm3d with its outputs in run_dir; (wall s, its ns per particle-step)."""
+def run_mpm3d(exe, deck_name, run_dir, threads, rule_args=()):
+    """Run mpm3d with its outputs in run_dir; (wall s, its ns per particle-step).
+    rule_args: mpm3d's --rules/--rule options."""
     summary = os.path.join(run_dir, SUMMARY_NAME)
     argv = [exe, "--threads", str(threads), "--quiet", "--out-dir", run_dir,
-            "--summary", summary, deck_name]
+            "--summary", summary] + list(rule_args) + [deck_name]
     rc, wall = run(argv, run_dir)
     if rc != 0 or not has_data(os.path.join(run_dir, ENERGY_FILE)):
         why = "exit status %d" % rc if rc != 0 else "no %s written" % ENERGY_FILE
@@ -461,17 +469,16 @@ def compare_deck(deck, args, original, mpm3d):
             dirs[sub] = os.path.join(tmp, sub)
             os.mkdir(dirs[sub])
             shutil.copy(deck, os.path.join(dirs[sub], deck_name))
+        rule_args = user_rule_args(args)
         timing = (run_original(original, deck_name, dirs["original"]),
-                  run_mpm3d(mpm3d, deck_name, dirs["mpm3d"], args.threads))
-        rows, plots = compare_file(ENERGY_FILE, os.path.join(dirs["original"], ENERGY_FILE),
-                                   os.path.join(dirs["mpm3d"], ENERGY_FILE), ENERGY_COLUMNS)
-        orig_curves = curve_file(dirs["original"], stem)
-        if orig_curves:
-            more, more_plots = compare_file(os.path.basename(orig_curves), orig_curves,
-                                            curve_file(dirs["mpm3d"], stem))
-            rows, plots = rows + more, plots + more_plots
+                  run_mpm3d(mpm3d, deck_name, dirs["mpm3d"], args.threads, rule_args))
+        rows, plots = compare_runs(stem, dirs["original"], dirs["mpm3d"])
         rows += compare_particles(stem, dirs["original"], dirs["mpm3d"])
+        if rule_args:
+            print("  (mpm3d run with %s)" % " ".join(rule_args))
         failed = print_table(deck_name, rows, args.tolerance, timing)
+        if failed and args.explain:
+            explain(deck_name, stem, dirs, args, mpm3d, rows, failed)
         if args.plot:
             os.makedirs(args.plot, exist_ok=True)
             plot_deck(os.path.join(args.plot, stem + ".png"), deck_name, plots)
@@ -480,6 +487,89 @@ def compare_deck(deck, args, original, mpm3d):
         if args.keep:
             keep_runs(args.keep, stem, tmp)
         shutil.rmtree(tmp, ignore_errors=True)
+
+
+def compare_runs(stem, orig_dir, our_dir):
+    """Rows and plot series of the energy file and the curve file of two run directories."""
+    rows, plots = compare_file(ENERGY_FILE, os.path.join(orig_dir, ENERGY_FILE),
+                               os.path.join(our_dir, ENERGY_FILE), ENERGY_COLUMNS)
+    orig_curves = curve_file(orig_dir, stem)
+    if orig_curves:
+        more, more_plots = compare_file(os.path.basename(orig_curves), orig_curves,
+                                        curve_file(our_dir, stem))
+        rows, plots = rows + more, plots + more_plots
+    return rows, plots
+
+
+# ---------------------------------------------------------------------------- --explain
+
+def user_rule_args(args):
+    """mpm3d's rule options as given: --rules PRESET, then each --rule NAME=VALUE."""
+    out = ["--rules", args.rules] if args.rules else []
+    for r in args.rule or []:
+        out += ["--rule", r]
+    return out
+
+
+def rules_in_force(mpm3d, deck_name, run_dir, rule_args):
+    """{rule: value} that mpm3d resolves for the deck under rule_args (a run of 0 steps,
+    from its summary)."""
+    summary = os.path.join(run_dir, "rules.json")
+    argv = [mpm3d, "--threads", "1", "--quiet", "--no-output", "--steps", "0", "--summary",
+            summary] + list(rule_args) + [deck_name]
+    rc, _ = run(argv, run_dir)
+    try:
+        with open(summary) as f:
+            rules = json.load(f).get("rules")
+    except (OSError, ValueError):
+        rules = None
+    if rc != 0 or not isinstance(rules, dict):
+        raise BadInput("%s: mpm3d did not report its rules (exit status %d):\n%s"
+                       % (deck_name, rc, log_tail(run_dir, 3)))
+    return rules
+
+
+def explain(deck_name, stem, dirs, args, mpm3d, rows, failed):
+    """Rerun mpm3d with each rule that differs from the original program's value set to it,
+    then with all of them; print each failing column's largest difference under each."""
+    base_args = user_rule_args(args)
+    preset = args.rules if args.rules in ("book", "current") else "original"
+    work = os.path.join(os.path.dirname(dirs["mpm3d"]), "explain")
+    os.makedirs(work, exist_ok=True)
+    shutil.copy(os.path.join(dirs["mpm3d"], deck_name), os.path.join(work, deck_name))
+    ours = rules_in_force(mpm3d, deck_name, work, base_args)
+    target = rules_in_force(mpm3d, deck_name, work, ["--rules", preset])
+    if ours == target:
+        print("  why: mpm3d already ran with the original program's rules (--rules %s): the "
+              "difference is not one of mpm3d's rules\n" % preset)
+        return
+    trials = [("%s=%s" % (r, target[r]), base_args + ["--rule", "%s=%s" % (r, target[r])])
+              for r in target if ours.get(r) != target[r]]
+    if len(trials) > 1:
+        trials.append(("all (--rules %s)" % preset, ["--rules", preset]))
+    as_compared = {r.column: r.max_diff for r in rows if r.column in failed}
+    table = [("(as compared)", as_compared)]
+    for label, rule_args in trials:
+        run_dir = os.path.join(work, "run%d" % len(table))
+        os.mkdir(run_dir)
+        shutil.copy(os.path.join(work, deck_name), os.path.join(run_dir, deck_name))
+        rc, _ = run([mpm3d, "--threads", str(args.threads), "--quiet", "--out-dir", run_dir]
+                    + rule_args + [deck_name], run_dir)
+        if rc != 0 or not has_data(os.path.join(run_dir, ENERGY_FILE)):
+            table.append((label, None))
+            continue
+        trial_rows, _ = compare_runs(stem, dirs["original"], run_dir)
+        table.append((label, {r.column: r.max_diff for r in trial_rows if r.column in failed}))
+    print("  why: the columns beyond %g %% (largest difference %%) with each rule set to the "
+          "original program's value" % args.tolerance)
+    w = max(len(label) for label, _ in table)
+    print("  %-*s  %s" % (w, "rule", "  ".join("%10s" % c for c in failed)))
+    for label, diffs in table:
+        cells = ("%10s" % ("mpm3d fails" if diffs is None else fmt(diffs.get(c), "%.3f"))
+                 for c in failed)
+        print("  %-*s  %s" % (w, label, "  ".join(cells)))
+    print()
+    sys.stdout.flush()
 
 
 def parse_args(argv):
@@ -495,6 +585,13 @@ def parse_args(argv):
                    help="largest allowed difference, in %% of a column's largest "
                         "magnitude (default 1)")
     p.add_argument("--plot", metavar="DIR", help="write DIR/DECKNAME.png (needs matplotlib)")
+    p.add_argument("--rules", metavar="PRESET", choices=["ours", "original", "book", "current"],
+                   help="mpm3d's rules: ours (default), original, book or current")
+    p.add_argument("--rule", action="append", metavar="NAME=VALUE",
+                   help="set one of mpm3d's rules (repeatable; mpm3d --help lists them)")
+    p.add_argument("--explain", action="store_true",
+                   help="for the columns beyond the tolerance, rerun mpm3d with each rule set "
+                        "to the original program's value, then all, and print a table")
     p.add_argument("--keep", metavar="DIR",
                    help="keep both runs in DIR/DECKNAME/{original,mpm3d} (replacing those)")
     p.add_argument("decks", nargs="+", metavar="DECK")

@@ -93,6 +93,22 @@ if(Python3_Interpreter_FOUND)
            --file ${_cmp_out}/keep/sg_usf_blocks/original/EnergyPlot.dat
            --file ${_cmp_out}/keep/sg_usf_blocks/mpm3d/sg_usf_blocks_curv.dat)
 
+  # (g) Rules: --rules/--rule reach mpm3d; --explain names the rule behind a difference. The
+  # stand-in original runs by mpm3d's rules as MPM3D_FAKE_RULES sets them; on the explosive
+  # slab (a book deck with 'bulk') the book program's ignored 'bulk' moves the time step.
+  set(_cmp_slab ${CMAKE_SOURCE_DIR}/inputs/explosives/slab_small.mpm)
+  compare_test(rules_passed ENV "MPM3D_FAKE_RULES=--rules original --rule burn=ramp"
+    OPTIONS ${_orig} --rules original --rule burn=ramp ${_cmp_slab}
+    EXPECT --rc 0 --stdout "mpm3d run with --rules original --rule burn=ramp"
+           --stdout "kinetic +0\\.000 +0\\.000 +ok" --stdout "all compared columns within 1 %")
+  compare_test(explain ENV "MPM3D_FAKE_RULES=--rule bulk_book=ignore"
+    OPTIONS ${_orig} --explain ${_cmp_slab}
+    EXPECT --rc 1 --stdout "beyond 1 %: kinetic"
+           --stdout "^  \\(as compared\\) +[1-9][0-9]*\\.[0-9]+ "
+           --stdout "^  bulk_book=ignore +0\\.000 +0\\.000 "
+           --stdout "^  deck_reals=single +[1-9][0-9]*\\.[0-9]+ "
+           --stdout "^  all \\(--rules original\\) ")
+
   # make bench's pass over every public deck (tools/every_deck_speed.py): its cut deck, and one
   # deck name run end to end with the stand-in as both originals (every_deck_test.py).
   add_test(NAME compare.every_deck_speed

@@ -8,6 +8,8 @@ Environment:
   MPM3D_FAKE_MPM3D   the mpm3d program to run (required)
   MPM3D_FAKE_SCALE   COLUMN:FACTOR, e.g. kinetic:1.05: multiply that column of EnergyPlot.dat
                      (total, kinetic, internal) or of the curve file (by its header name)
+  MPM3D_FAKE_RULES   mpm3d options, e.g. "--rule bulk_book=ignore": the stand-in original runs
+                     by these rules (as if the original differed from mpm3d by them)
   MPM3D_FAKE_REJECT  original: fail after the run (a message, exit 1, the files written);
                      stop: as the original's 'stop' (a message, exit 0, no files written);
                      mpm3d: reject the deck when run as mpm3d (exit 1)
@@ -50,8 +52,9 @@ def main():
         print(" *** Error *** fake original: deck %s rejected" % deck)
         return 0
     summary = "fake_summary.json"
+    rules = os.environ.get("MPM3D_FAKE_RULES", "").split()
     subprocess.run([os.environ["MPM3D_FAKE_MPM3D"], "--threads", "1", "--quiet", "--out-dir",
-                    ".", "--summary", summary, deck], check=True)
+                    ".", "--summary", summary] + rules + [deck], check=True)
     with open(summary) as f:
         ns = json.load(f)["ns_per_particle_step"]
     print("** Time per particle cycle: %12.4f nanoseconds" % ns)
