@@ -19,6 +19,25 @@ if(TARGET mpm3d AND TARGET mpm3d_ref AND MPM3D_H5DIFF)
   rules_add(time_step ${_rules_inputs}/taylor/taylor_coarse.mpm 40 --rule time_step=current)
   rules_add(program_current ${_rules_inputs}/taylor/taylor_coarse.mpm 40 --rules current)
   rules_add(original_book ${_rules_inputs}/explosives/slab_small.mpm 40 --rules original)
+  # rules_reference(STEM DECK OPTIONS...): DECK under OPTIONS against the original program's
+  # own output for it (tests/reference/rules/STEM: every column within the bounds), and under
+  # our rules beyond them (the rule is what brings the agreement). tests/rules_reference.py.
+  find_package(Python3 COMPONENTS Interpreter)
+  function(rules_reference stem deck)
+    set(_ref ${CMAKE_CURRENT_SOURCE_DIR}/reference/rules/${stem})
+    add_test(NAME rules_reference.${stem}
+             COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/rules_reference.py
+                     $<TARGET_FILE:mpm3d> ${deck} ${_ref} ${ARGN})
+    add_test(NAME rules_reference.${stem}_ours
+             COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/rules_reference.py
+                     $<TARGET_FILE:mpm3d> ${deck} ${_ref} --beyond)
+    set_tests_properties(rules_reference.${stem} rules_reference.${stem}_ours PROPERTIES
+                         TIMEOUT 300 LABELS rules)
+  endfunction()
+  if(Python3_Interpreter_FOUND)
+    rules_reference(bar_bulk_book ${_rules_inputs}/rules/bar_bulk_book.mpm --rules original)
+    rules_reference(block_single_reals ${_rules_inputs}/rules/block_single_reals.mpm --rules original)
+  endif()
   file(GLOB _rules_groups ${CMAKE_CURRENT_SOURCE_DIR}/rules_*.cmake)
   foreach(_g ${_rules_groups})
     include(${_g})
