@@ -19,6 +19,11 @@ if(TARGET mpm3d AND TARGET mpm3d_ref AND MPM3D_H5DIFF)
   rules_add(time_step ${_rules_inputs}/taylor/taylor_coarse.mpm 40 --rule time_step=current)
   rules_add(program_current ${_rules_inputs}/taylor/taylor_coarse.mpm 40 --rules current)
   rules_add(original_book ${_rules_inputs}/explosives/slab_small.mpm 40 --rules original)
+  # A restart keeps the rules of the run it continues (the checkpoint records them).
+  add_test(NAME rules.restart
+           COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/rules_restart.sh $<TARGET_FILE:mpm3d>
+                   ${_rules_inputs}/rules/bar_bulk_book.mpm ${CMAKE_CURRENT_BINARY_DIR}/rules/restart)
+  set_tests_properties(rules.restart PROPERTIES TIMEOUT 120 LABELS rules)
   # rules_reference(STEM DECK OPTIONS...): DECK under OPTIONS against the original program's
   # own output for it (tests/reference/rules/STEM: every column within the bounds), and under
   # our rules beyond them (the rule is what brings the agreement). tests/rules_reference.py.

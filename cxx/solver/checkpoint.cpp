@@ -125,6 +125,8 @@ void write_checkpoint(const std::string& path, const Simulation& sim, const Outp
       put(path, s.id, "grid_cell", H5T_NATIVE_DOUBLE, &sim.grid.h);
       put(path, s.id, "grid_cells", H5T_NATIVE_INT, sim.grid.deck_nc, 3);
       put(path, s.id, "patch_cells", H5T_NATIVE_INT, &sim.grid.patch_cells);
+      // The rules the run was made with: a restart must keep them (checked on reading).
+      put_string(path, s.id, "rules", rules_text(m.rules));
       // The adaptive grid's window on the deck's lattice (the whole box without it).
       put(path, s.id, "grid_window_offset", H5T_NATIVE_INT, sim.grid.off, 3);
       put(path, s.id, "grid_window_cells", H5T_NATIVE_INT, sim.grid.nc, 3);
@@ -244,6 +246,15 @@ void read_checkpoint(const std::string& path, Simulation& sim, OutputSchedule& o
   get(path, s.id, "external_work", H5T_NATIVE_DOUBLE, &work);
   get(path, s.id, "particles_outside_grid", H5T_NATIVE_INT, &outside);
   if (steps < 0 || !(dt > 0.0) || !(h > 0.0)) fail(path, "bad step, dt or cell size");
+  {
+    // A checkpoint without the attribute was written before the rules existed: by ours.
+    const std::string written = H5Aexists(s.id, "rules") > 0
+                                    ? get_string(path, s.id, "rules")
+                                    : rules_text(resolve_rules(RuleRequest(), m.deck_current));
+    if (written != rules_text(m.rules))
+      fail(path, "written under the rules '" + written + "', the run asks for '" + rules_text(m.rules) +
+                     "' (give the same --rules and --rule options)");
+  }
 
   const bool marks = m.contact && m.scheme == SCHEME_USF;
   if (marks != (H5Lexists(s.id, "contact_marks", H5P_DEFAULT) > 0))
