@@ -9,7 +9,7 @@ module mpm3d_constitution
   use mpm3d_stress_ops, only: double_dot, jaumann_rotate, bulk_viscosity, det_identity_plus
   use mpm3d_eos, only: eos_coefficients
   use mpm3d_j2_plasticity, only: yield_stress, radial_return, adiabatic_heating
-  use mpm3d_drucker_prager, only: dp_return
+  use mpm3d_drucker_prager, only: dp_return, dp_return_original
   use mpm3d_neo_hookean, only: neo_hookean, neo_hookean_tl
   use mpm3d_rules, only: step_rules
   implicit none
@@ -137,7 +137,11 @@ contains
       mean = mean_of(sig)
       call minus_diag(sig, mean, s)
       if (m%type == MAT_DPM) then
-        deps = dp_return(m, s, mean, m%lambda + (two_g / 3.0_dp), m%shear)
+        if (rules%dp_return /= 0) then
+          deps = dp_return_original(m, s, mean, m%lambda + (two_g / 3.0_dp), m%shear)
+        else
+          deps = dp_return(m, s, mean, m%lambda + (two_g / 3.0_dp), m%shear)
+        end if
         epeff = epeff + deps
       else
         deps = radial_return(m, s, epeff, strain_rate, tp)

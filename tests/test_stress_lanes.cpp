@@ -372,3 +372,52 @@ TEST(StressLanes, DruckerPragerReturnInLanesEqualsTheBranches) {
   EXPECT_GT(tension_below, 1600);
   EXPECT_GT(tension_corner, 1600);
 }
+
+// The original programs' Drucker-Prager return (rule dp_return=original) in lanes against
+// the same function on one double, bit for bit, on states that reach each of its arms:
+// elastic, shear below the cut-off, shear at or beyond it (sm' may stay beyond), and the
+// tension return that sets sm' = sigma_t and keeps the deviator.
+TEST(StressLanes, DruckerPragerOriginalReturnInLanesEqualsOneLane) {
+  using VL = mpm3d::VectorLane<4>;
+  using V = VL::D;
+  MaterialParams m{};
+  m.dp_qphi = 0.6;
+  m.dp_kphi = 0.02;
+  m.dp_qpsi = 0.1;
+  m.dp_tension = 0.01;
+  const double K = 40.0, G = 20.0;
+  std::mt19937_64 rng(20261128);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int elastic = 0, shear_below = 0, shear_beyond = 0, tension = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    double s[4][6], sm[4];
+    V sv[6], smv;
+    for (int i = 0; i < 4; ++i) {
+      const double scale = 0.05 * std::pow(10.0, u(rng));
+      for (int c = 0; c < 6; ++c) s[i][c] = (c < 3 ? 1.0 : 0.5) * scale * u(rng);
+      const double dev_mean = (s[i][0] + s[i][1] + s[i][2]) / 3.0;
+      for (int c = 0; c < 3; ++c) s[i][c] -= dev_mean;
+      sm[i] = 0.04 * u(rng);
+      for (int c = 0; c < 6; ++c) sv[c][i] = s[i][c];
+      smv[i] = sm[i];
+    }
+    const V dv = mpm3d::DruckerPragerLanes<V, VL>::dp_return_original(m, sv, smv, K, G);
+    for (int i = 0; i < 4; ++i) {
+      double sd[6], smd = sm[i];
+      for (int c = 0; c < 6; ++c) sd[c] = s[i][c];
+      const double dd = mpm3d::DruckerPragerLanes<double, mpm3d::ScalarLane>::dp_return_original(m, sd, smd, K, G);
+      EXPECT_EQ(std::memcmp(&dd, &dv[i], sizeof dd), 0) << "trial " << trial << " lane " << i;
+      EXPECT_EQ(std::memcmp(&smd, &smv[i], sizeof smd), 0) << "trial " << trial << " lane " << i;
+      for (int c = 0; c < 6; ++c) EXPECT_EQ(std::memcmp(&sd[c], &sv[c][i], sizeof(double)), 0) << trial;
+      const bool kept = std::memcmp(sd, s[i], sizeof sd) == 0;
+      if (kept && smd == sm[i]) ++elastic;
+      else if (kept && smd == m.dp_tension) ++tension;
+      else if (sm[i] < m.dp_tension) ++shear_below;
+      else ++shear_beyond;
+    }
+  }
+  EXPECT_GT(elastic, 1000);
+  EXPECT_GT(shear_below, 1000);
+  EXPECT_GT(shear_beyond, 1000);
+  EXPECT_GT(tension, 1000);
+}

@@ -46,7 +46,6 @@ struct LaneUpdate {
   static void update(const MaterialParams& m, const T de[6], const T dw[3], double dt, T mass,
                      T vol_old, T vol_new, T sig[6], T& epeff, T& ie, T& temp, bool has_temp,
                      T& qv, bool has_q, T burn, double q1, double q2, double qlen, const StepRules& rules) {
-    (void)rules;
     Ops::jaumann_rotate(sig, dw);
     T sig_r[6];
     for (int c = 0; c < 6; ++c) sig_r[c] = sig[c];
@@ -85,7 +84,10 @@ struct LaneUpdate {
       for (int c = 3; c < 6; ++c) s[c] = sig[c];
       T deps;
       if (m.type == MAT_DPM) {
-        deps = DruckerPrager::dp_return(m, s, mean, m.lambda + two_g / 3.0, m.shear);
+        if (rules.dp_return)
+          deps = DruckerPrager::dp_return_original(m, s, mean, m.lambda + two_g / 3.0, m.shear);
+        else
+          deps = DruckerPrager::dp_return(m, s, mean, m.lambda + two_g / 3.0, m.shear);
         epeff = epeff + deps;
       } else {
         deps = J2::radial_return(m, s, epeff, strain_rate, temp_in);
