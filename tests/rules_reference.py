@@ -32,7 +32,7 @@ def main(argv):
     if len(argv) < 4:
         print(__doc__, file=sys.stderr)
         return 2
-    mpm3d, deck, ref = argv[1], argv[2], argv[3]
+    mpm3d, deck, ref = os.path.abspath(argv[1]), argv[2], argv[3]
     rest = argv[4:]
     beyond_wanted = bool(rest) and rest[0] == "--beyond"
     if beyond_wanted:
