@@ -73,14 +73,17 @@ contains
 
   ! Compressible neo-Hookean in total Lagrangian form (TLmp), as NeoHookeanLanes::neo_hookean_tl:
   ! H += dF; P = G (F - F^-T) + lambda ln J F^-T with F^-T = cof(F) / J; pk = V0 P,
-  ! sigma = P F^T / J, volume V0 J, internal energy by the trapezoid of V0 P on dF.
-  subroutine neo_hookean_tl(m, df, h, mass, pk, sig, vol, ie)
+  ! sigma = P F^T / J, volume V0 J (vol: the old in, the new out), internal energy by the
+  ! trapezoid of V0 P on dF; work_current_volume (rule tl_shape=centre): the current program's,
+  ! the trapezoid of P on dF times the mean old and new current volume.
+  subroutine neo_hookean_tl(m, df, h, mass, pk, sig, vol, ie, work_current_volume)
     type(material_params), intent(in) :: m
     real(dp), intent(in) :: df(0:8), mass
-    real(dp), intent(inout) :: h(0:8), pk(0:8), ie
-    real(dp), intent(out) :: sig(6), vol
+    real(dp), intent(inout) :: h(0:8), pk(0:8), ie, vol
+    real(dp), intent(out) :: sig(6)
+    logical, intent(in) :: work_current_volume
     integer, parameter :: ra(6) = [0, 1, 2, 1, 0, 0], rb(6) = [0, 1, 2, 2, 2, 1]
-    real(dp) :: f(0:8), cof(0:8), p(0:8), jac, inv_j, ln_j, lam_ln, v0, fit, pn, work_old, work_new
+    real(dp) :: f(0:8), cof(0:8), p(0:8), jac, inv_j, ln_j, lam_ln, v0, fit, pn, work_old, work_new, vol_new
     integer :: r, c, a, b
     do r = 0, 8
       h(r) = h(r) + df(r)
@@ -123,8 +126,13 @@ contains
       work_new = work_new + (pn * df(r))
       pk(r) = pn
     end do
-    ie = ie + 0.5_dp * (work_old + work_new)
-    vol = v0 * jac
+    vol_new = v0 * jac
+    if (work_current_volume) then
+      ie = ie + (0.5_dp * (work_old + work_new)) * ((0.5_dp * (vol + vol_new)) / v0)
+    else
+      ie = ie + 0.5_dp * (work_old + work_new)
+    end if
+    vol = vol_new
   end subroutine neo_hookean_tl
 
 end module mpm3d_neo_hookean

@@ -55,6 +55,9 @@ contains
         outside = outside + 1
         cycle
       end if
+      ! Rule tl_shape=centre, trilinear TLmp: the particle at its reference cell's centre (the
+      ! current program never sets these natural coordinates; they stay 0).
+      if (c%method%tl /= 0 .and. c%rules%tl_shape /= 0 .and. c%method%family == TRANSFER_TRILINEAR) lx(:, p) = 0.5_dp
       cell(p) = idx(1) + c%grid%nc(1) * (idx(2) + c%grid%nc(2) * idx(3))
       q = idx(1) / pc + c%patch%npd(1) * (idx(2) / pc + c%patch%npd(2) * (idx(3) / pc))
       start(q + 2) = start(q + 2) + 1

@@ -25,7 +25,7 @@ contains
 
   ! The eight auxiliary nodes (0-based cell indices idx) and weights w of a particle in cell
   ! cl at local coordinates lxp, corner k = a + 2 b + 4 c at k + 1; g2p: the G2P rule on
-  ! held axes (cxx sg_weights).
+  ! held axes (cxx sg_corner_weights, with the rules sg_lower and sg_beyond).
   subroutine sg_weights(c, cl, lxp, g2p, idx, w)
     type(step_context), intent(in) :: c
     integer, intent(in) :: cl
@@ -71,6 +71,13 @@ contains
       w0(a) = 0.5_dp * (1.0_dp - x)
       w1(a) = 0.5_dp * (1.0_dp + x)
       last = c%grid%nc(a) - 1
+      ! Rules sg_lower=truncate (the first two centres for the outer half of a first cell) and
+      ! sg_beyond=drop (no weight for a centre beyond a one-cell axis): the current program's.
+      if (c%rules%sg_lower /= 0 .and. al < 0) al = 0
+      if (c%rules%sg_beyond /= 0 .and. last == 0) then
+        if (al < 0) w0(a) = 0.0_dp
+        if (al + 1 > last) w1(a) = 0.0_dp
+      end if
       if (al < 0) then
         lo(a) = 0
       else if (al > last) then

@@ -95,7 +95,8 @@ contains
         do k = 0, 8
           dl(k) = lg(k) * dt
         end do
-        call neo_hookean_tl(mats(mat(p) + 1), dl, defgrad(:, p), mass(p), pk1(:, p), sig(:, p), vol(p), ie(p))
+        call neo_hookean_tl(mats(mat(p) + 1), dl, defgrad(:, p), mass(p), pk1(:, p), sig(:, p), vol(p), ie(p), &
+                            c%rules%tl_shape /= 0)
         cycle
       end if
       neoh = mats(mat(p) + 1)%type == MAT_NEOH

@@ -173,13 +173,13 @@ void stress_block_lanes(const MaterialParams& m, StressBlock& b, int first, cons
                    (0.5 * (L[1] - L[3])) * dt};
   const T vol_old = TL::load(b.vol + first);
   if (a.tl) {  // TLmp (neoh only, checked by the deck reader)
-    T H[9], pk[9], dF[9], sig[6], vol, ie = TL::load(b.ie + first);
+    T H[9], pk[9], dF[9], sig[6], vol = vol_old, ie = TL::load(b.ie + first);
     for (int r = 0; r < 9; ++r) {
       H[r] = TL::load(b.H[r] + first);
       pk[r] = TL::load(b.pk1[r] + first);
       dF[r] = L[r] * dt;
     }
-    NeoHookean::neo_hookean_tl(m, dF, H, TL::load(b.mass + first), pk, sig, vol, ie);
+    NeoHookean::neo_hookean_tl(m, dF, H, TL::load(b.mass + first), pk, sig, vol, ie, a.rules.tl_shape != 0);
     TL::store(b.vol + first, vol);
     for (int c = 0; c < 6; ++c) TL::store(b.sig[c] + first, sig[c]);
     for (int r = 0; r < 9; ++r) {
@@ -187,7 +187,6 @@ void stress_block_lanes(const MaterialParams& m, StressBlock& b, int first, cons
       TL::store(b.pk1[r] + first, pk[r]);
     }
     TL::store(b.ie + first, ie);
-    (void)vol_old;
     return;
   }
   const bool from_det = a.uvf || m.type == MAT_NEOH;

@@ -69,9 +69,12 @@ struct NeoHookeanLanes {
   // reference increment dF = L0 dt; with J = det F and F^-T = cof(F) / J, the first
   // Piola-Kirchhoff stress P = G (F - F^-T) + lambda ln J F^-T, kept as V0 P (pk), the
   // Cauchy stress sigma = P F^T / J, the volume V0 J, and the internal energy by the
-  // trapezoid of the old and new V0 P on dF.
+  // trapezoid of the old and new V0 P on dF. vol: the old volume in, the new out.
+  // work_current_volume (rule tl_shape=centre): the current program's energy, the trapezoid
+  // of P on dF times the mean of the old and new current volumes, where P is per reference
+  // volume (written as V0 P scaled by that mean over V0).
   static void neo_hookean_tl(const MaterialParams& m, const T dF[9], T H[9], T mass, T pk[9], T sig[6], T& vol,
-                             T& ie) {
+                             T& ie, bool work_current_volume) {
     for (int r = 0; r < 9; ++r) H[r] = H[r] + dF[r];
     T f[9];
     for (int r = 0; r < 9; ++r) f[r] = (r % 4 == 0) ? 1.0 + H[r] : H[r];
@@ -101,8 +104,12 @@ struct NeoHookeanLanes {
       work_new = work_new + pn * dF[r];
       pk[r] = pn;
     }
-    ie = ie + 0.5 * (work_old + work_new);
-    vol = v0 * J;
+    const T vol_new = v0 * J;
+    if (work_current_volume)
+      ie = ie + (0.5 * (work_old + work_new)) * ((0.5 * (vol + vol_new)) / v0);
+    else
+      ie = ie + 0.5 * (work_old + work_new);
+    vol = vol_new;
   }
 };
 

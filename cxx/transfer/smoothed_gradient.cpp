@@ -18,7 +18,8 @@
 // is held by a fixed or symmetric face (two node layers), X is pushed to -1 or +1 (P2G,
 // forces, stress, remap), and G2P takes X from the particle's place in its own cell,
 // between the face's velocity and the cell centre's. Centres beyond the grid (a one-cell
-// axis, the outer half cells) pass their weight to the nearest centre. Both languages:
+// axis, the outer half cells) pass their weight to the nearest centre (rules sg_lower and
+// sg_beyond: the current program's auxiliary cells, sg_corner_weights). Both languages:
 // fortran_ref/stage_sg.f90, the same operations in the same order.
 #include <cstddef>
 #include <cstdint>
@@ -90,8 +91,8 @@ inline void patch_centres(const StepContext* c, int q, int q3[3], int lo[3], int
 
 // Every patch-list entry's weights (both rules) and centres into c->sgmp.sg_w, sg_cell; with
 // kReach also which neighbour patches its corners fall in, into c->sg_reach (the scatters
-// of several threads).
-template <bool kReach>
+// of several threads); kRules: under the rules that move weights (sg_rules_move_weights).
+template <bool kReach, bool kRules>
 void cache_weights(const StepContext* c) {
   const CellDecoder dec(c);
   for_patches(c, [&](int q) {
@@ -106,7 +107,8 @@ void cache_weights(const StepContext* c) {
     for (int e = c->patch.patch_start[q]; e < c->patch.patch_start[q + 1]; ++e) {
       int r[6];  // the corners' cells per axis: lo[3], hi[3]
       const int p = c->patch.patch_part[e];
-      sg_corner_weights(g, d, part_cell[p], part_lx + 3 * p, r, r + 3, sg_p2g_weights(c, e), sg_g2p_weights(c, e));
+      sg_corner_weights<kRules>(g, d, part_cell[p], part_lx + 3 * p, r, r + 3, sg_p2g_weights(c, e),
+                                sg_g2p_weights(c, e));
       for (int k = 0; k < 8; ++k) corner_cells[8 * size_t(e) + k] = sg_corner_cell(g, r, r + 3, k);
       if (!kReach) continue;
       unsigned reach = 0;
@@ -163,7 +165,7 @@ __attribute__((always_inline)) inline void visit_entry(const StepContext* c, int
 // to them), then f(p, cell[8], w[8], mask) for every particle that reaches them, mask bit
 // k set where its corner k is one of them and its weight is not zero (nonzero_corners):
 // each centre's contributions in the canonical order when f adds corners k = 0..7
-// (cache_weights<true> first). The centres of patches at rest are neither zeroed nor
+// (cache_weights with the reach first). The centres of patches at rest are neither zeroed nor
 // added to.
 template <class F>
 void for_contributions_in_order(const StepContext* c, int first_field, int nfield, F&& f) {
@@ -377,10 +379,11 @@ void gather_to_nodes(StepContext* c) {
 void sg_ensure_weights(StepContext* c, bool with_reach) {
   const int need = with_reach ? 2 : 1;
   if (c->sgmp.sg_cached >= need) return;
+  const bool rules = sg_rules_move_weights(c);
   if (with_reach)
-    cache_weights<true>(c);
+    rules ? cache_weights<true, true>(c) : cache_weights<true, false>(c);
   else
-    cache_weights<false>(c);
+    rules ? cache_weights<false, true>(c) : cache_weights<false, false>(c);
   c->sgmp.sg_cached = need;
 }
 

@@ -45,19 +45,31 @@ inline double* sg_g2p_weights(const StepContext* c, int e) { return sg_p2g_weigh
 
 // The grid sizes and held faces that the weights read, as a value: the caller's loop stores
 // ints (the corners' cells), which could alias the grid's own fields and make it reload them.
+// With them the rules that move weights (read by sg_corner_weights<true> alone).
 struct SgGeometry {
   int nc[3], nn[3];
   bool fix[6];
+  bool lower_truncate, beyond_drop;  // rules sg_lower=truncate, sg_beyond=drop
   explicit SgGeometry(const StepContext* c) {
     for (int a = 0; a < 3; ++a) nc[a] = c->grid.nc[a], nn[a] = c->grid.nn[a];
     for (int f = 0; f < 6; ++f) fix[f] = c->grid.fix[f] != 0;
+    lower_truncate = c->rules.sg_lower != 0;
+    beyond_drop = c->rules.sg_beyond != 0;
   }
 };
+
+// Whether a run takes sg_corner_weights<true>: a rule moves weights.
+inline bool sg_rules_move_weights(const StepContext* c) { return c->rules.sg_lower != 0 || c->rules.sg_beyond != 0; }
 
 // The weights of a particle's eight auxiliary nodes (its cell and local coordinates lx),
 // corner k = a + 2 b + 4 c of its auxiliary cell, under the P2G rule (w) and the G2P rule
 // (wg, which differs on held axes alone), and the cells of its corners per axis (lower
-// lo[a], upper hi[a]).
+// lo[a], upper hi[a]). kRules: the rules of the current program's auxiliary cells (g says
+// which): sg_lower=truncate, in the outer half of a first cell the auxiliary cell of the
+// first two centres (its truncation toward zero of (x - x0 - h/2) / h), with the weights
+// meant for the cell around the face node; sg_beyond=drop, on a one-cell axis no weight
+// for a centre beyond the grid (the current program skips those centres).
+template <bool kRules = false>
 __attribute__((always_inline)) inline void sg_corner_weights(const SgGeometry& g, const CellDecoder& dec, int cell,
                                                              const double* lx, int lo[3], int hi[3], double w[8],
                                                              double wg[8]) {
@@ -85,8 +97,16 @@ __attribute__((always_inline)) inline void sg_corner_weights(const SgGeometry& g
       w1[a] = g1[a] = 0.5 * (1.0 + X);
     }
     const int last = g.nc[a] - 1;
-    lo[a] = al < 0 ? 0 : (al > last ? last : al);
-    hi[a] = al + 1 > last ? last : al + 1;
+    int cl = al;  // the auxiliary cell's lower centre
+    if (kRules) {
+      if (g.lower_truncate && cl < 0) cl = 0;
+      if (g.beyond_drop && last == 0) {
+        if (cl < 0) w0[a] = g0[a] = 0.0;
+        if (cl + 1 > last) w1[a] = g1[a] = 0.0;
+      }
+    }
+    lo[a] = cl < 0 ? 0 : (cl > last ? last : cl);
+    hi[a] = cl + 1 > last ? last : cl + 1;
   }
   // Corner k's weight: the product (x * y) * z of its lower (f0) or upper (f1) factors.
   auto products = [](const double f0[3], const double f1[3], double out[8]) __attribute__((always_inline)) {

@@ -29,7 +29,7 @@ constexpr int kLanes = kStressLanes;
 // other contact component). Returns the number outside the window. The divisions and
 // floors in lanes; the rest one lane after the other, with the scalar code's side effects
 // (an outside particle keeps the local coordinates of the axes tested before the one it
-// fails on).
+// fails on). Rule tl_shape=centre: local coordinates 0.5 (trilinear TLmp).
 template <class VL>
 int bin_range(const StepContext* c, int lo, int hi, int* patch_of) {
   typedef decltype(VL::splat(0.0)) T;
@@ -80,6 +80,13 @@ int bin_range(const StepContext* c, int lo, int hi, int* patch_of) {
     }
     finish(p, ti, fi);
   }
+  // Rule tl_shape=centre, trilinear TLmp: every particle at the centre of its reference cell,
+  // as in the current program, which never sets those natural coordinates (its allocation
+  // leaves them 0).
+  if (c->method.tl && c->rules.tl_shape && c->method.family == TRANSFER_TRILINEAR)
+    for (p = lo; p < hi; ++p)
+      if (patch_of[p] >= 0)
+        for (int a = 0; a < 3; ++a) c->part.lx[3 * p + a] = 0.5;
   return outside;
 }
 
