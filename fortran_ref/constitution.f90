@@ -5,6 +5,7 @@
 ! stages use. Pure functions of their arguments (no module state). Every sum and product is
 ! written in the same explicit order as the C++ (cxx/materials/), so both give the same bits.
 module mpm3d_constitution
+  use, intrinsic :: iso_c_binding, only: c_float
   use mpm3d_material
   use mpm3d_stress_ops, only: double_dot, jaumann_rotate, bulk_viscosity, det_identity_plus
   use mpm3d_eos, only: eos_coefficients
@@ -54,12 +55,20 @@ contains
     call minus_diag(s, p_tot, sig)
   end subroutine stress_of
 
-  ! Programmed burn of hiex: F = min(1, max(0, (time - t_light) D / (1.5 h))); 1 otherwise.
-  pure real(dp) function burn_fraction(m, t_light, time) result(f)
+  ! Programmed burn of hiex: F = min(1, max(0, (time - t_light) D / (1.5 h))); with step
+  ! (rule burn=step) the original's F = 1 once time (the end of the step) is past the
+  ! lighting time, which it holds in single precision, else 0. 1 for every other material.
+  pure real(dp) function burn_fraction(m, t_light, time, step) result(f)
     type(material_params), intent(in) :: m
     real(dp), intent(in) :: t_light, time
+    logical, intent(in) :: step
     if (m%type /= MAT_HIEX) then
       f = 1.0_dp
+      return
+    end if
+    if (step) then
+      f = 0.0_dp
+      if (time > real(real(t_light, c_float), dp)) f = 1.0_dp
       return
     end if
     f = ((time - t_light) * m%det_vel) / m%burn_width
