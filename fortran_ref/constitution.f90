@@ -5,6 +5,7 @@
 ! stages use. Pure functions of their arguments (no module state). Every sum and product is
 ! written in the same explicit order as the C++ (cxx/materials/), so both give the same bits.
 module mpm3d_constitution
+  use, intrinsic :: iso_c_binding, only: c_float
   use mpm3d_material
   use mpm3d_stress_ops, only: double_dot, jaumann_rotate, bulk_viscosity, det_identity_plus
   use mpm3d_eos, only: eos_coefficients
@@ -54,12 +55,20 @@ contains
     call minus_diag(s, p_tot, sig)
   end subroutine stress_of
 
-  ! Programmed burn of hiex: F = min(1, max(0, (time - t_light) D / (1.5 h))); 1 otherwise.
-  pure real(dp) function burn_fraction(m, t_light, time) result(f)
+  ! Programmed burn of hiex: F = min(1, max(0, (time - t_light) D / (1.5 h))); with step
+  ! (rule burn=step) the original's F = 1 once time (the end of the step) is past the
+  ! lighting time, which it holds in single precision, else 0. 1 for every other material.
+  pure real(dp) function burn_fraction(m, t_light, time, step) result(f)
     type(material_params), intent(in) :: m
     real(dp), intent(in) :: t_light, time
+    logical, intent(in) :: step
     if (m%type /= MAT_HIEX) then
       f = 1.0_dp
+      return
+    end if
+    if (step) then
+      f = 0.0_dp
+      if (time > real(real(t_light, c_float), dp)) f = 1.0_dp
       return
     end if
     f = ((time - t_light) * m%det_vel) / m%burn_width
@@ -84,8 +93,8 @@ contains
     logical, intent(in) :: has_temp, has_q
     real(dp) :: sig_r(6), dev(6), s(6), s_r(6)
     real(dp) :: dkk, third, two_g, two_mu, vavg, strain_rate, tp, mean_r, lam_dkk, mean, deps, p_new
-    real(dp) :: vol0, dv, p_old, dwork, e_star, mu, a, b, e_new, q_new, q_old, base
-    logical :: failed, fluid
+    real(dp) :: vol0, dv, p_old, dwork, e_star, mu, a, b, e_new, q_new, q_old, base, q_speed
+    logical :: failed, fluid, q_on
     integer :: c
 
     call jaumann_rotate(sig, dw)
@@ -110,11 +119,14 @@ contains
       tp = 0.0_dp
     end if
     ! Bulk viscosity: the stored stress carries the last q in its pressure.
+    q_on = has_q
+    q_speed = m%wave_speed     ! the linear term's c
+    if (has_q .and. rules%bulk_linear /= 0) call bulk_q_original(m, q_on, q_speed)
     q_old = 0.0_dp
     q_new = 0.0_dp
-    if (has_q) then
+    if (q_on) then
       q_old = q
-      q_new = bulk_viscosity(mass / vol_new, qlen, m%wave_speed, dkk / dt, q1, q2)
+      q_new = bulk_viscosity(mass / vol_new, qlen, q_speed, dkk / dt, q1, q2)
       q = q_new
     end if
 
@@ -124,7 +136,7 @@ contains
       ! stress (Drucker-Prager).
       lam_dkk = m%lambda * dkk
       do c = 1, 3
-        if (has_q) then
+        if (q_on) then
           base = sig_r(c) + q_old
         else
           base = sig_r(c)
@@ -146,6 +158,11 @@ contains
       else
         deps = radial_return(m, s, epeff, strain_rate, tp)
       end if
+      if (q_on .and. rules%bulk_switch /= 0) then
+        ! Rule bulk_switch=stress: q only where the new mean stress (after the return) is compressive.
+        if (.not. (mean < 0.0_dp)) q_new = 0.0_dp
+        q = q_new
+      end if
       p_new = -mean
       failed = m%fail_strain > 0.0_dp .and. epeff >= m%fail_strain
       if (failed) then
@@ -154,7 +171,7 @@ contains
         end do
         if (p_new < 0.0_dp) p_new = 0.0_dp
       end if
-      call stress_of(s, p_new, has_q, q_new, sig)
+      call stress_of(s, p_new, q_on, q_new, sig)
       ie = ie + ((0.5_dp * (double_dot(sig_r, de) + double_dot(sig, de))) * vavg)
       call adiabatic_heating(m, s, deps, mass, vol_new, has_temp, temp)
       return
@@ -166,11 +183,18 @@ contains
     deps = 0.0_dp
     fluid = m%type == MAT_HIEX .or. m%type == MAT_NULL
     if (fluid .and. m%viscosity > 0.0_dp) then
-      ! The current version's null: the viscous deviator 2 mu dev(D), D = de / dt.
+      ! The current version's null: the viscous deviator 2 mu dev(D), D = de / dt; under the
+      ! rule fluid_viscous=full the original's 2 mu D (its integer 1/3 drops the trace term).
       two_mu = (2.0_dp * m%viscosity) / dt
-      do c = 1, 6
-        s(c) = two_mu * dev(c)
-      end do
+      if (rules%fluid_viscous /= 0) then
+        do c = 1, 6
+          s(c) = two_mu * de(c)
+        end do
+      else
+        do c = 1, 6
+          s(c) = two_mu * dev(c)
+        end do
+      end if
     else if (fluid) then
       do c = 1, 6
         s(c) = 0.0_dp
@@ -187,6 +211,12 @@ contains
         s(c) = 0.0_dp
       end do
     end if
+    if (q_on .and. rules%bulk_switch /= 0) then
+      ! Rule bulk_switch=stress: q only where the rotated old mean stress, without its q, is
+      ! compressive.
+      if (.not. (mean_r + q_old < 0.0_dp)) q_new = 0.0_dp
+      q = q_new
+    end if
 
     ! Energy equation solved with the new pressure (the EOS is linear in e):
     ! e1 = e* - (p1 + q1) dv / 2, p1 = F (a + b e1).
@@ -195,7 +225,7 @@ contains
     p_old = -mean_r
     dwork = (0.5_dp * (double_dot(s_r, de) + double_dot(s, de))) * vavg
     e_star = ((ie + dwork) / vol0) - ((0.5_dp * p_old) * dv)
-    if (has_q) e_star = e_star - ((0.5_dp * q_new) * dv)
+    if (q_on) e_star = e_star - ((0.5_dp * q_new) * dv)
     mu = (vol0 / vol_new) - 1.0_dp
     call eos_coefficients(m, mu, a, b)
     if (m%type == MAT_HIEX) then
@@ -206,8 +236,24 @@ contains
     if (failed .and. p_new < 0.0_dp) p_new = 0.0_dp
     e_new = e_star - ((0.5_dp * p_new) * dv)
     ie = e_new * vol0
-    call stress_of(s, p_new, has_q, q_new, sig)
+    call stress_of(s, p_new, q_on, q_new, sig)
     call adiabatic_heating(m, s, deps, mass, vol_new, has_temp, temp)
   end subroutine stress_update
+
+  ! The current program's bulk viscosity (rules bulk_switch=stress, bulk_linear=original;
+  ! the C++ LaneUpdate::bulk_q_original says what it does for each model): whether
+  ! material m gets q (on), and the linear term's c (speed).
+  pure subroutine bulk_q_original(m, on, speed)
+    type(material_params), intent(in) :: m
+    logical, intent(out) :: on
+    real(dp), intent(out) :: speed
+    logical :: with_eos, linear
+    with_eos = m%type == MAT_SJC .or. m%type == MAT_SJCF .or. m%type == MAT_JCF .or. m%type == MAT_HIEX .or. &
+               m%type == MAT_NULL
+    linear = m%type == MAT_ELAS .or. m%type == MAT_NEOH .or. m%type == MAT_NULL
+    speed = 0.0_dp
+    if (linear) speed = m%wave_speed
+    on = .not. with_eos .or. m%eos_type == EOS_MIE_GRUNEISEN .or. m%eos_type == EOS_WEAK
+  end subroutine bulk_q_original
 
 end module mpm3d_constitution

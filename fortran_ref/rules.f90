@@ -16,7 +16,7 @@ module mpm3d_rules
     integer(c_int) :: time_step = 0      ! 0 the initial dt kept, 1 recomputed every step
     integer(c_int) :: bulk_book = 0      ! book program: 0 'bulk' applied, 1 read and ignored
     integer(c_int) :: bulk_switch = 0    ! bulk viscosity where 0 the volume shrinks, 1 the mean stress is compressive
-    integer(c_int) :: bulk_linear = 0    ! 0 every material's wave speed, 1 the current program's
+    integer(c_int) :: bulk_linear = 0    ! 0 every material with its wave speed, 1 the current program's materials
     integer(c_int) :: burn = 0           ! 0 ramp over 1.5 cells, 1 step at the lighting time
     integer(c_int) :: dp_return = 0      ! Drucker-Prager: 0 onto the yield surface, 1 the original's branches
     integer(c_int) :: deck_reals = 0     ! 0 double, 1 rounded to single precision

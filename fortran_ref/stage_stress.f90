@@ -121,7 +121,7 @@ contains
         cycle
       end if
       burn = 1.0_dp
-      if (has_tl) burn = burn_fraction(mats(mat(p) + 1), tlight(p), c%clock%time)
+      if (has_tl) burn = burn_fraction(mats(mat(p) + 1), tlight(p), c%clock%time, c%rules%burn /= 0)
       if (has_temp .and. has_q) then
         call stress_update(mats(mat(p) + 1), de, dw, dt, mass(p), vol_old, vol_new, sig(:, p), &
                            epeff(p), ie(p), .true., temp(p), .true., qv(p), burn, c%method%bulk_q1, c%method%bulk_q2, &

@@ -91,6 +91,22 @@ TEST(Burn, FractionRampsOverOneAndAHalfCells) {
   EXPECT_EQ(mpm3d::burn_fraction(other, tl, 0.0), 1.0);
 }
 
+TEST(Burn, StepRuleLightsAllPastTheSinglePrecisionLightingTime) {
+  // Rule burn=step: F = 1 once the step's end time is past the lighting time as the
+  // original holds it (single precision: 1e-3 rounds up to 1.0000000475e-3), 0 up to it.
+  const MaterialParams m = tnt();
+  const double tl = 1.0e-3, tl_single = double(float(tl));
+  ASSERT_GT(tl_single, tl);
+  EXPECT_EQ(mpm3d::burn_fraction(m, tl, 0.0, true), 0.0);
+  EXPECT_EQ(mpm3d::burn_fraction(m, tl, 0.5 * (tl + tl_single), true), 0.0);
+  EXPECT_EQ(mpm3d::burn_fraction(m, tl, tl_single, true), 0.0);
+  EXPECT_EQ(mpm3d::burn_fraction(m, tl, std::nextafter(tl_single, 1.0), true), 1.0);
+  EXPECT_EQ(mpm3d::burn_fraction(m, tl, 1.0, true), 1.0);
+  MaterialParams other = m;
+  other.type = MAT_NULL;
+  EXPECT_EQ(mpm3d::burn_fraction(other, tl, 0.0, true), 1.0);
+}
+
 TEST(Burn, LightingTimeIsDistanceToTheNearestPointOverD) {
   // Two detonation points; each hiex particle is lit at (distance to the nearer) / D,
   // the copper particles carry no lighting time (0).

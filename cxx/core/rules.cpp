@@ -13,7 +13,8 @@ const RuleInfo kRules[kRuleCount] = {
     {"bulk_switch", {"volume", "stress"}, 0, 1,
      "bulk viscosity where the volume shrinks, or where the mean stress is compressive"},
     {"bulk_linear", {"all", "original"}, 0, 1,
-     "bulk viscosity on every material, or none on hiex, no linear term on sjc, dpm"},
+     "bulk viscosity on every material, or none with a linear or JWL EOS (hiex) and the linear term on elas, "
+     "neoh, null only"},
     {"burn", {"ramp", "step"}, 1, 1, "programmed burn over 1.5 cells, or all at the lighting time"},
     {"dp_return", {"surface", "original"}, 1, 1,
      "Drucker-Prager returns onto the yield surface, or the original's branches"},

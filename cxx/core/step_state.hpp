@@ -133,9 +133,10 @@ struct StepRules {
   int program;        // 0 the book program's conventions, 1 the current program's
   int time_step;      // 0 the initial dt kept (book), 1 recomputed every step (current)
   int bulk_book;      // book program: 0 'bulk' applied, 1 read and ignored (the book program)
-  int bulk_switch;    // bulk viscosity where 0 the volume shrinks, 1 the old mean stress is compressive too
-  int bulk_linear;    // linear term: 0 every material's wave speed, 1 the current program's (none on
-                      // hiex, no linear term on sjc and dpm)
+  int bulk_switch;    // bulk viscosity where 0 the volume shrinks, 1 the mean stress is compressive too
+                      // (the new one in models without an EOS, the old one with)
+  int bulk_linear;    // 0 every material, linear term with its wave speed; 1 the current program's
+                      // (none with a linear or JWL EOS, so none on hiex; linear term on elas, neoh, null only)
   int burn;           // programmed burn: 0 ramp over 1.5 cells, 1 step at the lighting time
   int dp_return;      // Drucker-Prager: 0 returns end on the yield surface, 1 the original's branches
   int deck_reals;     // 0 deck reals read in double precision, 1 rounded to single as the original

@@ -65,8 +65,10 @@ void stress_block_lane(const MaterialParams& m, StressBlock& b, int i, const Str
 bool lanes_use_avx2();
 
 // Programmed burn of hiex: F = min(1, max(0, (time - t_light) D / (1.5 h))), with
-// m.burn_width = 1.5 h. 1 for every other material.
-double burn_fraction(const MaterialParams& m, double t_light, double time);
+// m.burn_width = 1.5 h; with step (rule burn=step) the original's F = 1 once time (the end
+// of the step) is past the lighting time, which it holds in single precision, else 0.
+// 1 for every other material.
+double burn_fraction(const MaterialParams& m, double t_light, double time, bool step = false);
 
 // Artificial bulk viscosity q = rho l (q1 l d^2 - q2 c d) for a volumetric strain rate
 // d = tr(D) < 0 (compression), 0 otherwise.

@@ -41,6 +41,26 @@ struct LaneUpdate {
   typedef J2Lanes<T, TL> J2;
   typedef DruckerPragerLanes<T, TL> DruckerPrager;
 
+  // The current program's bulk viscosity (rules bulk_switch=stress, bulk_linear=original).
+  // It computes q only while its mean stress is compressive, at a point of the update that
+  // depends on the model: the models without an EOS (elas, pla1, pla2, john, dpm) test the
+  // new mean stress, after the elastic update and the return; neoh the new mean stress (our
+  // neo_hookean does so under either rule); those with an EOS (sjc, sjcf, jcf, hiex, null)
+  // test the old mean stress, rotated, before the EOS (hiex and null unrotated: the same
+  // trace). Of those with an EOS only the Mie-Gruneisen and the weakly compressible EOS
+  // compute q at all: none with the linear EOS or JWL, so none on hiex. Its linear term's
+  // c is a per-particle wave speed set only for elas and neoh (sqrt((lambda + 2G) / rho0)) and
+  // null (sqrt(K / rho0)), zero for every other model: pla1, pla2, john, dpm, sjc, sjcf and
+  // jcf get the quadratic term alone.
+  // bulk_q_original: whether material m gets q there, and the linear term's c (*speed).
+  static bool bulk_q_original(const MaterialParams& m, double* speed) {
+    const bool with_eos = m.type == MAT_SJC || m.type == MAT_SJCF || m.type == MAT_JCF || m.type == MAT_HIEX ||
+                          m.type == MAT_NULL;
+    const bool linear = m.type == MAT_ELAS || m.type == MAT_NEOH || m.type == MAT_NULL;
+    *speed = linear ? m.wave_speed : 0.0;
+    return !with_eos || m.eos_type == EOS_MIE_GRUNEISEN || m.eos_type == EOS_WEAK;
+  }
+
   // The whole update (contract of stress_update in constitution.hpp). temp and q are
   // read and written only when has_temp / has_q.
   static void update(const MaterialParams& m, const T de[6], const T dw[3], double dt, T mass,
@@ -61,10 +81,13 @@ struct LaneUpdate {
     const T temp_in = has_temp ? temp : TL::splat(0.0);
     // Bulk viscosity: the stored stress carries the last q in its pressure; q_old is taken
     // out before the (incremental) elastic update, q_new put in after.
+    bool q_on = has_q;
+    double q_speed = m.wave_speed;  // the linear term's c
+    if (has_q && rules.bulk_linear) q_on = bulk_q_original(m, &q_speed);
     T q_old = TL::splat(0.0), q_new = TL::splat(0.0);
-    if (has_q) {
+    if (q_on) {
       q_old = qv;
-      q_new = Ops::bulk_viscosity(mass / vol_new, qlen, m.wave_speed, dkk / dt, q1, q2);
+      q_new = Ops::bulk_viscosity(mass / vol_new, qlen, q_speed, dkk / dt, q1, q2);
       qv = q_new;
     }
 
@@ -75,7 +98,7 @@ struct LaneUpdate {
       // stress (Drucker-Prager).
       const T lam_dkk = m.lambda * dkk;
       for (int c = 0; c < 3; ++c) {
-        const T base = has_q ? sig_r[c] + q_old : sig_r[c];
+        const T base = q_on ? sig_r[c] + q_old : sig_r[c];
         sig[c] = base + (lam_dkk + two_g * de[c]);
       }
       for (int c = 3; c < 6; ++c) sig[c] = sig_r[c] + two_g * de[c];
@@ -92,13 +115,18 @@ struct LaneUpdate {
       } else {
         deps = J2::radial_return(m, s, epeff, strain_rate, temp_in);
       }
+      if (q_on && rules.bulk_switch) {
+        // Rule bulk_switch=stress: q only where the new mean stress (after the return) is compressive.
+        q_new = TL::select(mean < 0.0, q_new, TL::splat(0.0));
+        qv = q_new;
+      }
       T p_new = -mean;
       if (m.fail_strain > 0.0) {
         const auto failed = epeff >= m.fail_strain;
         for (int c = 0; c < 6; ++c) s[c] = TL::select(failed, TL::splat(0.0), s[c]);
         p_new = TL::select(failed & (p_new < 0.0), TL::splat(0.0), p_new);
       }
-      const T p_tot = has_q ? p_new + q_new : p_new;
+      const T p_tot = q_on ? p_new + q_new : p_new;
       for (int c = 0; c < 3; ++c) sig[c] = s[c] - p_tot;
       for (int c = 3; c < 6; ++c) sig[c] = s[c];
       ie = ie + (0.5 * (Ops::double_dot(sig_r, de) + Ops::double_dot(sig, de))) * vavg;
@@ -114,9 +142,11 @@ struct LaneUpdate {
     T deps = TL::splat(0.0);
     const bool fluid = m.type == MAT_HIEX || m.type == MAT_NULL;
     if (fluid && m.viscosity > 0.0) {
-      // The current version's null: the viscous deviator 2 mu dev(D), D = de / dt.
+      // The current version's null: the viscous deviator 2 mu dev(D), D = de / dt; under the
+      // rule fluid_viscous=full the original's 2 mu D (its integer 1/3 drops the trace term).
       const double two_mu = (2.0 * m.viscosity) / dt;
-      for (int c = 0; c < 6; ++c) s[c] = two_mu * dev[c];
+      const T* rate = rules.fluid_viscous ? de : dev;
+      for (int c = 0; c < 6; ++c) s[c] = two_mu * rate[c];
     } else if (fluid) {
       for (int c = 0; c < 6; ++c) s[c] = TL::splat(0.0);
     } else {
@@ -127,6 +157,12 @@ struct LaneUpdate {
     const auto failed = epeff >= m.fail_strain;  // used only when can_fail
     if (can_fail)
       for (int c = 0; c < 6; ++c) s[c] = TL::select(failed, TL::splat(0.0), s[c]);
+    if (q_on && rules.bulk_switch) {
+      // Rule bulk_switch=stress: q only where the rotated old mean stress, without its q, is
+      // compressive.
+      q_new = TL::select(mean_r + q_old < 0.0, q_new, TL::splat(0.0));
+      qv = q_new;
+    }
 
     // Internal energy per unit initial volume, energy equation solved with the new
     // pressure (the EOS is linear in e): e1 = e* - (p1 + q1) dv / 2, p1 = F (a + b e1),
@@ -137,7 +173,7 @@ struct LaneUpdate {
     const T p_old = -mean_r;
     const T dwork = (0.5 * (Ops::double_dot(s_r, de) + Ops::double_dot(s, de))) * vavg;
     T e_star = (ie + dwork) / vol0 - (0.5 * p_old) * dv;
-    if (has_q) e_star = e_star - (0.5 * q_new) * dv;
+    if (q_on) e_star = e_star - (0.5 * q_new) * dv;
     const T mu = vol0 / vol_new - 1.0;
     T a, b;
     Eos::eos_coefficients(m, mu, &a, &b);
@@ -149,7 +185,7 @@ struct LaneUpdate {
     if (can_fail) p_new = TL::select(failed & (p_new < 0.0), TL::splat(0.0), p_new);
     const T e_new = e_star - (0.5 * p_new) * dv;
     ie = e_new * vol0;
-    const T p_tot = has_q ? p_new + q_new : p_new;
+    const T p_tot = q_on ? p_new + q_new : p_new;
     for (int c = 0; c < 3; ++c) sig[c] = s[c] - p_tot;
     for (int c = 3; c < 6; ++c) sig[c] = s[c];
     if (has_temp) J2::adiabatic_heating(m, s, deps, mass, vol_new, temp);

@@ -55,7 +55,7 @@ inline bool particle_quiet(const StepContext* c, const unsigned char* still, int
   for (int k = 0; k < 6; ++k)
     if (s[k] != 0.0) return false;
   const MaterialParams& mp = c->part.mats[c->part.mat[p]];
-  return !(c->part.tlight && mp.type == MAT_HIEX) || burn_fraction(mp, c->part.tlight[p], t) == 0.0;
+  return !(c->part.tlight && mp.type == MAT_HIEX) || burn_fraction(mp, c->part.tlight[p], t, c->rules.burn != 0) == 0.0;
 }
 
 }  // namespace

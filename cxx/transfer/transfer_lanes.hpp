@@ -266,7 +266,7 @@ inline void stress_block_load(const StepContext* c, const MaterialParams& mp, in
   b.ie[i] = c->part.ie[p];
   b.temp[i] = c->part.temp ? c->part.temp[p] : 0.0;
   b.qv[i] = c->part.qv ? c->part.qv[p] : 0.0;
-  b.burn[i] = c->part.tlight ? burn_fraction(mp, c->part.tlight[p], c->clock.time) : 1.0;
+  b.burn[i] = c->part.tlight ? burn_fraction(mp, c->part.tlight[p], c->clock.time, c->rules.burn != 0) : 1.0;
   if (c->part.defgrad)
     for (int r = 0; r < 9; ++r) b.H[r][i] = c->part.defgrad[9 * size_t(p) + size_t(r)];
   if (c->part.pk1)
