@@ -108,6 +108,14 @@ if(Python3_Interpreter_FOUND)
            --stdout "^  bulk_book=ignore +0\\.000 +0\\.000 "
            --stdout "^  deck_reals=single +[1-9][0-9]*\\.[0-9]+ "
            --stdout "^  all \\(--rules original\\) ")
+  # The stand-in original differs from mpm3d by the burn alone: the burn's row is 0.000, the
+  # other rules' rows keep the difference.
+  compare_test(explain_burn ENV "MPM3D_FAKE_RULES=--rule burn=step"
+    OPTIONS ${_orig} --explain ${_cmp_slab}
+    EXPECT --rc 1 --stdout "beyond 1 %: kinetic"
+           --stdout "^  burn=step +0\\.000 +0\\.000 "
+           --stdout "^  bulk_book=ignore +[1-9][0-9]*\\.[0-9]+ "
+           --stdout "^  all \\(--rules original\\) +[1-9][0-9]*\\.[0-9]+ ")
 
   # make bench's pass over every public deck (tools/every_deck_speed.py): its cut deck, and one
   # deck name run end to end with the stand-in as both originals (every_deck_test.py).
