@@ -13,8 +13,8 @@ const RuleInfo kRules[kRuleCount] = {
     {"bulk_switch", {"volume", "stress"}, 0, 1,
      "bulk viscosity where the volume shrinks, or where the mean stress is compressive"},
     {"bulk_linear", {"all", "original"}, 0, 1,
-     "bulk viscosity on every material, or none with a linear or JWL EOS (hiex) and the linear term on elas, "
-     "neoh, null only"},
+     "bulk viscosity on every material with its wave speed, or as the current program:\n"
+     "      none with a linear or JWL EOS (hiex), the linear term on elas, neoh and null only"},
     {"burn", {"ramp", "step"}, 1, 1, "programmed burn over 1.5 cells, or all at the lighting time"},
     {"dp_return", {"surface", "original"}, 1, 1,
      "Drucker-Prager returns onto the yield surface, or the original's branches"},
