@@ -83,7 +83,8 @@ contains
   ! vol_old/vol_new: particle volume before and after the increment. temp is read and
   ! written only when has_temp; q (bulk viscosity pressure) only when has_q. burn: the
   ! programmed-burn fraction (hiex); q1, q2, qlen: bulk viscosity coefficients and length.
-  ! rules: the rules in force (rules.f90; read: bulk_switch, bulk_linear, dp_return, fluid_viscous).
+  ! rules: the rules in force (rules.f90; read: bulk_switch, bulk_linear, dp_return, fluid_viscous,
+  ! bulk_work).
   subroutine stress_update(m, de, dw, dt, mass, vol_old, vol_new, sig, epeff, ie, has_temp, temp, &
                            has_q, q, burn, q1, q2, qlen, rules)
     type(material_params), intent(in) :: m
@@ -93,7 +94,7 @@ contains
     logical, intent(in) :: has_temp, has_q
     real(dp) :: sig_r(6), dev(6), s(6), s_r(6)
     real(dp) :: dkk, third, two_g, two_mu, vavg, strain_rate, tp, mean_r, lam_dkk, mean, deps, p_new
-    real(dp) :: vol0, dv, p_old, dwork, e_star, mu, a, b, e_new, q_new, q_old, base, q_speed
+    real(dp) :: vol0, dv, p_old, dwork, e_star, mu, a, b, e_new, q_new, q_old, base, q_speed, work
     logical :: failed, fluid, q_on
     integer :: c
 
@@ -172,7 +173,14 @@ contains
         if (p_new < 0.0_dp) p_new = 0.0_dp
       end if
       call stress_of(s, p_new, q_on, q_new, sig)
-      ie = ie + ((0.5_dp * (double_dot(sig_r, de) + double_dot(sig, de))) * vavg)
+      work = double_dot(sig_r, de) + double_dot(sig, de)
+      if (q_on .and. rules%bulk_work /= 0) then
+        ! Rule bulk_work=new: q's work by the new q over the whole step (the old stress's q_old
+        ! replaced by q_new), as the current program; for john it subtracts that work twice.
+        work = work + ((q_old - q_new) * dkk)
+        if (m%type == MAT_JOHN) work = work - (2.0_dp * (q_new * dkk))
+      end if
+      ie = ie + ((0.5_dp * work) * vavg)
       call adiabatic_heating(m, s, deps, mass, vol_new, has_temp, temp)
       return
     end if
@@ -225,7 +233,15 @@ contains
     p_old = -mean_r
     dwork = (0.5_dp * (double_dot(s_r, de) + double_dot(s, de))) * vavg
     e_star = ((ie + dwork) / vol0) - ((0.5_dp * p_old) * dv)
-    if (q_on) e_star = e_star - ((0.5_dp * q_new) * dv)
+    if (q_on) then
+      ! Rule bulk_work=new: the current program's -q_new dv in place of the old and new q's
+      ! halves (p_old carries q_old).
+      if (rules%bulk_work /= 0) then
+        e_star = e_star - ((q_new - (0.5_dp * q_old)) * dv)
+      else
+        e_star = e_star - ((0.5_dp * q_new) * dv)
+      end if
+    end if
     mu = (vol0 / vol_new) - 1.0_dp
     call eos_coefficients(m, mu, a, b)
     if (m%type == MAT_HIEX) then

@@ -10,11 +10,11 @@
 // placeholders), so that the Fortran stages reach the ranks' hooks. Every group's and every
 // member's offset is compared: padding after a short group cannot hide a missing member.
 
-extern "C" void mpm3d_f_context_layout(size_t out[113]);
+extern "C" void mpm3d_f_context_layout(size_t out[114]);
 extern "C" void mpm3d_f_step_constants(int out[17]);
 
 int main() {
-  constexpr int kChecks = 113;
+  constexpr int kChecks = 114;
   size_t f[kChecks];
   mpm3d_f_context_layout(f);
   const size_t c[kChecks] = {
@@ -130,7 +130,8 @@ int main() {
       offsetof(StepContext, rules.tl_shape),
       offsetof(StepContext, rules.sg_lower),
       offsetof(StepContext, rules.sg_beyond),
-      offsetof(StepContext, rules.fluid_viscous)};
+      offsetof(StepContext, rules.fluid_viscous),
+      offsetof(StepContext, rules.bulk_work)};
   const char* what[kChecks] = {
       "sizeof(StepContext)",
       "offsetof(part)",
@@ -244,7 +245,8 @@ int main() {
       "offsetof(rules.tl_shape)",
       "offsetof(rules.sg_lower)",
       "offsetof(rules.sg_beyond)",
-      "offsetof(rules.fluid_viscous)"};
+      "offsetof(rules.fluid_viscous)",
+      "offsetof(rules.bulk_work)"};
   int bad = 0;
   for (int i = 0; i < kChecks; ++i) {
     const bool ok = c[i] == f[i];

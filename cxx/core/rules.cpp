@@ -26,11 +26,14 @@ const RuleInfo kRules[kRuleCount] = {
     {"sg_beyond", {"nearest", "drop"}, 0, 1,
      "sgmp weights beyond a one-layer grid: to the nearest centre, or dropped"},
     {"fluid_viscous", {"deviator", "full"}, 0, 1, "viscous null: stress 2 mu dev(D), or 2 mu D"},
+    {"bulk_work", {"mean", "new"}, 0, 1,
+     "bulk viscosity's work by the mean of the old and new q, or by the new q (john: twice)"},
 };
 
 int& rule_value(StepRules& r, int i) {
   int* v[kRuleCount] = {&r.program,  &r.time_step, &r.bulk_book, &r.bulk_switch, &r.bulk_linear, &r.burn,
-                        &r.dp_return, &r.deck_reals, &r.tl_shape, &r.sg_lower,   &r.sg_beyond,  &r.fluid_viscous};
+                        &r.dp_return, &r.deck_reals, &r.tl_shape, &r.sg_lower,   &r.sg_beyond,  &r.fluid_viscous,
+                        &r.bulk_work};
   return *v[i];
 }
 

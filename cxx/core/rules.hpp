@@ -12,7 +12,7 @@
 
 namespace mpm3d {
 
-constexpr int kRuleCount = 12;
+constexpr int kRuleCount = 13;
 
 struct RuleInfo {
   const char* name;

@@ -145,6 +145,8 @@ struct StepRules {
   int sg_lower;       // sgmp auxiliary cell next to a lower face: 0 the nearest centre, 1 truncated toward 0
   int sg_beyond;      // sgmp weights of centres beyond a one-layer grid: 0 to the nearest centre, 1 dropped
   int fluid_viscous;  // viscous null: 0 stress 2 mu dev(D), 1 2 mu D (the original's integer 1/3)
+  int bulk_work;      // work of the bulk viscosity q: 0 by the mean of the old and new q, 1 by the
+                      // new q over the whole step (the current program; twice for john)
 };
 
 struct StepContext {

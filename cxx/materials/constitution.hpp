@@ -22,7 +22,7 @@ struct StressState {
 // burn: programmed-burn fraction F in [0, 1] (hiex only, see burn_fraction); it multiplies
 // the EOS pressure. q1, q2, qlen: bulk viscosity coefficients and length (used when s.q).
 // rules: the rules in force (core/rules.hpp; the stress update reads bulk_switch,
-// bulk_linear, dp_return and fluid_viscous).
+// bulk_linear, dp_return, fluid_viscous and bulk_work).
 void stress_update(const MaterialParams& m, const double de[6], const double dw[3], double dt,
                    double mass, double vol_old, double vol_new, StressState s, double burn = 1.0,
                    double q1 = 0.0, double q2 = 0.0, double qlen = 0.0, const StepRules& rules = StepRules{});

@@ -129,7 +129,14 @@ struct LaneUpdate {
       const T p_tot = q_on ? p_new + q_new : p_new;
       for (int c = 0; c < 3; ++c) sig[c] = s[c] - p_tot;
       for (int c = 3; c < 6; ++c) sig[c] = s[c];
-      ie = ie + (0.5 * (Ops::double_dot(sig_r, de) + Ops::double_dot(sig, de))) * vavg;
+      T work = Ops::double_dot(sig_r, de) + Ops::double_dot(sig, de);
+      if (q_on && rules.bulk_work) {
+        // Rule bulk_work=new: q's work by the new q over the whole step (the old stress's q_old
+        // replaced by q_new), as the current program; for john it subtracts that work twice.
+        work = work + (q_old - q_new) * dkk;
+        if (m.type == MAT_JOHN) work = work - 2.0 * (q_new * dkk);
+      }
+      ie = ie + (0.5 * work) * vavg;
       if (has_temp) J2::adiabatic_heating(m, s, deps, mass, vol_new, temp);
       return;
     }
@@ -173,7 +180,14 @@ struct LaneUpdate {
     const T p_old = -mean_r;
     const T dwork = (0.5 * (Ops::double_dot(s_r, de) + Ops::double_dot(s, de))) * vavg;
     T e_star = (ie + dwork) / vol0 - (0.5 * p_old) * dv;
-    if (q_on) e_star = e_star - (0.5 * q_new) * dv;
+    if (q_on) {
+      // Rule bulk_work=new: the current program's -q_new dv in place of the old and new q's
+      // halves (p_old carries q_old).
+      if (rules.bulk_work)
+        e_star = e_star - (q_new - 0.5 * q_old) * dv;
+      else
+        e_star = e_star - (0.5 * q_new) * dv;
+    }
     const T mu = vol0 / vol_new - 1.0;
     T a, b;
     Eos::eos_coefficients(m, mu, &a, &b);
