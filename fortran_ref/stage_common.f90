@@ -316,7 +316,7 @@ contains
   ! The layout of step_context (its size, then every group's and every member's offset, in
   ! the order of layout_check.cpp) and of material_params (size, eos_e0, eos_type, dp_tension).
   subroutine mpm3d_f_context_layout(out) bind(C, name='mpm3d_f_context_layout')
-    integer(c_size_t), intent(out) :: out(114)
+    integer(c_size_t), intent(out) :: out(115)
     type(step_context), target :: c
     type(material_params), target :: m(2)
     integer(c_intptr_t) :: c0, m0
@@ -436,6 +436,7 @@ contains
     out(112) = transfer(c_loc(c%rules%sg_beyond), 0_c_intptr_t) - c0
     out(113) = transfer(c_loc(c%rules%fluid_viscous), 0_c_intptr_t) - c0
     out(114) = transfer(c_loc(c%rules%bulk_work), 0_c_intptr_t) - c0
+    out(115) = transfer(c_loc(c%rules%pressure_q), 0_c_intptr_t) - c0
   end subroutine mpm3d_f_context_layout
 
 end module mpm3d_stage_common

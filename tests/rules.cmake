@@ -24,6 +24,11 @@ if(TARGET mpm3d AND TARGET mpm3d_ref AND MPM3D_H5DIFF)
            COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/rules_restart.sh $<TARGET_FILE:mpm3d>
                    ${_rules_inputs}/rules/bar_bulk_book.mpm ${CMAKE_CURRENT_BINARY_DIR}/rules/restart)
   set_tests_properties(rules.restart PROPERTIES TIMEOUT 120 LABELS rules)
+  # pressure_q acts on the written pressure only (no state to compare): the curve files.
+  add_test(NAME rules.pressure_q
+           COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/rules_pressure.sh $<TARGET_FILE:mpm3d>
+                   ${_rules_inputs}/fluids/viscous_column.mpm ${CMAKE_CURRENT_BINARY_DIR}/rules/pressure_q)
+  set_tests_properties(rules.pressure_q PROPERTIES TIMEOUT 120 LABELS rules)
   # rules_reference(STEM DECK OPTIONS...): DECK under OPTIONS against the original program's
   # own output for it (tests/reference/rules/STEM: every column within the bounds), and under
   # our rules beyond them (the rule is what brings the agreement). tests/rules_reference.py.
@@ -45,6 +50,7 @@ if(TARGET mpm3d AND TARGET mpm3d_ref AND MPM3D_H5DIFF)
     rules_reference(slope ${_rules_inputs}/granular/slope.mpm --rules original)
     rules_reference(block_floor_sgmp ${_rules_inputs}/hyperelastic/block_floor_sgmp.mpm --rules original)
     rules_reference(soft_beam_tl ${_rules_inputs}/hyperelastic/soft_beam_tl.mpm --rules original)
+    rules_reference(viscous_column ${_rules_inputs}/fluids/viscous_column.mpm --rules original)
     rules_reference(j2eos_linear ${_rules_inputs}/methods/j2eos_linear.mpm --rules original)
     rules_reference(john_wall ${_rules_inputs}/rules/john_wall.mpm --rules original)
   endif()

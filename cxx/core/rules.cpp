@@ -28,12 +28,13 @@ const RuleInfo kRules[kRuleCount] = {
     {"fluid_viscous", {"deviator", "full"}, 0, 1, "viscous null: stress 2 mu dev(D), or 2 mu D"},
     {"bulk_work", {"mean", "new"}, 0, 1,
      "bulk viscosity's work by the mean of the old and new q, or by the new q (john: twice)"},
+    {"pressure_q", {"in", "out"}, 0, 1, "output pres: the stress's pressure with q in it, or without q"},
 };
 
 int& rule_value(StepRules& r, int i) {
   int* v[kRuleCount] = {&r.program,  &r.time_step, &r.bulk_book, &r.bulk_switch, &r.bulk_linear, &r.burn,
                         &r.dp_return, &r.deck_reals, &r.tl_shape, &r.sg_lower,   &r.sg_beyond,  &r.fluid_viscous,
-                        &r.bulk_work};
+                        &r.bulk_work, &r.pressure_q};
   return *v[i];
 }
 

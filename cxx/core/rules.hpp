@@ -12,7 +12,7 @@
 
 namespace mpm3d {
 
-constexpr int kRuleCount = 13;
+constexpr int kRuleCount = 14;
 
 struct RuleInfo {
   const char* name;

@@ -147,6 +147,8 @@ struct StepRules {
   int fluid_viscous;  // viscous null: 0 stress 2 mu dev(D), 1 2 mu D (the original's integer 1/3)
   int bulk_work;      // work of the bulk viscosity q: 0 by the mean of the old and new q, 1 by the
                       // new q over the whole step (the current program; twice for john)
+  int pressure_q;     // output variable pres (curves, frames): 0 the stress's pressure, q included,
+                      // 1 without q (the current program writes its mean stress apart from q)
 };
 
 struct StepContext {

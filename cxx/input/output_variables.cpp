@@ -19,7 +19,12 @@ double var_seqv(const Model& m, int p) {
 }
 double var_epef(const Model& m, int p) { return m.particles.epeff[p]; }
 double var_mat(const Model& m, int p) { return double(m.particles.mat[p] + 1); }
-double var_pres(const Model& m, int p) { return pressure(&m.particles.sig[6 * size_t(p)]); }
+// Rule pressure_q=out: the stored stress carries the bulk viscosity q in its pressure; the
+// current program writes its mean stress, which holds no q.
+double var_pres(const Model& m, int p) {
+  const double with_q = pressure(&m.particles.sig[6 * size_t(p)]);
+  return m.rules.pressure_q && !m.particles.qv.empty() ? with_q - m.particles.qv[size_t(p)] : with_q;
+}
 double var_volu(const Model& m, int p) { return m.particles.vol[p]; }
 double var_engk(const Model& m, int p) {
   const double* v = &m.particles.v[3 * size_t(p)];
