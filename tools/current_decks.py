@@ -35,13 +35,11 @@ NOTES = {
         "trilinear TLmp never computes the particles' natural coordinates in their reference "
         "cells (only its sgmp branch does), so every particle takes the shape functions and "
         "gradients of its cell's centre, where we take them at the particle's reference "
-        "position. With every TLmp particle put at its cell's centre in our code (experiment, "
-        "2026-11-27), our run agrees with the current program within 1.5 % (kinetic) and 1.7 % "
-        "(internal) over "
-        "the whole run, 0.06 % at the end; what remains is the original's single-precision deck "
-        "reals (nu = 0.499 makes 1 - 2 nu sensitive to them) and its weighting of the work of P "
-        "on dF by the current volume where we use V0 (P is per reference volume). We keep the "
-        "shape functions at the particles' positions."),
+        "position, and it weighs the work of P on dF by the current volume where we use V0 (P is "
+        "per reference volume): the rule `tl_shape`. With the original's rules (`tl_shape=centre`, "
+        "and `deck_reals=single`, to which nu = 0.499 makes 1 - 2 nu sensitive) the run agrees "
+        "with the current program's (second column). We keep the shape functions at the "
+        "particles' positions."),
     "Cook_membrane_BSMPM5776p_Cookmo_Bimp": (
         "B-spline MPM (bimp) on the nearly incompressible neo-Hookean Cook membrane (nu 0.499), "
         "loaded quasi-statically (QuLo 15, Damp 0.3) and run on until the kinetic share of the "
@@ -66,11 +64,12 @@ NOTES = {
         "its weakly compressible EOS (seos type 4), bulk viscosity 1.5/1.0, sgmp, gravity. The "
         "same number of steps; kinetic energy and the tracked particles' displacements (the "
         "surge front, disx, and the column's top, disy) equal to the original's four printed "
-        "digits to the end. The internal energy, 0.2 % of the energy, differs by up to 5 % of its value: "
-        "we switch the bulk viscosity on where the volume shrinks (the book's rule), the "
-        "original where the previous mean stress is compressive; and our viscous stress is "
-        "the deviator 2 mu dev(D), where the original's 1/3 in integer arithmetic makes its "
-        "trace term zero (2 mu D)."),
+        "digits to the end. The internal energy, 0.2 % of the energy, differs by up to 4 % of its "
+        "value by our rules: we switch the bulk viscosity on where the volume shrinks, the "
+        "original where the previous mean stress is compressive, and it counts q's work with "
+        "the new q (rules `bulk_switch`, `bulk_work`); our viscous stress is the deviator "
+        "2 mu dev(D), where the original's 1/3 in integer arithmetic makes its trace term zero "
+        "(rule `fluid_viscous`). With the original's rules the internal energy agrees too."),
     "SGDeto1k": (
         "The one-dimensional TNT detonation with sgmp: a grid one cell thick in y and z. Here "
         "the original reads beyond its auxiliary grid: in G2P a particle next to a held face "
@@ -78,10 +77,9 @@ NOTES = {
         "every particle receives only a quarter of the grid's velocity and acceleration. We "
         "give such weights to the nearest centre (the weights sum to one). Our kinetic energy "
         "is therefore about 17 times the original's after 2000 steps (2.5 against 0.14), and "
-        "the step, which shrinks with the particle velocity, is shorter; with the original's "
-        "dropped weights emulated in our code (experiment, 2026-11-25) our run follows the "
-        "original's "
-        "energies to within 0.5 % at 2000 steps. The standard MPM run of the same charge "
+        "the step, which shrinks with the particle velocity, is shorter. The rule `sg_beyond=drop` "
+        "drops those weights as the original does: with the original's rules the run agrees "
+        "with the original's (second column). The standard MPM run of the same charge "
         "(book deck Deto1k) has a kinetic energy of 12 at t = 0.005, where the original's "
         "SGDeto1k has 0.5: the original's figure is the artefact, not the physics."),
     "FreeSoftBeam_MPM_v0p3_FreeSB_MPM": (

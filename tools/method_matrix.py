@@ -352,9 +352,10 @@ NOTES = {
         "the EOS; for `dpm` the updated one), we where the volume shrinks; and its linear "
         "term takes the "
         "particle's sound speed, which it sets for `elas`, `neoh` and `null` only, so that "
-        "the term vanishes for `sjc` and `dpm`. With `bulk 1.5 0` (no linear term in either "
-        "program) the copper pairs come closer (kinetic energy 1.8-4.3 %, the gimp block's "
-        "corner 8.5 %): what remains is the switch."),
+        "the term vanishes for `sjc` and `dpm`; it also counts q's work with the new q over "
+        "the step, we with the mean of the old and new q. These are the rules `bulk_switch`, "
+        "`bulk_linear` and `bulk_work` (docs/FROM_MPM3D_F90.md, \"The rules\"); under "
+        "`--rules original` every pair agrees."),
     "burn": (
         "Programmed burn. We ramp the burn fraction `F = (t - t_l) D / (1.5 h)` over one and "
         "a half cells (docs/EXPLOSIVES.md); the current program switches the whole EOS "
@@ -362,10 +363,8 @@ NOTES = {
         "viscosity (its JWL adds the particle's q, which only the other materials' branches "
         "compute). `bulk 0 0` "
         "alone changes little (kinetic energy still 10-11.5 % apart; the pressure curve at "
-        "mid-column, which the ramp delays, 97-99 %). Cause: the burn rule (shown by "
-        "experiment, 2026-11-27: with a step burn, our ramp width set to 1e-300 in an mpm3d "
-        "build passed with `--mpm3d`, every method agrees within 0.94 % with the default "
-        "viscosity, and to the printed digits (0.000 %) with `bulk 0 0`)."),
+        "mid-column, which the ramp delays, 97-99 %). Cause: the rules `burn` and "
+        "`bulk_linear`; under `--rules original` every method agrees to the printed digits."),
     "dp": (
         "Drucker-Prager near the tension cut-off. The current program picks the shear "
         "return whenever the trial stress lies above the corner line `h > 0`, and leaves the "
@@ -373,13 +372,10 @@ NOTES = {
         "its trial value); we take the tension return there. And its tension return sets "
         "`sm = sigma_t` and keeps the deviator, where ours caps `tau` at `tau_P` "
         "(Model notes, `dpm`, above). `bulk 0 0` alone changes little (kinetic energy "
-        "24-52 % apart). Cause: the two branches (shown by experiment, 2026-11-27: with the "
-        "current program's branches in our code the runs agree to the printed digits "
-        "(0.000 %) with `bulk 0 0` and within 1.3-2.3 % (kinetic energy) with the default "
-        "viscosity; with only the first of the two branches the kinetic energy stays "
-        "11-34 % apart, with only the second 92-99 %). The current program's first branch "
-        "leaves stresses outside its own tension cut-off, so we keep our returns, which end "
-        "on the yield surface."),
+        "24-52 % apart). Cause: the two branches, the rule `dp_return` (with the bulk "
+        "viscosity's rules: under `--rules original` every method agrees to the printed "
+        "digits). The current program's first branch leaves stresses outside its own tension "
+        "cut-off, so we keep our returns, which end on the yield surface."),
     "tl": (
         "TLmp. The current program's trilinear TLmp never computes the particles' natural "
         "coordinates in their reference cells (only its sgmp branch does; they stay zero, as "
@@ -390,8 +386,9 @@ NOTES = {
         "the internal energy within 0.8 %, the current program weighing the work of P on "
         "dF by the current volume, we by V0). The column of the other neoh decks, two "
         "particles per cell (`run --variant tl-coarse`): kinetic energy 32 %, internal "
-        "energy 42 %, the tip's vertical displacement 44 % apart. We keep the shape "
-        "functions at the particles' own reference positions."),
+        "energy 42 %, the tip's vertical displacement 44 % apart. The rule `tl_shape` "
+        "(`centre`: the cell's centre and the current volume) gives the current program's "
+        "numbers; we keep the shape functions at the particles' own reference positions."),
 }
 # The notes of each deck, in order.
 NOTE_OF = {"j2eos_linear": ["bulk"], "j2eos_gimp": ["bulk"], "j2eos_bimp": ["bulk"],

@@ -85,91 +85,76 @@ _spec.loader.exec_module(_current)
 NOTES = dict(_current.NOTES)  # the six decks of shared/decks/current, studied step by step
 NOTES.update({
     "DamBreak_MPM_Dam_R2": (
-        "Linear MPM dam break, the current version's null water. Kinetic and total energy and the "
-        "tracked particles agree within 0.9 %; the internal energy (a tenth of the kinetic at the "
-        "end) tracks the original's to 3 digits until t = 0.05 and then drifts apart by up to 7 % of "
-        "its largest value, 0.7 % at the end. The cause is the flow's sensitivity, not a rule: the "
-        "same run with the water's density perturbed by 6e-8 (997.5 -> 997.50006, the size of the "
-        "original's single-precision rounding of deck reals) moves our own internal energy by up to "
-        "5.7 % (final 4.7 %); with the bulk viscosity off in both programs the difference stays "
-        "(6.3 %), and reading the deck's reals in single precision as the original does "
-        "(experiment, 2026-11-27) does not close it either (10.7 %): the splashing surge amplifies "
-        "any last-digit "
-        "difference."),
+        "Linear MPM dam break, the current version's null water. By our rules the internal energy "
+        "(a tenth of the kinetic at the end) drifts apart by up to 7 % of its largest value after "
+        "t = 0.05: the bulk viscosity's switch and work and the single-precision deck reals "
+        "(rules `bulk_switch`, `bulk_work`, `deck_reals`); with the original's rules it stays "
+        "within 4 %. The splashing surge amplifies any last-digit difference: our own run with the "
+        "water's density moved by 6e-8 (997.5 -> 997.50006) moves its internal energy by up to "
+        "5.7 %."),
     "FreeSoftBeam_MPM_v0p499_FreeSB_MPM": (
-        "The free soft beam at nu 0.499 (linear MPM). The original stores deck reals in single "
-        "precision, we in double; near incompressibility (1 - 2 nu = 0.002) that moves lambda and the "
-        "wave speed by 1e-5 relative, and over the run's 53,604 steps the beam's phase drifts: total "
-        "2.3 %, kinetic 1.2 %, internal 4.8 % apart at most. With every deck real rounded to single "
-        "precision as the original reads it (our reader changed to do so, experiment of "
-        "2026-11-27) the same run "
-        "agrees within 0.68 % (total), 0.53 % (kinetic) and 1.3 % (internal)."),
+        "The free soft beam at nu 0.499 (linear MPM). The original reads deck reals in single "
+        "precision; near incompressibility (1 - 2 nu = 0.002) that moves lambda and the wave "
+        "speed by 1e-5 relative, and over the run's 53,604 steps the beam's phase drifts (rule "
+        "`deck_reals`): by the original's rules the run agrees."),
     "SoftBeam_SBTL_0p05mesh_SBTL": (
-        "The same beam on the finer grid: kinetic and internal energy up to 12.5 % and 14 % apart, "
-        "the current program's TLmp taking every particle's shape functions at its cell's centre "
-        "(the 0.1 mesh's note); the same experiment (2026-11-27) agrees within 0.70 % (kinetic) "
-        "and 0.83 % (internal), 0.07 % at the end."),
+        "The same beam on the finer grid: kinetic and internal energy up to 12.5 % and 14 % apart "
+        "by our rules, the current program's TLmp taking every particle's shape functions at its "
+        "cell's centre (rule `tl_shape`, the 0.1 mesh's note)."),
     "Slopefail": (
         "Drucker-Prager slope under gravity. The book program reads `bulk 1.5 0.06` but does not "
-        "apply it; we do, and our fixed time step is shorter by the viscosity's factor 1.0618 (16,870 "
-        "steps against 15,888). With the card removed the kinetic energy is still up to 4.4 % apart "
-        "(total 1.1 %): the original's Drucker-Prager return takes the shear branch wherever the trial "
-        "stress is above the corner line, leaving mean stresses beyond its tension cut-off, and its "
-        "tension return keeps the deviator (docs/DECK_FORMAT.md, the method table's note 5). With "
-        "the original's two branches in our code (experiment, 2026-11-27), the deck without "
-        "`bulk` agrees within 0.73 % "
-        "(kinetic) and 0.18 % (total and internal). We keep our returns, which end on the yield "
-        "surface."),
+        "apply it (rule `bulk_book`: 15,888 steps against our 16,870), and its Drucker-Prager "
+        "return takes the shear branch wherever the trial stress is above the corner line, "
+        "leaving mean stresses beyond its tension cut-off, and its tension return keeps the "
+        "deviator (rule `dp_return`; docs/DECK_FORMAT.md, the method table's note 5). With the "
+        "original's rules the run agrees to the printed digits. We keep our returns, which end "
+        "on the yield surface."),
     "Deto1k (current program)": (
         "A book deck read by the current program, which recomputes the time step every step "
-        "(28,852 steps), gives `hiex` no bulk viscosity and burns by a step; we read the deck as the "
-        "book does (fixed step, `bulk` applied: 22,075 steps). Our run made current (a `smoo` card) "
-        "with `bulk 0 0` agrees within 0.16 % (total), 0.50 % (internal) and 4.5 % (kinetic, 0.8 % at "
-        "the end); with a step burn in our code too (experiment, 2026-11-27) 3.9 %: the rounding "
-        "noise behind the front that "
-        "the book deck's note describes."),
+        "(28,852 steps), gives `hiex` no bulk viscosity and burns by a step. With its rules "
+        "(`--rules current`) the energies agree within 0.1 % (total), 0.6 % (internal) and 4.9 % "
+        "(kinetic); the pressure curves behind the fronts differ by up to 101 %: the products' "
+        "oscillations behind the front amplify rounding, as the book deck's note shows. Our own "
+        "run under the same rules with one deck real moved by one unit in its last "
+        "single-precision digit (the TNT's density, detonation velocity, or JWL A, B or R2: five "
+        "runs, 2026-11-28) differs from the unperturbed one by 2.8-4.1 % (kinetic) and 71-139 % "
+        "(pressure curves), and three of them from each other by up to 4.8 %; the original lies "
+        "3.4-4.9 % (kinetic) from the unperturbed run and those three: inside the spread of our "
+        "own rounding."),
     "TNT3D (current program)": (
         "The current program on the book deck: its step burn, its time step every step (237 steps "
         "against the book's 208) and its default bulk viscosity on the copper plates (none on the "
-        "explosive). Our run made current (`smoo`) with `bulk 0 0` and a step burn in our code "
-        "(experiment, 2026-11-27) "
-        "agrees within 1.25 % (kinetic), 0.50 % (internal) and 0.05 % (total); the rest is the "
-        "plates' viscosity, which the current program switches by its own rule (docs/DECK_FORMAT.md, "
-        "the method table's note 2)."),
+        "explosive). With its rules (`--rules current`: `program`, `time_step`, `burn`, "
+        "`bulk_linear`, `bulk_switch`, `bulk_work`) every column agrees within 0.02 %."),
     "LeadHypervelocityImpact (current program)": (
         "The lead sphere at 6.58 km/s read by the current program. That program computes its "
-        "time step every step from the wave speed plus the fastest particle, which gives 26,975 "
-        "steps against the book's fixed 6,353. It also gives `sjcf` its default bulk viscosity "
-        "without the linear term. We read the deck as the book does, with a fixed step and no "
-        "viscosity: kinetic energy up to 8.2 % apart and internal energy up to 42 %, where the "
-        "current program damps the book's sloshing of energy between the sphere and the plate. "
-        "Our run made current (`smoo`, so the time step is computed every step) with "
-        "`bulk 1.5 0` agrees within 1.56 % (kinetic) and 8.0 % (internal). Adding the current "
-        "program's switch gives q only where the rotated old mean stress is compressive as well "
-        "as the volume shrinking; our rule asks only the latter. With that switch in our code "
-        "(experiment, 2026-11-27) the run agrees within 0.19 % (kinetic), 0.96 % (internal) and "
-        "0.00 % "
-        "(total) over the whole run (docs/DECK_FORMAT.md, the method table's note 2)."),
+        "time step every step from the wave speed plus the fastest particle (26,975 steps against "
+        "the book's fixed 6,353) and gives `sjcf` its default bulk viscosity without the linear "
+        "term, switched by the mean stress. We read the deck as the book does: kinetic energy up "
+        "to 8.2 % apart and internal energy up to 42 %, where the current program damps the "
+        "book's sloshing of energy between the sphere and the plate. With its rules "
+        "(`--rules current`) the second column."),
     "Slopefail (current program)": (
-        "The current program on the book deck: its time step every step (16,016 steps against our "
-        "book-mode 16,870), its Drucker-Prager branches (the book deck's note) and its bulk viscosity "
-        "without the linear term for `dpm`. Our run made current (`smoo`), with `bulk 1.5 0` and the "
-        "original's branches in our code (experiment, 2026-11-27), agrees within 0.70 % (kinetic) "
-        "and 0.18 % (total and "
-        "internal)."),
+        "The current program on the book deck: its time step every step (16,016 steps against "
+        "our book-mode 16,870), its Drucker-Prager branches (the book deck's note) and its bulk "
+        "viscosity without the linear term for `dpm`. With its rules (`--rules current`) the run "
+        "agrees to the printed digits."),
     "TNT3D": (
-        "Kinetic energy up to 3.9 % apart (internal 1.5 %): the original's burn fraction is a step "
-        "(the whole pressure at the lighting time), ours a ramp over 1.5 cells; with a step burn "
-        "in our code (experiment, 2026-11-27) every energy agrees to the last printed digit "
-        "(docs/EXPLOSIVES.md, 'What "
-        "remains'). Refining the cell, the two rules converge to each other."),
+        "Kinetic energy up to 3.9 % apart (internal 1.5 %) by our rules: the original's burn "
+        "fraction is a step (the whole pressure at the lighting time), ours a ramp over 1.5 "
+        "cells (rule `burn`; docs/EXPLOSIVES.md, 'What remains'). With the original's rules "
+        "every energy agrees within 0.05 %. Refining the cell, the two burns converge to each "
+        "other."),
     "Deto1k": (
-        "The book program reads `bulk 1.5 0.06` but does not apply it; we do (docs/EXPLOSIVES.md): "
-        "with the card removed the time step and step count are the original's and the total "
-        "energy agrees within 0.14 %, the internal within 0.7 %; the kinetic energy (5.7 %) and the "
-        "pressure curves around each front then differ by the original's step burn against our ramp, "
-        "and behind the front by rounding the products' oscillations amplify, as the original "
-        "compiled with fused multiply-adds differs from itself (docs/EXPLOSIVES.md, 'What remains')."),
+        "The book program reads `bulk 1.5 0.06` but does not apply it (rule `bulk_book`: 20,790 "
+        "steps against our 22,075) and burns by a step (rule `burn`). With its rules the energies "
+        "agree within 0.1 % (total), 0.5 % (internal) and 3.9 % (kinetic); the pressure curves "
+        "behind the fronts differ by up to 71 %: there the products' oscillations amplify "
+        "rounding, and the original compiled with fused multiply-adds differs from itself "
+        "(docs/EXPLOSIVES.md, 'What remains'). Our own run under the same rules with the TNT's "
+        "density or detonation velocity moved by one unit in its last single-precision digit "
+        "(1.63e-3 -> 1.6300001e-3, 6930 -> 6930.0005; 2026-11-28) moves by 4.8-4.9 % (kinetic) "
+        "and 75-143 % (pressure curves): the original lies inside that spread."),
 })
 
 
