@@ -132,8 +132,9 @@ NOTES.update({
         "the book's fixed 6,353) and gives `sjcf` its default bulk viscosity without the linear "
         "term, switched by the mean stress. We read the deck as the book does: kinetic energy up "
         "to 8.2 % apart and internal energy up to 42 %, where the current program damps the "
-        "book's sloshing of energy between the sphere and the plate. With its rules "
-        "(`--rules current`) the second column."),
+        "book's sloshing of energy between the sphere and the plate (2026-11-27). The rules "
+        "`program`, `time_step`, `bulk_switch`, `bulk_linear` and `bulk_work` (`--rules "
+        "current`) are that program's choices."),
     "Slopefail (current program)": (
         "The current program on the book deck: its time step every step (16,016 steps against "
         "our book-mode 16,870), its Drucker-Prager branches (the book deck's note) and its bulk "
