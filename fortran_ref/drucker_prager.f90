@@ -10,6 +10,13 @@ module mpm3d_drucker_prager
 
 contains
 
+  ! tau = sqrt(J2) of the deviator s (Voigt), which both returns start from.
+  pure real(dp) function shear_stress(s) result(tau)
+    real(dp), intent(in) :: s(6)
+    tau = sqrt((0.5_dp * (((s(1) * s(1)) + (s(2) * s(2))) + (s(3) * s(3)))) + &
+               (((s(4) * s(4)) + (s(5) * s(5))) + (s(6) * s(6))))
+  end function shear_stress
+
   ! Drucker-Prager return of a trial stress (deviator s, mean stress sm, tension > 0):
   ! the formulas of cxx/materials/constitution.cpp (dp_return). Returns the equivalent plastic
   ! strain increment.
@@ -17,12 +24,10 @@ contains
     type(material_params), intent(in) :: m
     real(dp), intent(inout) :: s(6), sm
     real(dp), intent(in) :: bk, g
-    real(dp) :: j2, tau, qphi, kphi, qpsi, sigt, fs, ft, tau_p, alpha_p, h, tau_new, lam, ratio, sm_new
+    real(dp) :: tau, qphi, kphi, qpsi, sigt, fs, ft, tau_p, alpha_p, h, tau_new, lam, ratio, sm_new
     logical :: tension
     integer :: c
-    j2 = (0.5_dp * (((s(1) * s(1)) + (s(2) * s(2))) + (s(3) * s(3)))) + &
-         (((s(4) * s(4)) + (s(5) * s(5))) + (s(6) * s(6)))
-    tau = sqrt(j2)
+    tau = shear_stress(s)
     qphi = m%dp_qphi
     kphi = m%dp_kphi
     qpsi = m%dp_qpsi
@@ -71,12 +76,10 @@ contains
     type(material_params), intent(in) :: m
     real(dp), intent(inout) :: s(6), sm
     real(dp), intent(in) :: bk, g
-    real(dp) :: j2, tau, qphi, kphi, qpsi, sigt, fs, ft, tau_p, alpha_p, h, tau_new, lam, ratio
+    real(dp) :: tau, qphi, kphi, qpsi, sigt, fs, ft, tau_p, alpha_p, h, tau_new, lam, ratio
     logical :: shear
     integer :: c
-    j2 = (0.5_dp * (((s(1) * s(1)) + (s(2) * s(2))) + (s(3) * s(3)))) + &
-         (((s(4) * s(4)) + (s(5) * s(5))) + (s(6) * s(6)))
-    tau = sqrt(j2)
+    tau = shear_stress(s)
     qphi = m%dp_qphi
     kphi = m%dp_kphi
     qpsi = m%dp_qpsi

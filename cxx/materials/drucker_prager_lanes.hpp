@@ -15,13 +15,17 @@ namespace {  // internal linkage, see lanes.hpp
 
 template <class T, class TL>
 struct DruckerPragerLanes {
+  // tau = sqrt(J2) of the deviator s (Voigt), which both returns start from.
+  static T shear_stress(const T s[6]) {
+    return TL::sqrt(0.5 * ((s[0] * s[0] + s[1] * s[1]) + s[2] * s[2]) + ((s[3] * s[3] + s[4] * s[4]) + s[5] * s[5]));
+  }
+
   // dp_return lane by lane: s (deviator) and sm (mean stress) returned in place; the
   // equivalent plastic strain increment returned. The operations of each arm are the
   // scalar function's, in its order; a lane takes the arm the scalar branches would.
   static T dp_return(const MaterialParams& m, T s[6], T& sm, double K, double G) {
     const T zero = TL::splat(0.0);
-    const T j2 = 0.5 * ((s[0] * s[0] + s[1] * s[1]) + s[2] * s[2]) + ((s[3] * s[3] + s[4] * s[4]) + s[5] * s[5]);
-    const T tau = TL::sqrt(j2);
+    const T tau = shear_stress(s);
     const double qphi = m.dp_qphi, kphi = m.dp_kphi, qpsi = m.dp_qpsi, sigt = m.dp_tension;
     const T fs = (tau + qphi * sm) - kphi;
     const T ft = sm - sigt;
@@ -55,8 +59,7 @@ struct DruckerPragerLanes {
   // k_phi - q_phi sm' (on the cone). The original's cut-off is 0 when q_phi = 0.
   static T dp_return_original(const MaterialParams& m, T s[6], T& sm, double K, double G) {
     const T zero = TL::splat(0.0);
-    const T j2 = 0.5 * ((s[0] * s[0] + s[1] * s[1]) + s[2] * s[2]) + ((s[3] * s[3] + s[4] * s[4]) + s[5] * s[5]);
-    const T tau = TL::sqrt(j2);
+    const T tau = shear_stress(s);
     const double qphi = m.dp_qphi, kphi = m.dp_kphi, qpsi = m.dp_qpsi;
     const double sigt = qphi == 0.0 ? 0.0 : m.dp_tension;
     const T fs = (tau + qphi * sm) - kphi;
