@@ -314,6 +314,16 @@ TEST(StressLanes, TotalLagrangianNeoHookean) {
   }
 }
 
+// The Drucker-Prager material of both return tests below (cohesion, a tension cut-off).
+static MaterialParams dp_test_material() {
+  MaterialParams m{};
+  m.dp_qphi = 0.6;
+  m.dp_kphi = 0.02;
+  m.dp_qpsi = 0.1;
+  m.dp_tension = 0.01;
+  return m;
+}
+
 // The Drucker-Prager return in lanes (selects over its four arms) against the scalar
 // dp_return with its branches (constitution.cpp), bit for bit, on stress states that reach
 // every arm: elastic, shear, shear landing beyond the cut-off (then tension), tension
@@ -321,11 +331,7 @@ TEST(StressLanes, TotalLagrangianNeoHookean) {
 TEST(StressLanes, DruckerPragerReturnInLanesEqualsTheBranches) {
   using VL = mpm3d::VectorLane<4>;
   using V = VL::D;
-  MaterialParams m{};
-  m.dp_qphi = 0.6;
-  m.dp_kphi = 0.02;
-  m.dp_qpsi = 0.1;
-  m.dp_tension = 0.01;
+  const MaterialParams m = dp_test_material();
   const double K = 40.0, G = 20.0, tau_p = m.dp_kphi - m.dp_qphi * m.dp_tension;
   std::mt19937_64 rng(20261127);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -380,11 +386,7 @@ TEST(StressLanes, DruckerPragerReturnInLanesEqualsTheBranches) {
 TEST(StressLanes, DruckerPragerOriginalReturnInLanesEqualsOneLane) {
   using VL = mpm3d::VectorLane<4>;
   using V = VL::D;
-  MaterialParams m{};
-  m.dp_qphi = 0.6;
-  m.dp_kphi = 0.02;
-  m.dp_qpsi = 0.1;
-  m.dp_tension = 0.01;
+  const MaterialParams m = dp_test_material();
   const double K = 40.0, G = 20.0;
   std::mt19937_64 rng(20261128);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
