@@ -9,7 +9,7 @@ module mpm3d_constitution
   use mpm3d_material
   use mpm3d_stress_ops, only: double_dot, jaumann_rotate, bulk_viscosity, det_identity_plus
   use mpm3d_eos, only: eos_coefficients
-  use mpm3d_j2_plasticity, only: yield_stress, radial_return, adiabatic_heating
+  use mpm3d_j2_plasticity, only: yield_stress, radial_return, clay_return, adiabatic_heating
   use mpm3d_drucker_prager, only: dp_return, dp_return_original
   use mpm3d_neo_hookean, only: neo_hookean, neo_hookean_tl
   use mpm3d_rules, only: step_rules
@@ -156,6 +156,8 @@ contains
           deps = dp_return(m, s, mean, m%lambda + (two_g / 3.0_dp), m%shear)
         end if
         epeff = epeff + deps
+      else if (m%type == MAT_CLAY) then
+        deps = clay_return(m, s, epeff, rules%clay_return /= 0)
       else
         deps = radial_return(m, s, epeff, strain_rate, tp)
       end if

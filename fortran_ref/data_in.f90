@@ -177,8 +177,8 @@ contains
   ! kCurrentKeywords, cxx/input/data_in.cpp).
   logical function has_current_keyword(ts) result(found)
     type(token_stream), intent(in) :: ts
-    character(len=4), parameter :: KEYS(14) = [character(len=4) :: 'neoh', 'uvfp', 'vsin', 'qulo', &
-        'damp', 'smoo', 'bimp', 'sgmp', 'tlmp', 'drda', 'blod', 'cicl', 'ksin', 'nuli']
+    character(len=4), parameter :: KEYS(15) = [character(len=4) :: 'neoh', 'uvfp', 'vsin', 'qulo', &
+        'damp', 'smoo', 'bimp', 'sgmp', 'tlmp', 'drda', 'blod', 'cicl', 'ksin', 'nuli', 'clay']
     integer :: i, first
     character(len=:), allocatable :: k
     found = .false.

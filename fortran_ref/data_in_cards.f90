@@ -76,6 +76,11 @@ contains
       else
         mp%wave_speed = ts%real('the wave speed')
       end if
+    case (MAT_CLAY)
+      mp%clay_peak = ts%real('peak strength kappa_p')
+      mp%clay_residual = ts%real('residual strength kappa_r')
+      mp%clay_softening = ts%real('softening coefficient eta')
+      mp%eps0dot = ts%real('epso (read, not used)')
     case (MAT_DPM)
       mp%dp_qphi = ts%real('q_phi')
       mp%dp_kphi = ts%real('k_phi')
@@ -180,7 +185,8 @@ contains
       call ts%fail(key%line, 'unknown EOS type ' // itoa(et) // &
                    ' (1 linear polynomial, 2 Mie-Gruneisen, 3 JWL, 4 weakly compressible)')
     end if
-    if (m%mats(mid)%type == MAT_DPM) call ts%fail(key%line, 'a dpm material takes no equation of state')
+    if (m%mats(mid)%type == MAT_DPM .or. m%mats(mid)%type == MAT_CLAY) &
+      call ts%fail(key%line, 'a ' // trim(material_keyword(m%mats(mid)%type)) // ' material takes no equation of state')
     m%mats(mid)%eos_type = int(et)
   end subroutine read_eos
 

@@ -1,4 +1,4 @@
-! J2 plasticity: elas, pla1, pla2 and the Johnson-Cook family (as
+! J2 plasticity: elas, pla1, pla2, clay and the Johnson-Cook family (as
 ! cxx/materials/j2_plasticity_lanes.hpp and yield_stress of cxx/materials/constitution.cpp):
 ! the yield stress, the radial return and the adiabatic heating of thermal Johnson-Cook.
 module mpm3d_j2_plasticity
@@ -6,7 +6,11 @@ module mpm3d_j2_plasticity
   implicit none
   private
 
-  public :: yield_stress, radial_return, adiabatic_heating
+  public :: yield_stress, radial_return, clay_return, adiabatic_heating
+
+  ! clay_return's Newton iterations (kClayIterations, kClayTolerance of cxx/materials/constitution.hpp)
+  integer, parameter :: CLAY_ITERATIONS = 30
+  real(dp), parameter :: CLAY_TOLERANCE = 1e-13_dp
 
 contains
 
@@ -15,7 +19,7 @@ contains
     type(material_params), intent(in) :: m
     real(dp), intent(in) :: epeff, strain_rate, temp
     real(dp), intent(out) :: sy, ep
-    real(dp) :: hard, slope, factor, ratio, tstar
+    real(dp) :: hard, slope, factor, ratio, tstar, drop, decay
     select case (m%type)
     case (MAT_PLA1)
       sy = m%yield0
@@ -23,6 +27,11 @@ contains
     case (MAT_PLA2)
       sy = m%yield0 + (m%hardening * epeff)
       ep = m%hardening
+    case (MAT_CLAY)
+      drop = m%clay_peak - m%clay_residual
+      decay = exp(-(m%clay_softening * epeff))
+      sy = m%clay_residual + (drop * decay)
+      ep = -((m%clay_softening * drop) * decay)
     case default   ! Johnson-Cook family
       hard = m%yield0
       if (epeff > 0.0_dp) then
@@ -81,6 +90,46 @@ contains
     end do
     epeff = epeff + deps
   end function radial_return
+
+  ! clay's return (clay_return of cxx/materials/constitution.cpp, where the method is explained):
+  ! original: the newest program's one linearised step (rule clay_return=linear); else Newton's
+  ! method on q_trial - 3G d = sigma_y(epeff + d).
+  real(dp) function clay_return(m, s, epeff, original) result(d)
+    type(material_params), intent(in) :: m
+    real(dp), intent(inout) :: s(6), epeff
+    logical, intent(in) :: original
+    real(dp) :: j2, q, sy, h, g3, r, ratio
+    integer :: c, it
+    d = 0.0_dp
+    j2 = (0.5_dp * (((s(1) * s(1)) + (s(2) * s(2))) + (s(3) * s(3)))) + &
+         (((s(4) * s(4)) + (s(5) * s(5))) + (s(6) * s(6)))
+    q = sqrt(3.0_dp * j2)
+    call yield_stress(m, epeff, 0.0_dp, 0.0_dp, sy, h)
+    if (.not. (q > sy)) return
+    g3 = 3.0_dp * m%shear
+    d = (q - sy) / (g3 + h)
+    if (original) then
+      call yield_stress(m, epeff + d, 0.0_dp, 0.0_dp, sy, h)
+      if (sy > q) then
+        epeff = (epeff + d) - d
+        d = 0.0_dp
+        return
+      end if
+      ratio = sy / q
+    else
+      do it = 1, CLAY_ITERATIONS
+        call yield_stress(m, epeff + d, 0.0_dp, 0.0_dp, sy, h)
+        r = (q - (g3 * d)) - sy
+        if (.not. (abs(r) > (CLAY_TOLERANCE * q))) exit
+        d = d + (r / (g3 + h))
+      end do
+      ratio = (q - (g3 * d)) / q
+    end if
+    do c = 1, 6
+      s(c) = s(c) * ratio
+    end do
+    epeff = epeff + d
+  end function clay_return
 
   ! Equivalent stress of a deviator, as in the heating term.
   pure real(dp) function q_of(s)

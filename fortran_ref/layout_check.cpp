@@ -10,11 +10,11 @@
 // placeholders), so that the Fortran stages reach the ranks' hooks. Every group's and every
 // member's offset is compared: padding after a short group cannot hide a missing member.
 
-extern "C" void mpm3d_f_context_layout(size_t out[115]);
+extern "C" void mpm3d_f_context_layout(size_t out[117]);
 extern "C" void mpm3d_f_step_constants(int out[17]);
 
 int main() {
-  constexpr int kChecks = 115;
+  constexpr int kChecks = 117;
   size_t f[kChecks];
   mpm3d_f_context_layout(f);
   const size_t c[kChecks] = {
@@ -132,7 +132,9 @@ int main() {
       offsetof(StepContext, rules.sg_beyond),
       offsetof(StepContext, rules.fluid_viscous),
       offsetof(StepContext, rules.bulk_work),
-      offsetof(StepContext, rules.pressure_q)};
+      offsetof(StepContext, rules.pressure_q),
+      offsetof(StepContext, rules.clay_return),
+      offsetof(MaterialParams, clay_peak)};
   const char* what[kChecks] = {
       "sizeof(StepContext)",
       "offsetof(part)",
@@ -248,7 +250,9 @@ int main() {
       "offsetof(rules.sg_beyond)",
       "offsetof(rules.fluid_viscous)",
       "offsetof(rules.bulk_work)",
-      "offsetof(rules.pressure_q)"};
+      "offsetof(rules.pressure_q)",
+      "offsetof(rules.clay_return)",
+      "offsetof(MaterialParams::clay_peak)"};
   int bad = 0;
   for (int i = 0; i < kChecks; ++i) {
     const bool ok = c[i] == f[i];

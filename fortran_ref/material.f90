@@ -11,7 +11,7 @@ module mpm3d_material
   ! MaterialType
   integer, parameter, public :: MAT_ELAS = 1, MAT_PLA1 = 2, MAT_PLA2 = 3, MAT_JOHN = 4, &
                                 MAT_SJC = 5, MAT_SJCF = 6, MAT_JCF = 7, MAT_HIEX = 8, &
-                                MAT_NULL = 9, MAT_DPM = 10, MAT_NEOH = 11
+                                MAT_NULL = 9, MAT_DPM = 10, MAT_NEOH = 11, MAT_CLAY = 12
   ! EosType
   ! EOS_WEAK: the current version's weakly compressible p = c0^2 (rho - rho0) (type 4).
   integer, parameter, public :: EOS_NONE = 0, EOS_LINEAR = 1, EOS_MIE_GRUNEISEN = 2, EOS_JWL = 3, EOS_WEAK = 4
@@ -46,6 +46,10 @@ module mpm3d_material
     real(c_double) :: dp_tension = 0.0_dp  ! dpm: tension cut-off (capped at the apex)
     real(c_double) :: bulk_modulus = 0.0_dp  ! current null: K (wave speed sqrt(K / rho0))
     real(c_double) :: viscosity = 0.0_dp     ! current null: dynamic viscosity mu (0: none)
+    ! Appended for clay: sigma_y(epeff) = residual + (peak - residual) exp(-softening epeff).
+    real(c_double) :: clay_peak = 0.0_dp       ! kappa_p: peak yield stress
+    real(c_double) :: clay_residual = 0.0_dp   ! kappa_r: residual yield stress
+    real(c_double) :: clay_softening = 0.0_dp  ! eta: softening coefficient
   end type material_params
 
 end module mpm3d_material

@@ -19,7 +19,7 @@ module mpm3d_material_models
     logical :: thermal       ! tracks temperature
   end type material_model_t
 
-  type(material_model_t), parameter :: MODELS(11) = [ &
+  type(material_model_t), parameter :: MODELS(12) = [ &
     material_model_t('elas', MAT_ELAS, .false., .false., .false.), &
     material_model_t('pla1', MAT_PLA1, .false., .false., .false.), &
     material_model_t('pla2', MAT_PLA2, .false., .false., .false.), &
@@ -30,7 +30,8 @@ module mpm3d_material_models
     material_model_t('hiex', MAT_HIEX, .true., .false., .false.), &
     material_model_t('null', MAT_NULL, .true., .false., .false.), &
     material_model_t('dpm ', MAT_DPM, .false., .false., .false.), &
-    material_model_t('neoh', MAT_NEOH, .false., .false., .false.)]
+    material_model_t('neoh', MAT_NEOH, .false., .false., .false.), &
+    material_model_t('clay', MAT_CLAY, .false., .false., .false.)]
 
   public :: material_type_of, material_keyword, material_is_fluid, material_is_johnson_cook, &
             material_is_thermal, material_derive
@@ -130,6 +131,21 @@ contains
       end if
       if (m%dp_qphi > 0.0_dp) then
         if (m%dp_tension > m%dp_kphi / m%dp_qphi) m%dp_tension = m%dp_kphi / m%dp_qphi
+      end if
+    end if
+    if (m%type == MAT_CLAY) then
+      if (.not. (m%clay_residual >= 0.0_dp) .or. .not. (m%clay_peak >= m%clay_residual)) then
+        err = 'clay strengths need 0 <= residual kappa_r <= peak kappa_p'
+        return
+      end if
+      if (.not. (m%clay_softening >= 0.0_dp)) then
+        err = 'clay softening coefficient eta must not be negative'
+        return
+      end if
+      ! The steepest softening slope (at epeff = 0) below 3G: else no unique return.
+      if (.not. (m%clay_softening * (m%clay_peak - m%clay_residual) < 3.0_dp * m%shear)) then
+        err = 'clay softening eta (kappa_p - kappa_r) must be below 3G = E / (1 + nu)'
+        return
       end if
     end if
   end subroutine material_derive

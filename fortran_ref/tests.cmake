@@ -110,6 +110,22 @@ if(TARGET mpm3d AND TARGET mpm3d_ref)
   # The current version's null water with its weakly compressible EOS, sgmp: the dam break.
   fref_deck(dam_break_coarse ${CMAKE_SOURCE_DIR}/inputs/fluids/dam_break_coarse.mpm)
   fref_add(fref_current_dam_break_mpm3d_ref ref ${_fref_shared}/current/DamBreak_SGMPM_Dam_SGR2.mpm)
+  # The newest version's clay (softening J2): our column, and the newest public decks, the R1
+  # dam breaks and the three 311,550-particle landslides (written by the shared folder's
+  # make_landslide_decks.py into the build tree; 3 steps against mpm3d_ref).
+  fref_deck(clay_column ${CMAKE_SOURCE_DIR}/inputs/clay/clay_column.mpm)
+  set(_fref_newest ${CMAKE_SOURCE_DIR}/../shared/decks/newest)
+  fref_add(fref_newest_dam_r1_mpm3d_ref ref ${_fref_newest}/DamBreak_MPM_R1_Dam_R1.mpm)
+  fref_add(fref_newest_dam_sgr1_mpm3d_ref ref ${_fref_newest}/DamBreak_SGMPM_R1_Dam_SGR1.mpm)
+  fref_add(fref_newest_dam_sgr1_pressure_mpm3d_ref ref ${_fref_newest}/DamBreak_SGMPMvsPressureR1_Dam_SGR1.mpm)
+  foreach(_ls BS GIMP SG)
+    add_test(NAME fref_newest_landslide_${_ls}_mpm3d_ref
+             COMMAND sh ${CMAKE_SOURCE_DIR}/tests/newest_landslide.sh ${_fref_newest} ${_fref_out}/landslides ${_ls}
+                     sh ${_fref_script} ref ${_fref_out}/fref_newest_landslide_${_ls}
+                     ${_fref_out}/landslides/${_ls}.mpm $<TARGET_FILE:mpm3d> $<TARGET_FILE:mpm3d_ref> ${MPM3D_H5DIFF} 3)
+    set_tests_properties(fref_newest_landslide_${_ls}_mpm3d_ref PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 600
+                         LABELS fortran_ref RESOURCE_LOCK landslide_decks)
+  endforeach()
   # GIMP with the adaptive grid (halo patches on the deck's patch lattice).
   fref_adaptive(two_blocks_gimp ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks_gimp.mpm)
   # Transfer method x material family (tools/method_matrix.py, docs/DECK_FORMAT.md): each deck

@@ -42,6 +42,11 @@ MaterialParams solid(int type, int eos_type) {
   if (type == MAT_SJCF || type == MAT_JCF) m.fail_strain = 0.4;
   if (type == MAT_PLA1 || type == MAT_PLA2) m.yield0 = 157.0;
   if (type == MAT_PLA2) m.hardening = 423.5;
+  if (type == MAT_CLAY) {  // softening from 157 to 40 (steepest slope 936, 3G = 130,000)
+    m.clay_peak = 157.0;
+    m.clay_residual = 40.0;
+    m.clay_softening = 8.0;
+  }
   if (type == MAT_DPM) {
     m.young = 50.0;
     m.poisson = 0.3;
@@ -101,6 +106,8 @@ std::vector<Case> cases() {
   sjc_linear.jc_n = 1.0;
   sjc_linear.jc_c = 0.0;
   v.push_back({"sjc_n1_c0", sjc_linear, false, false, 30.0});
+  v.push_back({"clay", solid(MAT_CLAY, EOS_NONE), false, false, 30.0});
+  v.push_back({"clay_bulk", solid(MAT_CLAY, EOS_NONE), false, true, 30.0});
   v.push_back({"dpm", solid(MAT_DPM, EOS_NONE), false, false, 0.5});
   v.push_back({"dpm_bulk", solid(MAT_DPM, EOS_NONE), false, true, 0.5});
   v.push_back({"hiex_jwl", tnt(), false, false, 30.0});

@@ -29,12 +29,14 @@ const RuleInfo kRules[kRuleCount] = {
     {"bulk_work", {"mean", "new"}, 0, 1,
      "bulk viscosity's work by the mean of the old and new q, or by the new q (john: twice)"},
     {"pressure_q", {"in", "out"}, 0, 1, "output pres: the stress's pressure with q in it, or without q"},
+    {"clay_return", {"solved", "linear"}, 1, 1,
+     "clay: return solved to the softening curve, or the newest program's one linearised step"},
 };
 
 int& rule_value(StepRules& r, int i) {
   int* v[kRuleCount] = {&r.program,  &r.time_step, &r.bulk_book, &r.bulk_switch, &r.bulk_linear, &r.burn,
                         &r.dp_return, &r.deck_reals, &r.tl_shape, &r.sg_lower,   &r.sg_beyond,  &r.fluid_viscous,
-                        &r.bulk_work, &r.pressure_q};
+                        &r.bulk_work, &r.pressure_q, &r.clay_return};
   return *v[i];
 }
 

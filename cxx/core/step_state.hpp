@@ -149,6 +149,8 @@ struct StepRules {
                       // new q over the whole step (the current program; twice for john)
   int pressure_q;     // output variable pres (curves, frames): 0 the stress's pressure, q included,
                       // 1 without q (the current program writes its mean stress apart from q)
+  int clay_return;    // clay: 0 the return solved to consistency (Newton), 1 the newest program's one
+                      // linearised step, scaled to the yield stress at the new epeff
 };
 
 struct StepContext {

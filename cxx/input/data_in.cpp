@@ -51,7 +51,8 @@ void DeckReader::need_counts(const Token& key, bool particles, bool materials, b
 // Keywords only the current MPM3D-F90 knows: a deck that uses one is read and run with the
 // current version's behaviours where the two versions differ (Model::current_version).
 static const std::vector<std::string> kCurrentKeywords = {"neoh", "uvfp", "vsin", "qulo", "damp", "smoo", "bimp",
-                                                          "sgmp", "tlmp", "drda", "blod", "cicl", "ksin", "nuli"};
+                                                          "sgmp", "tlmp", "drda", "blod", "cicl", "ksin", "nuli",
+                                                          "clay"};
 
 Model DeckReader::read() {
   m_.deck_path = ts_.name();

@@ -69,7 +69,8 @@ void DeckReader::read_eos(const Token& key) {
     fail(key.line, "unknown EOS type " + std::to_string(et) +
                        " (1 linear polynomial, 2 Mie-Gruneisen, 3 JWL, 4 weakly compressible)");
   }
-  if (mp.type == MAT_DPM) fail(key.line, "a dpm material takes no equation of state");
+  if (mp.type == MAT_DPM || mp.type == MAT_CLAY)
+    fail(key.line, std::string("a ") + material_keyword(mp.type) + " material takes no equation of state");
   mp.eos_type = int(et);
 }
 

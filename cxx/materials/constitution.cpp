@@ -100,6 +100,12 @@ void yield_stress(const MaterialParams& m, double epeff, double strain_rate, dou
       *sy = m.yield0 + m.hardening * epeff;
       *ep = m.hardening;
       return;
+    case MAT_CLAY: {
+      const double drop = m.clay_peak - m.clay_residual, decay = std::exp(-(m.clay_softening * epeff));
+      *sy = m.clay_residual + drop * decay;
+      *ep = -((m.clay_softening * drop) * decay);
+      return;
+    }
     default: {  // Johnson-Cook family
       double hard = m.yield0, slope;
       if (epeff > 0.0) {
@@ -127,6 +133,43 @@ void yield_stress(const MaterialParams& m, double epeff, double strain_rate, dou
       return;
     }
   }
+}
+
+// clay's return. Ours (original false) solves the consistency condition of the backward-Euler
+// return, q_trial - 3G d = sigma_y(epeff + d), by Newton's method from d = 0: r(d) is
+// decreasing and concave (3G + H > 0, checked by material_derive), so the iterates after the
+// first approach the root from above; the stress ends on the softening curve at the new
+// epeff, and on a proportional strain path the result does not depend on the step.
+// The original (rule clay_return=linear, M3DM12 of the newest program): one linearised step
+// d = (q - sigma_y) / (3G + H(epeff)), then the deviator scaled to sigma_y(epeff + d) / q;
+// where sigma_y(epeff + d) > q the step is undone and the trial stress kept.
+double clay_return(const MaterialParams& m, double s[6], double* epeff, bool original) {
+  const double j2 = 0.5 * ((s[0] * s[0] + s[1] * s[1]) + s[2] * s[2]) + ((s[3] * s[3] + s[4] * s[4]) + s[5] * s[5]);
+  const double q = std::sqrt(3.0 * j2);
+  double sy, h;
+  yield_stress(m, *epeff, 0.0, 0.0, &sy, &h);
+  if (!(q > sy)) return 0.0;
+  const double g3 = 3.0 * m.shear;
+  double d = (q - sy) / (g3 + h), ratio;
+  if (original) {
+    yield_stress(m, *epeff + d, 0.0, 0.0, &sy, &h);
+    if (sy > q) {
+      *epeff = (*epeff + d) - d;
+      return 0.0;
+    }
+    ratio = sy / q;
+  } else {
+    for (int it = 0; it < kClayIterations; ++it) {
+      yield_stress(m, *epeff + d, 0.0, 0.0, &sy, &h);
+      const double r = (q - g3 * d) - sy;
+      if (!(std::fabs(r) > kClayTolerance * q)) break;
+      d = d + r / (g3 + h);
+    }
+    ratio = (q - g3 * d) / q;
+  }
+  for (int c = 0; c < 6; ++c) s[c] = s[c] * ratio;
+  *epeff = *epeff + d;
+  return d;
 }
 
 void stress_update(const MaterialParams& m, const double de[6], const double dw[3], double dt,

@@ -87,6 +87,14 @@ void jaumann_rotate(double sig[6], const double dw[3]);
 // a = A (1 - w/(R1 V)) e^(-R1 V) + B (1 - w/(R2 V)) e^(-R2 V), b = w / V.
 void eos_coefficients(const MaterialParams& m, double mu, double* a, double* b);
 
+// clay's return of the deviator s (6) at *epeff (updated); returns the equivalent plastic
+// strain increment (0 when elastic). original: the newest program's one linearised step (rule
+// clay_return=linear); else Newton's method on the consistency condition, at most
+// kClayIterations steps, until the residual is below kClayTolerance q_trial.
+constexpr int kClayIterations = 30;
+constexpr double kClayTolerance = 1e-13;
+double clay_return(const MaterialParams& m, double s[6], double* epeff, bool original);
+
 // Yield stress and plastic modulus d(sigma_y)/d(epeff) for J2 materials.
 void yield_stress(const MaterialParams& m, double epeff, double strain_rate, double temp,
                   double* sy, double* ep);

@@ -9,7 +9,7 @@
 // family is a header of its own, templates over T:
 //   stress_ops_lanes.hpp       what all share: sigma : de, Jaumann rotation, bulk viscosity, det(I + A)
 //   eos_lanes.hpp              equations of state (linear, weakly compressible, JWL, Mie-Gruneisen)
-//   j2_plasticity_lanes.hpp    J2 plasticity: elas, pla1, pla2, Johnson-Cook (yield, return, heating)
+//   j2_plasticity_lanes.hpp    J2 plasticity: elas, pla1, pla2, clay, Johnson-Cook (yield, return, heating)
 //   drucker_prager_lanes.hpp   dpm
 //   neo_hookean_lanes.hpp      neoh, updated and total Lagrangian (TLmp)
 // The fluids hiex and null are branches of the skeleton (no deviator or the viscous one,
@@ -43,14 +43,14 @@ struct LaneUpdate {
 
   // The current program's bulk viscosity (rules bulk_switch=stress, bulk_linear=original).
   // It computes q only while its mean stress is compressive, at a point of the update that
-  // depends on the model: the models without an EOS (elas, pla1, pla2, john, dpm) test the
+  // depends on the model: the models without an EOS (elas, pla1, pla2, clay, john, dpm) test the
   // new mean stress, after the elastic update and the return; neoh the new mean stress (our
   // neo_hookean does so under either rule); those with an EOS (sjc, sjcf, jcf, hiex, null)
   // test the old mean stress, rotated, before the EOS (hiex and null unrotated: the same
   // trace). Of those with an EOS only the Mie-Gruneisen and the weakly compressible EOS
   // compute q at all: none with the linear EOS or JWL, so none on hiex. Its linear term's
   // c is a per-particle wave speed set only for elas and neoh (sqrt((lambda + 2G) / rho0)) and
-  // null (sqrt(K / rho0)), zero for every other model: pla1, pla2, john, dpm, sjc, sjcf and
+  // null (sqrt(K / rho0)), zero for every other model: pla1, pla2, clay, john, dpm, sjc, sjcf and
   // jcf get the quadratic term alone.
   // bulk_q_original: whether material m gets q there, and the linear term's c (*speed).
   static bool bulk_q_original(const MaterialParams& m, double* speed) {
@@ -112,6 +112,8 @@ struct LaneUpdate {
         else
           deps = DruckerPrager::dp_return(m, s, mean, m.lambda + two_g / 3.0, m.shear);
         epeff = epeff + deps;
+      } else if (m.type == MAT_CLAY) {
+        deps = J2::clay_return_lanes(m, s, epeff, rules.clay_return != 0);
       } else {
         deps = J2::radial_return(m, s, epeff, strain_rate, temp_in);
       }

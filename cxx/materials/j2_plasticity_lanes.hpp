@@ -1,4 +1,4 @@
-// J2 plasticity (elas, pla1, pla2 and the Johnson-Cook family john, jcf, sjc, sjcf),
+// J2 plasticity (elas, pla1, pla2, clay and the Johnson-Cook family john, jcf, sjc, sjcf),
 // written once for a lane type T (constitution_lanes.hpp): the yield stress, the radial
 // return of the deviator and the adiabatic heating of the thermal Johnson-Cook materials.
 // The hardening laws that need pow, log or the temperature call the scalar yield_stress
@@ -56,6 +56,21 @@ struct J2Lanes {
     for (int c = 0; c < 6; ++c) s[c] = TL::select(yielded, s[c] * ratio, s[c]);
     epeff = TL::select(yielded, epeff + deps, epeff);
     return TL::select(yielded, deps, TL::splat(0.0));
+  }
+
+  // clay's return (clay_return in constitution.cpp), lane by lane: its Newton iterations
+  // run as many times as each particle needs.
+  static T clay_return_lanes(const MaterialParams& m, T s[6], T& epeff, bool original) {
+    T deps = TL::splat(0.0);
+    for (int i = 0; i < TL::W; ++i) {
+      double si[6], e = TL::get(epeff, i);
+      for (int c = 0; c < 6; ++c) si[c] = TL::get(s[c], i);
+      const double d = clay_return(m, si, &e, original);
+      for (int c = 0; c < 6; ++c) TL::set(s[c], i, si[c]);
+      TL::set(epeff, i, e);
+      TL::set(deps, i, d);
+    }
+    return deps;
   }
 
   // Adiabatic heating of thermal Johnson-Cook materials (Taylor-Quinney 0.9).

@@ -37,6 +37,15 @@ std::string material_derive(MaterialParams& m) {
     // The tension cut-off may not lie beyond the apex of the cone (sigma_m = k_phi / q_phi).
     if (m.dp_qphi > 0.0 && m.dp_tension > m.dp_kphi / m.dp_qphi) m.dp_tension = m.dp_kphi / m.dp_qphi;
   }
+  if (m.type == MAT_CLAY) {
+    if (!(m.clay_residual >= 0.0) || !(m.clay_peak >= m.clay_residual))
+      return "clay strengths need 0 <= residual kappa_r <= peak kappa_p";
+    if (!(m.clay_softening >= 0.0)) return "clay softening coefficient eta must not be negative";
+    // The steepest softening slope, eta (kappa_p - kappa_r) at epeff = 0, must stay below 3G:
+    // a steeper one has no unique return (the stress would fall faster than unloading can follow).
+    if (!(m.clay_softening * (m.clay_peak - m.clay_residual) < 3.0 * m.shear))
+      return "clay softening eta (kappa_p - kappa_r) must be below 3G = E / (1 + nu)";
+  }
   return "";
 }
 

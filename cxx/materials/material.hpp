@@ -16,7 +16,8 @@ enum MaterialType {
   MAT_HIEX = 8,  // high explosive (programmed burn)
   MAT_NULL = 9,  // null material
   MAT_DPM = 10,  // Drucker-Prager
-  MAT_NEOH = 11  // compressible neo-Hookean (hyperelastic, from the deformation gradient)
+  MAT_NEOH = 11,  // compressible neo-Hookean (hyperelastic, from the deformation gradient)
+  MAT_CLAY = 12   // J2 with exponential softening (the newest version's undrained clay)
 };
 
 // EOS_WEAK: the current version's weakly compressible p = c0^2 (rho - rho0) (type 4).
@@ -57,6 +58,10 @@ struct MaterialParams {
   // Appended for the current version's null (a fluid: density, bulk modulus, viscosity).
   double bulk_modulus;  // K; wave_speed = sqrt(K / rho0)
   double viscosity;     // dynamic viscosity mu: deviatoric stress 2 mu dev(D); 0 = none
+  // Appended for clay: sigma_y(epeff) = residual + (peak - residual) exp(-softening epeff).
+  double clay_peak;       // kappa_p: peak yield stress
+  double clay_residual;   // kappa_r: residual yield stress
+  double clay_softening;  // eta: softening coefficient
 };
 
 }  // extern "C"

@@ -36,6 +36,13 @@ const MaterialParam kDpm[] = {MPM3D_ELASTIC,
                               {"k_phi", &M::dp_kphi},
                               {"q_psi", &M::dp_qpsi},
                               {"the tension cut-off", &M::dp_tension}};
+// The newest version's clay: J2 with the yield stress softening exponentially from the peak
+// to the residual strength; its last number (a reference strain rate) is read and not used.
+const MaterialParam kClay[] = {MPM3D_ELASTIC,
+                               {"peak strength kappa_p", &M::clay_peak},
+                               {"residual strength kappa_r", &M::clay_residual},
+                               {"softening coefficient eta", &M::clay_softening},
+                               {"epso (read, not used)", &M::eps0dot}};
 #undef MPM3D_ELASTIC
 #undef MPM3D_JC_HARDENING
 #undef MPM3D_JC_THERMAL
@@ -80,7 +87,8 @@ const MaterialModel kModels[] = {{"elas", MAT_ELAS, MPM3D_PARAMS(kElas), false, 
                                  {"hiex", MAT_HIEX, MPM3D_PARAMS(kHiex), true, false, false, finish_hiex},
                                  {"null", MAT_NULL, MPM3D_PARAMS(kNull), true, false, false, nullptr},
                                  {"dpm", MAT_DPM, MPM3D_PARAMS(kDpm), false, false, false, nullptr},
-                                 {"neoh", MAT_NEOH, MPM3D_PARAMS(kElas), false, false, false, nullptr}};
+                                 {"neoh", MAT_NEOH, MPM3D_PARAMS(kElas), false, false, false, nullptr},
+                                 {"clay", MAT_CLAY, MPM3D_PARAMS(kClay), false, false, false, nullptr}};
 // The current version's card of a keyword whose card changed (decks with a keyword only the
 // current version knows read it).
 const MaterialModel kCurrentModels[] = {
