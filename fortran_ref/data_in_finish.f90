@@ -97,6 +97,19 @@ contains
         end associate
       end do
     end if
+    ! Rule null_eos=wave_speed: the current program's set-up overwrites the first EOS coefficient
+    ! of every null material with the null's wave speed (Mie-Gruneisen: its linear term's rho0 c0^2).
+    if (m%rules%null_eos == 1) then
+      do i = 1, m%nmat
+        if (m%mats(i)%type == MAT_NULL .and. m%mats(i)%eos_type /= EOS_NONE) then
+          if (m%mats(i)%eos_type == EOS_MIE_GRUNEISEN) then
+            m%mats(i)%eos_k1 = m%mats(i)%wave_speed
+          else
+            m%mats(i)%eos(1) = m%mats(i)%wave_speed
+          end if
+        end if
+      end do
+    end if
     ! neoh: each particle carries F - I (zero at the start); the volume follows det F.
     if (any(m%mats(1:m%nmat)%type == MAT_NEOH)) then
       m%uvf = .true.

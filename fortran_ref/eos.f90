@@ -16,7 +16,7 @@ contains
     type(material_params), intent(in) :: m
     real(dp), intent(in) :: mu
     real(dp), intent(out) :: a, b
-    real(dp) :: mu2, c1, c2, c3, hug, vv, r1v, r2v
+    real(dp) :: mu2, c1, c2, c3, k1, hug, vv, r1v, r2v
     if (m%eos_type == EOS_JWL) then
       ! JWL: A B R1 R2 omega; V = rho0 / rho.
       vv = 1.0_dp / (1.0_dp + mu)
@@ -41,16 +41,19 @@ contains
       ! Mie-Gruneisen, the book's form (section 5.3.5): in compression the cubic
       ! Hugoniot C1 mu + C2 mu^2 + C3 mu^3 times (1 - g0 mu / (2 (1 + mu))), b = g0;
       ! in tension C1 mu, b = 0.
+      ! m%eos_k1, where set, replaces C1 in the linear term alone (rule null_eos).
       c1 = m%rho0 * (m%eos(1) * m%eos(1))
+      k1 = c1
+      if (m%eos_k1 /= 0.0_dp) k1 = m%eos_k1
       if (mu > 0.0_dp) then
         c2 = c1 * ((2.0_dp * m%eos(2)) - 1.0_dp)
         c3 = (c1 * (m%eos(2) - 1.0_dp)) * ((3.0_dp * m%eos(2)) - 1.0_dp)
         mu2 = mu * mu
-        hug = ((c1 * mu) + (c2 * mu2)) + (c3 * (mu2 * mu))
+        hug = ((k1 * mu) + (c2 * mu2)) + (c3 * (mu2 * mu))
         a = hug * (1.0_dp - (((0.5_dp * m%eos(3)) * mu) / (1.0_dp + mu)))
         b = m%eos(3)
       else
-        a = c1 * mu
+        a = k1 * mu
         b = 0.0_dp
       end if
     end if

@@ -50,6 +50,8 @@ module mpm3d_material
     real(c_double) :: clay_peak = 0.0_dp       ! kappa_p: peak yield stress
     real(c_double) :: clay_residual = 0.0_dp   ! kappa_r: residual yield stress
     real(c_double) :: clay_softening = 0.0_dp  ! eta: softening coefficient
+    ! Mie-Gruneisen: the linear term's coefficient when non-zero, else rho0 c0^2 (rule null_eos).
+    real(c_double) :: eos_k1 = 0.0_dp
   end type material_params
 
 end module mpm3d_material

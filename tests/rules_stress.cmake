@@ -12,3 +12,7 @@ rules_add(bulk_linear_original ${_rules_inputs}/methods/j2eos_linear.mpm 40 --ru
 rules_add(bulk_linear_original_hiex ${_rules_inputs}/methods/hiex_linear.mpm 40 --rule bulk_linear=original)
 # The four together, with the current program's other rules: hiex, viscous null.
 rules_add(stress_current ${_rules_inputs}/explosives/water_tube.mpm 40 --rules current)
+# Rule null_eos: the null's wave speed in place of the EOS's first coefficient, with the
+# weakly compressible EOS (c0) and with Mie-Gruneisen (rho0 c0^2 in the linear term only).
+rules_add(null_eos_weak ${_rules_inputs}/fluids/dam_break_coarse.mpm 40 --rule null_eos=wave_speed)
+rules_add(null_eos_mie_gruneisen ${CMAKE_CURRENT_SOURCE_DIR}/decks/water_tube_mg.mpm 40 --rule null_eos=wave_speed)

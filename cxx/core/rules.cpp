@@ -31,12 +31,15 @@ const RuleInfo kRules[kRuleCount] = {
     {"pressure_q", {"in", "out"}, 0, 1, "output pres: the stress's pressure with q in it, or without q"},
     {"clay_return", {"solved", "linear"}, 1, 1,
      "clay: return solved to the softening curve, or the newest program's one linearised step"},
+    {"null_eos", {"deck", "wave_speed"}, 0, 1,
+     "null's EOS as the deck gives it, or its first coefficient replaced by the null's\n"
+     "      wave speed sqrt(K/rho0), as the current program's set-up does"},
 };
 
 int& rule_value(StepRules& r, int i) {
   int* v[kRuleCount] = {&r.program,  &r.time_step, &r.bulk_book, &r.bulk_switch, &r.bulk_linear, &r.burn,
                         &r.dp_return, &r.deck_reals, &r.tl_shape, &r.sg_lower,   &r.sg_beyond,  &r.fluid_viscous,
-                        &r.bulk_work, &r.pressure_q, &r.clay_return};
+                        &r.bulk_work, &r.pressure_q, &r.clay_return, &r.null_eos};
   return *v[i];
 }
 

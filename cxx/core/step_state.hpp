@@ -151,6 +151,8 @@ struct StepRules {
                       // 1 without q (the current program writes its mean stress apart from q)
   int clay_return;    // clay: 0 the return solved to consistency (Newton), 1 the newest program's one
                       // linearised step, scaled to the yield stress at the new epeff
+  int null_eos;       // null with an EOS: 0 the EOS as the deck gives it, 1 its first coefficient (c0,
+                      // C0, A; Mie-Gruneisen's rho0 c0^2) replaced by the null's wave speed (current program)
 };
 
 struct StepContext {

@@ -99,6 +99,17 @@ void DeckReader::finish(int line) {
     m_.bulk_q2 = 0.06;
   }
   if (m_.has_bulk) P.qv.assign(size_t(P.np), 0.0);
+  // Rule null_eos=wave_speed: the current program's set-up overwrites the first EOS coefficient
+  // of every null material (c0, C0, A; in Mie-Gruneisen rho0 c0^2, which its linear term alone
+  // reads) with the null's wave speed sqrt(K / rho0).
+  if (m_.rules.null_eos == 1)
+    for (auto& mp : m_.mats)
+      if (mp.type == MAT_NULL && mp.eos_type != EOS_NONE) {
+        if (mp.eos_type == EOS_MIE_GRUNEISEN)
+          mp.eos_k1 = mp.wave_speed;
+        else
+          mp.eos[0] = mp.wave_speed;
+      }
   // neoh: each particle carries F - I (zero at the start); the volume follows det F.
   bool neoh = false;
   for (const auto& mp : m_.mats) neoh = neoh || mp.type == MAT_NEOH;

@@ -32,14 +32,15 @@ struct EosLanes {
     } else {
       // Mie-Gruneisen, the book's form (section 5.3.5): in compression the cubic Hugoniot
       // C1 mu + C2 mu^2 + C3 mu^3 times (1 - g0 mu / (2 (1 + mu))), b = g0; in tension
-      // C1 mu, b = 0.
+      // C1 mu, b = 0. m.eos_k1, where set, replaces C1 in the linear term alone (rule null_eos).
       const double c1 = m.rho0 * (c[0] * c[0]);
       const double c2 = c1 * (2.0 * c[1] - 1.0);
       const double c3 = (c1 * (c[1] - 1.0)) * (3.0 * c[1] - 1.0);
+      const double k1 = m.eos_k1 != 0.0 ? m.eos_k1 : c1;
       const T mu2 = mu * mu;
-      const T hug = ((c1 * mu) + c2 * mu2) + c3 * (mu2 * mu);
+      const T hug = ((k1 * mu) + c2 * mu2) + c3 * (mu2 * mu);
       const T compressed = hug * (1.0 - ((0.5 * c[2]) * mu) / (1.0 + mu));
-      *a = TL::select(mu > 0.0, compressed, c1 * mu);
+      *a = TL::select(mu > 0.0, compressed, k1 * mu);
       *b = TL::select(mu > 0.0, TL::splat(c[2]), TL::splat(0.0));
     }
   }

@@ -62,6 +62,9 @@ struct MaterialParams {
   double clay_peak;       // kappa_p: peak yield stress
   double clay_residual;   // kappa_r: residual yield stress
   double clay_softening;  // eta: softening coefficient
+  // Mie-Gruneisen: the linear term's coefficient when non-zero, else rho0 c0^2 (rule
+  // null_eos=wave_speed puts the current program's null wave speed there).
+  double eos_k1;
 };
 
 }  // extern "C"
