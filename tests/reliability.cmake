@@ -58,3 +58,11 @@ foreach(file two_blocks.out EnergyPlot.dat two_blocks_curv.dat)
                    ${CMAKE_SOURCE_DIR}/inputs/impact/two_blocks.mpm full ${file})
   set_tests_properties(output.full_disk_${file} PROPERTIES SKIP_RETURN_CODE 77)
 endforeach()
+
+# Any path length: a deck, its results, the state and a checkpoint under paths of over 300
+# characters, restarted, and mpm3d_ref on the same deck (tests/long_path.sh).
+if(TARGET mpm3d_ref)
+  add_test(NAME output.long_paths
+           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/long_path.sh $<TARGET_FILE:mpm3d> $<TARGET_FILE:mpm3d_ref>
+                   ${CMAKE_SOURCE_DIR}/inputs/clay/clay_column.mpm ${CMAKE_CURRENT_BINARY_DIR}/long_paths)
+endif()

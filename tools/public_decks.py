@@ -20,6 +20,14 @@ or `--rules current` for a book deck run against the current program; mpm3d --he
 the rules). The table replaces the block
 between the PUBLIC_DECKS markers of --out; NOTES below says why a deck differs, each cause
 found by experiment.
+
+With --newest EXE (the newest program, commit 17fd4ee, built outside the repository from the
+shared folder's sources), the six decks that program added run against it too (by our rules
+and by `--rules original`): the three R1 dam breaks of --newest-decks (default: the shared
+folder's decks/newest) and the three 3D landslides, written there by its
+make_landslide_decks.py and cut at t = 0.03 (the newest program takes 0.3-0.6 s a step on them;
+their whole runs are in docs/PERFORMANCE.md). Their table replaces the block between the
+NEWEST_DECKS markers. `--only newest` runs those alone.
 """
 import argparse
 import datetime
@@ -75,6 +83,18 @@ DECKS = [
     VL + "SoftBeam/SBTL_0p05mesh/SBTL.mpm",
     VL + "SoftBeam/SBSGTL_0p1mesh/SBSGTL.mpm",
     VL + "SoftBeam/SBSGTL_0p05mesh/SBSGTL.mpm")]
+
+# The newest program's decks (--newest): (name, deck in --newest-decks, end time override).
+NEWEST_DECKS = [
+    ("DamBreak_MPM_R1_Dam_R1 (newest)", "DamBreak_MPM_R1_Dam_R1.mpm", None),
+    ("DamBreak_SGMPM_R1_Dam_SGR1 (newest)", "DamBreak_SGMPM_R1_Dam_SGR1.mpm", None),
+    ("DamBreak_SGMPMvsPressureR1_Dam_SGR1 (newest)", "DamBreak_SGMPMvsPressureR1_Dam_SGR1.mpm", None),
+    ("3DProgressiveLandslide_BS (newest, to t = 0.03)", "BS.mpm", "0.03"),
+    ("3DProgressiveLandslide_GIMP (newest, to t = 0.03)", "GIMP.mpm", "0.03"),
+    ("3DProgressiveLandslide_SG (newest, to t = 0.03)", "SG.mpm", "0.03"),
+]
+LANDSLIDES = ("BS.mpm", "GIMP.mpm", "SG.mpm")
+NEWEST_BEGIN, NEWEST_END = "<!-- NEWEST_DECKS begin -->", "<!-- NEWEST_DECKS end -->"
 
 # Why a deck differs by more than the criterion (kinetic, total and curves 1 %, internal 5 % of
 # the column's largest magnitude), each cause shown by experiment: the rule switched, the
@@ -163,7 +183,8 @@ NOTES.update({
 
 
 def slug(name):
-    return name.replace(" (current program)", "@current")
+    name = name.replace(" (current program)", "@current")
+    return name.split(" (newest")[0] + "@newest" if " (newest" in name else name
 
 
 def prepare(deck_src, end, path):
@@ -251,6 +272,18 @@ def pct(v):
     return "-" if v is None else ("%.2f" % v if v < 100 else "%.0f" % v)
 
 
+def newest_table(results, when, threads):
+    """The newest program's decks: the same columns under their own heading and markers."""
+    rows = table(results, when, threads)[5:-1]  # the header lines, the rows and the notes
+    return [NEWEST_BEGIN, "## The newest program's decks (commit 17fd4ee), side by side", "",
+            f"`tools/public_decks.py --newest` on {when}, {platform.machine()}, {os.cpu_count()} cores: the "
+            "six decks the newest MPM3D-F90 added, run by that program (serial, gfortran 12 `-O2`, built "
+            f"here from its sources) and by `mpm3d --threads {threads}`, by our rules and by the original "
+            "program's (`--rules original`), compared as the table above. The landslides are cut at "
+            "t = 0.03 (140-190 steps; their whole runs: docs/PERFORMANCE.md and docs/VERIFICATION.md).",
+            ""] + rows + [NEWEST_END]
+
+
 def table(results, when, threads):
     out = [BEGIN, "## Every public deck against the original program, side by side", "",
            f"`tools/public_decks.py` on {when}, {platform.machine()}, {os.cpu_count()} cores: each public "
@@ -323,14 +356,28 @@ def main():
                     help="keep mpm3d's finished runs too (a rerun of the table with the same build)")
     ap.add_argument("--finished-only", action="store_true",
                     help="leave out the decks whose original run is not finished (start none)")
+    ap.add_argument("--newest", help="the newest program (commit 17fd4ee): also its six decks")
+    ap.add_argument("--newest-decks", default=os.path.join(ROOT, "..", "shared", "decks", "newest"),
+                    help="the newest decks (the R1 dam breaks and make_landslide_decks.py)")
     a = ap.parse_args()
     mpm3d = os.path.join(os.path.abspath(a.build), "cxx", "mpm3d")
     wanted = [w for w in a.only.split(",") if w]
-    results = []
-    for name, rel, which, end in DECKS:
+    results, newest = [], []
+    todo = list(DECKS)
+    if a.newest:
+        todo += [(name, rel, "newest", end) for name, rel, end in NEWEST_DECKS]
+        landslide_dir = os.path.join(os.path.abspath(a.runs), "_landslide_decks")
+        if not all(os.path.exists(os.path.join(landslide_dir, d)) for d in LANDSLIDES):
+            os.makedirs(landslide_dir, exist_ok=True)
+            subprocess.run([sys.executable, os.path.join(a.newest_decks, "make_landslide_decks.py"), landslide_dir],
+                           check=True, stdout=subprocess.DEVNULL)
+    for name, rel, which, end in todo:
         if wanted and not any(w in name for w in wanted):
             continue
-        src = os.path.join(a.repo, rel)
+        if which == "newest":
+            src = os.path.join(landslide_dir if rel in LANDSLIDES else a.newest_decks, rel)
+        else:
+            src = os.path.join(a.repo, rel)
         if not os.path.exists(src):
             print(f"public_decks: {rel} not in {a.repo}: skipped", file=sys.stderr)
             continue
@@ -341,7 +388,7 @@ def main():
         if a.finished_only and not os.path.exists(os.path.join(base, "original", "done")):
             results.append({"name": name, "program": which, "pending": True})
             continue
-        exe = os.path.abspath(a.book if which == "book" else a.current)
+        exe = os.path.abspath({"book": a.book, "current": a.current, "newest": a.newest}[which])
         orig = run_original(exe, deck, os.path.join(base, "original"))
         ours = run_mpm3d(mpm3d, deck, a.threads, os.path.join(base, "mpm3d"), a.reuse)
         by_rules = run_mpm3d(mpm3d, deck, a.threads, os.path.join(base, "mpm3d_rules"), a.reuse,
@@ -361,12 +408,15 @@ def main():
             orig_rows = compare.read_table(os.path.join(base, "original", compare.ENERGY_FILE))[1]
             r.update(particles=ours.get("particles"), steps=ours.get("steps"), orig_steps=len(orig_rows),
                      wall=ours["wall"], orig_wall=orig["wall"])
-        results.append(r)
+        (newest if which == "newest" else results).append(r)
         print(f"public_decks: {name}: " + (r.get("refused") or "max %.3f %%, internal %.3f %%; by the original's "
                                             "rules %.3f %%, %.3f %%" % (verdict(r["rows"])[:2] + verdict(r["rules_rows"])[:2])),
               flush=True)
     when = datetime.datetime.utcnow().strftime("%Y-%m-%d")
-    write(a.out, table(results, when, a.threads))
+    if newest:
+        write(a.out, newest_table(newest, when, a.threads), NEWEST_BEGIN, NEWEST_END)
+    if results:
+        write(a.out, table(results, when, a.threads))
     print(f"public_decks: wrote {a.out}")
     return 0
 
