@@ -104,6 +104,23 @@ _current = importlib.util.module_from_spec(_spec)
 _spec.loader.exec_module(_current)
 NOTES = dict(_current.NOTES)  # the six decks of shared/decks/current, studied step by step
 NOTES.update({
+    "DamBreak_MPM_R1_Dam_R1 (newest)": (
+        "Linear MPM dam break at the coarser resolution R1. The newest program (as the 2025 one) "
+        "replaces the first EOS coefficient of every `null` material by the null's wave speed "
+        "sqrt(K/rho0) when it sets up the particles: c0 1416.0 instead of the deck's 1415, so its "
+        "internal energy is 0.14 % above ours from the first step and the runs drift apart after "
+        "t = 0.06 (rule `null_eos`). With that rule among the original's, every row of both energy "
+        "files agrees to the printed digits until t = 0.80; the surge then hits the far wall and "
+        "splashes, and the runs end 1.4 % (kinetic) and 6.5 % (internal) apart. Our own run under the "
+        "same rules with one deck real moved by one unit in its last single-precision digit (the "
+        "water's density 997.5 -> 997.50006, its bulk modulus 2.0e9 -> 2.00000013e9, the particle "
+        "spacing 0.025 -> 0.025000002, gravity 9.81 -> 9.8100014; 2026-12-05) differs from the "
+        "unperturbed run by 2.4-5.0 % (kinetic) and 8.1-26.6 % (internal), and those runs from each "
+        "other by up to 6.5 % and 27.8 %: the original lies inside the spread of our own rounding."),
+    "DamBreak_SGMPM_R1_Dam_SGR1 (newest)": (
+        "The sgmp dam break at R1: 3.2 % apart in kinetic energy until the rule `null_eos` (the "
+        "null's wave speed in place of the deck's c0, as the note above); with the original's rules "
+        "every column agrees to the printed digits."),
     "DamBreak_MPM_Dam_R2": (
         "Linear MPM dam break, the current version's null water. By our rules the internal energy "
         "(a tenth of the kinetic at the end) drifts apart by up to 7 % of its largest value after "
