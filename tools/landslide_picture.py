@@ -1,6 +1,6 @@
 """The picture of a landslide run for docs/VERIFICATION.md: one ParaView frame of mpm3d (the
-particles as points), coloured by the equivalent plastic strain, seen obliquely from the
-downstream side. Run by pvbatch under xvfb-run:
+particles as points), coloured by the equivalent plastic strain, seen from the side (along
+z, parallel projection): x downstream, y up, the whole 55 m of the grid. Run by pvbatch under xvfb-run:
 
 usage: xvfb-run -a pvbatch tools/landslide_picture.py FRAME.vtu OUT.png TITLE
 """
@@ -11,7 +11,7 @@ from paraview.simple import (ColorBy, GetActiveViewOrCreate, GetColorTransferFun
 
 frame, out, title = sys.argv[1:4]
 view = GetActiveViewOrCreate("RenderView")
-view.ViewSize = [900, 360]
+view.ViewSize = [1000, 230]
 view.OrientationAxesVisibility = 1
 try:
     view.UseColorPaletteForBackground = 0
@@ -21,7 +21,7 @@ view.Background = [1.0, 1.0, 1.0]
 reader = XMLUnstructuredGridReader(FileName=[frame])
 disp = Show(reader, view)
 disp.SetRepresentationType("Points")
-disp.PointSize = 1
+disp.PointSize = 3
 ColorBy(disp, ("POINTS", "epeff"))
 lut = GetColorTransferFunction("epeff")
 lut.ApplyPreset("Jet", True)
@@ -33,17 +33,20 @@ bar.TitleColor = bar.LabelColor = [0.0, 0.0, 0.0]
 bar.TitleFontSize = bar.LabelFontSize = 14
 bar.RangeLabelFormat = "%.1f"
 bar.WindowLocation = "Any Location"
-bar.Position = [0.9, 0.15]
-bar.ScalarBarLength = 0.7
+bar.Orientation = "Horizontal"
+bar.Position = [0.62, 0.68]
+bar.ScalarBarLength = 0.3
 disp.SetScalarBarVisibility(view, True)
 label = Show(Text(Text=title), view)
 label.WindowLocation = "Upper Left Corner"
 label.FontSize = 14
 label.Color = [0.0, 0.0, 0.0]
-# x downstream, y up, z across: from downstream, above and to the side.
-view.CameraPosition = [38.0, 16.0, 30.0]
-view.CameraFocalPoint = [19.0, 1.5, 2.5]
+Render(view)  # the first render resets the camera: set it after
+# x downstream, y up, z across: from the side.
+view.CameraPosition = [26.0, 3.0, 100.0]
+view.CameraFocalPoint = [26.0, 3.0, 2.5]
 view.CameraViewUp = [0.0, 1.0, 0.0]
-view.CameraViewAngle = 30.0
+view.CameraParallelProjection = 1
+view.CameraParallelScale = 6.0
 Render(view)
-SaveScreenshot(out, view, ImageResolution=[900, 360])
+SaveScreenshot(out, view, ImageResolution=[1000, 230])

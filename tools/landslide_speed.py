@@ -3,7 +3,7 @@
 serially, side by side: the CPU time a step takes in the newest program and in mpm3d.
 
 usage: tools/landslide_speed.py BUILD_DIR --newest EXE [--newest-decks DIR] [--runs DIR]
-                                [--reps 3] [--t1 0.005] [--t2 0.025] [--csv FILE]
+                                [--reps 3] [--t1 0.005] [--t2 0.025] [--csv FILE] [--decks BS,GIMP,SG]
 
 Each deck runs to two end times t1 < t2 in both programs (mpm3d on one thread, --no-output;
 the original writes its frames at t = 0 and at its outtime, after t2), the runs of one deck
@@ -63,6 +63,7 @@ def main():
     ap.add_argument("--t1", default="0.005")
     ap.add_argument("--t2", default="0.025")
     ap.add_argument("--csv", default="")
+    ap.add_argument("--decks", default=",".join(DECKS), help="which of BS, GIMP, SG (default: all)")
     a = ap.parse_args()
     mpm3d = os.path.join(os.path.abspath(a.build), "cxx", "mpm3d")
     newest = os.path.abspath(a.newest)
@@ -72,7 +73,7 @@ def main():
         subprocess.run([sys.executable, os.path.join(a.newest_decks, "make_landslide_decks.py"), runs],
                        check=True, stdout=subprocess.DEVNULL)
     rows = []
-    for d in DECKS:
+    for d in a.decks.split(","):
         per = {"original": [], "mpm3d": []}
         steps = {}
         for rep in range(a.reps):

@@ -37,6 +37,7 @@ import hypervelocity as H  # noqa: E402
 import soft_beam as SB  # noqa: E402
 import soft_cantilever as SC  # noqa: E402
 import cook_membrane as CM  # noqa: E402
+import landslide_result as LS  # noqa: E402
 import dam_break as DB  # noqa: E402
 import verification as V  # noqa: E402
 
@@ -138,6 +139,8 @@ class Suite(BarStudy, MmsStudy, WaveStudy, SpheresStudy, SodStudy, TaylorStudy, 
         L += CM.section_lines()
         # The dam break against Martin & Moyce (tools/dam_break.py: docs/verification/dam_break.csv)
         L += DB.section_lines()
+        # The newest program's landslides, run once (tools/landslide_result.py: docs/verification/landslides.csv)
+        L += LS.section_lines()
         L += self.taylor_section()
         with open(os.path.join(ROOT, "docs", "VERIFICATION.md"), "w") as f:
             f.write("\n".join(L))
