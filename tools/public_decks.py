@@ -133,7 +133,7 @@ NOTES.update({
         "The three landslides (clay, MUSL, `smoo`, `bulk`): by our rules within 0.24 % (kinetic) and 0.39 % "
         "(internal) over the first 0.03 s; with the original's rules (`clay_return`, `bulk_switch`, "
         "`bulk_linear`, `bulk_work` among them) every column to the printed digits. Their whole runs to "
-        "t = 5.5 s (the newest program would take 3-5 hours for each): docs/VERIFICATION.md and "
+        "t = 5.5 s (the newest program would take 2-6 hours for each): docs/VERIFICATION.md and "
         "docs/PERFORMANCE.md."),
     "DamBreak_MPM_Dam_R2": (
         "Linear MPM dam break, the current version's null water. By our rules the internal energy "
