@@ -24,7 +24,7 @@ if(MPM3D_MPI AND MPI_CXX_FOUND AND MPIEXEC_EXECUTABLE)
   mpm3d_rank_test(taylor_coarse ${CMAKE_SOURCE_DIR}/inputs/taylor/taylor_coarse.mpm 60)
   mpm3d_rank_test(legacy_taylor ${CMAKE_SOURCE_DIR}/../shared/decks/Taylor.mpm 60)
   # The newest version's clay (softening J2 return, Newton iterations per particle).
-  mpm3d_rank_test(clay_column ${CMAKE_SOURCE_DIR}/inputs/clay/clay_column.mpm 200)
+  mpm3d_rank_test(clay_column ${CMAKE_SOURCE_DIR}/inputs/clay/clay_column.mpm 100)
   # USF with Johnson-Cook; explosive (programmed burn, JWL).
   mpm3d_rank_test(usf_john ${CMAKE_SOURCE_DIR}/fortran_ref/testdecks/usf_john.mpm 100)
   mpm3d_rank_test(slab_small ${CMAKE_SOURCE_DIR}/inputs/explosives/slab_small.mpm 200)

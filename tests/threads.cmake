@@ -58,7 +58,7 @@ mpm3d_thread_test(bar_bimp ${CMAKE_CURRENT_SOURCE_DIR}/decks/bar_bimp.mpm 311)
 mpm3d_thread_test(dam_break_coarse ${CMAKE_SOURCE_DIR}/inputs/fluids/dam_break_coarse.mpm 297)
 mpm3d_thread_test(current_dam_break ${CMAKE_SOURCE_DIR}/../shared/decks/current/DamBreak_SGMPM_Dam_SGR2.mpm 300)
 # The newest version: clay (our column), the R1 dam breaks (linear and sgmp).
-mpm3d_thread_test(clay_column ${CMAKE_SOURCE_DIR}/inputs/clay/clay_column.mpm 300)
+mpm3d_thread_test(clay_column ${CMAKE_SOURCE_DIR}/inputs/clay/clay_column.mpm 150)
 mpm3d_thread_test(newest_dam_r1 ${CMAKE_SOURCE_DIR}/../shared/decks/newest/DamBreak_MPM_R1_Dam_R1.mpm 300)
 mpm3d_thread_test(newest_dam_sgr1 ${CMAKE_SOURCE_DIR}/../shared/decks/newest/DamBreak_SGMPM_R1_Dam_SGR1.mpm 300)
 # The particles' storage order (tests/particle_order.sh): deck order keeps every bit too.
