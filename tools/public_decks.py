@@ -116,7 +116,9 @@ NOTES.update({
         "water's density 997.5 -> 997.50006, its bulk modulus 2.0e9 -> 2.00000013e9, the particle "
         "spacing 0.025 -> 0.025000002, gravity 9.81 -> 9.8100014; 2026-12-05) differs from the "
         "unperturbed run by 2.4-5.0 % (kinetic) and 8.1-26.6 % (internal), and those runs from each "
-        "other by up to 6.5 % and 27.8 %: the original lies inside the spread of our own rounding."),
+        "other by up to 6.5 % and 27.8 %: the original lies inside the spread of our own rounding. The newest "
+        "program built with `-fcheck=bounds` runs the deck without a read outside its arrays and writes the "
+        "same energy file."),
     "DamBreak_SGMPM_R1_Dam_SGR1 (newest)": (
         "The sgmp dam break at R1: 3.2 % apart in kinetic energy until the rule `null_eos` (the "
         "null's wave speed in place of the deck's c0, as the note above); with the original's rules "
