@@ -430,6 +430,11 @@ contains
         m%sg = .true.
         m%sgmp_line = key%line
       case default
+        ! As cxx/input/data_in.cpp: a number where a keyword belongs ends a card that is too long.
+        if (parse_real(ts%text_of(key), xyz(1))) call ts%fail(key%line, "'" // ts%text_of(key) // &
+          "' is a number where a card's keyword was expected: the card before it has more numbers than it " // &
+          "takes (docs/DECK_FORMAT.md lists each card's; a null material takes density, bulk modulus and " // &
+          "viscosity in a current deck, density and wave speed in a book deck)")
         call ts%fail(key%line, "unknown keyword '" // kt // "'")
       end select
     end do

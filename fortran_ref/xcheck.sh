@@ -189,6 +189,7 @@ fixe 0 0 3 0 0 0
 velo node 1 1.0 2.0 3.0 endx
 adgr -1
 frobnicate
+dcell 1.0 2.0
 dcell 1.0-3
 dcell 1e400
 dcell 1e

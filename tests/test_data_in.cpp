@@ -20,6 +20,20 @@ std::string deck(const std::string& mate, const std::string& extra = "") {
 
 }  // namespace
 
+// A card with a number too many: the number is named on its line as the end of a card that
+// is too long, not as an unknown keyword.
+TEST(DataIn, NumberWhereAKeywordBelongsNamesTheLongCard) {
+  try {
+    mpm3d::read_deck_text(deck("1 elas 2.0 200.0 0.25 7.0"), "long.mpm");
+    ADD_FAILURE() << "accepted a material card with a number too many";
+  } catch (const mpm3d::DeckError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("long.mpm:12: '7.0' is a number where a card's keyword was expected"), std::string::npos)
+        << what;
+    EXPECT_NE(what.find("more numbers than it takes"), std::string::npos) << what;
+  }
+}
+
 TEST(DataIn, BlockParticlesZFastest) {
   mpm3d::Model m = mpm3d::read_deck_text(deck("1 elas 2.0 200.0 0.25"), "b.mpm");
   EXPECT_EQ(m.title, "*** reader test");

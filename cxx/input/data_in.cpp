@@ -245,6 +245,11 @@ Model DeckReader::read() {
       m_.sg = true;
       sgmp_line_ = key.line;
     } else {
+      double number;
+      if (parse_real(key.text, number))
+        fail(key.line, "'" + key.text + "' is a number where a card's keyword was expected: the card before it has more numbers than it "
+                     "takes (docs/DECK_FORMAT.md lists each card's; a null material takes density, bulk modulus and "
+                     "viscosity in a current deck, density and wave speed in a book deck)");
       fail(key.line, "unknown keyword '" + key.text + "'");
     }
   }
