@@ -128,7 +128,10 @@ contains
       mp = material_params()
       mp%type = material_type_of(t)
       if (mp%type == 0) call ts%fail(line, "unknown material type '" // ts%text_of(typ) // "'")
+      ts%card_line = line
+      ts%card = 'material ' // itoa(num) // "'s '" // ts%text_of(typ) // "' card"
       call read_material_card(ts, mp, line, m%current_version)
+      ts%card_line = 0
       if (material_is_johnson_cook(mp%type)) then
         if (.not. (mp%jc_n > 0.0_dp)) call ts%fail(line, 'Johnson-Cook n must be positive')
         if (mp%jc_c /= 0.0_dp .and. .not. (mp%eps0dot > 0.0_dp)) &

@@ -27,6 +27,10 @@ module mpm3d_ffi
     ! Rule deck_reals=single: every real rounded to single precision, as the original's
     ! GetReal (a default real) reads it.
     logical :: single_reals = .false.
+    ! While a card's numbers are read (as TokenStream::begin_card in cxx/input/ffi.hpp): a word
+    ! on a later line where a number belongs means the card is short, named at its line.
+    integer :: card_line = 0
+    character(len=:), allocatable :: card
   contains
     procedure :: at_end => ts_at_end
     procedure :: peek => ts_peek
@@ -272,9 +276,14 @@ contains
     character(len=:), allocatable :: text
     if (ts%at_end()) call ts%fail(ts%line(), 'unexpected end of file while reading ' // what)
     t = ts%next()
-    if (.not. parse_real(ts%text_of(t), v)) &
+    if (.not. parse_real(ts%text_of(t), v)) then
+      if (ts%card_line > 0 .and. t%line /= ts%card_line) &
+        call ts%fail(ts%card_line, ts%card // ' ends before ' // what // " ('" // ts%text_of(t) // &
+                     "' on line " // itoa(int(t%line, int64)) // &
+                     " is not a number): the card is short of numbers (docs/DECK_FORMAT.md lists each card's)")
       call ts%fail(t%line, "Non Numeric Field '" // ts%text_of(t) // "' where " // what // &
                    ' was expected')
+    end if
     if (ts%single_reals) then   ! the decimal text rounded once to single precision
       text = ts%text_of(t)
       read (text, *) v4

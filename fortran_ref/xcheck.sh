@@ -177,6 +177,7 @@ cont lagr 0.1 3
 cont pena 0.1 0
 deto 0.0 0.0 abc
 mate 2 hiex 1.6d-3 6930.0
+mate 2 hiex 1.6d-3
 mate 2 hiex 1.6d-3 -6930.0
 mate 2 null 1.0d-3 1500.0
 mate 2 dpm 2.0d-3 10.0 0.3 -0.5 0.0 0.0 0.0

@@ -34,6 +34,20 @@ TEST(DataIn, NumberWhereAKeywordBelongsNamesTheLongCard) {
   }
 }
 
+// A card a number short: named at its own line, with the number it lacks, not at the next
+// card's line.
+TEST(DataIn, ShortMaterialCardIsNamedAtItsLine) {
+  try {
+    mpm3d::read_deck_text(deck("1 elas 2.0 200.0"), "short.mpm");
+    ADD_FAILURE() << "accepted a material card a number short";
+  } catch (const mpm3d::DeckError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("short.mpm:12: material 1's 'elas' card ends before Poisson's ratio ('part' on line 13"),
+              std::string::npos)
+        << what;
+  }
+}
+
 TEST(DataIn, BlockParticlesZFastest) {
   mpm3d::Model m = mpm3d::read_deck_text(deck("1 elas 2.0 200.0 0.25"), "b.mpm");
   EXPECT_EQ(m.title, "*** reader test");

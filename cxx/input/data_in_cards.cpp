@@ -24,7 +24,9 @@ void DeckReader::read_materials(const Token& key) {
     const MaterialModel* model = find_material_model(t, m_.current_version);
     if (!model) fail(line, "unknown material type '" + typ.text + "'");
     mp.type = model->type;
+    ts_.begin_card(line, "material " + std::to_string(num) + "'s '" + typ.text + "' card");
     for (int k = 0; k < model->nparams; ++k) mp.*(model->params[k].field) = ts_.real(model->params[k].name);
+    ts_.end_card();
     if (model->finish) {
       const std::string err = model->finish(mp);
       if (!err.empty()) fail(line, err);

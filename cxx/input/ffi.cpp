@@ -115,8 +115,12 @@ double TokenStream::real(const char* what) {
   if (at_end()) fail(line(), std::string("unexpected end of file while reading ") + what);
   const Token& t = next();
   double v;
-  if (!parse_real(t.text, v))
+  if (!parse_real(t.text, v)) {
+    if (card_line_ > 0 && t.line != card_line_)
+      fail(card_line_, card_ + " ends before " + what + " ('" + t.text + "' on line " + std::to_string(t.line) +
+                           " is not a number): the card is short of numbers (docs/DECK_FORMAT.md lists each card's)");
     fail(t.line, std::string("Non Numeric Field '") + t.text + "' where " + what + " was expected");
+  }
   if (single_reals_) {  // the decimal text rounded once to single precision (strtof), as a Fortran read
     std::string e = t.text;
     for (char& ch : e)

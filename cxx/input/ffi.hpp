@@ -50,6 +50,10 @@ class TokenStream {
   std::string word(const char* what);
 
   [[noreturn]] void fail(int line, const std::string& what) const;
+  // While a card's numbers are read (card: "material 1's 'clay' card", line: the card's): a
+  // word on a later line where a number belongs means the card is short, named at its line.
+  void begin_card(int line, const std::string& card) { card_line_ = line, card_ = card; }
+  void end_card() { card_line_ = 0; }
 
  private:
   std::string name_;
@@ -57,6 +61,8 @@ class TokenStream {
   std::vector<std::string> lines_;
   size_t pos_ = 0;
   bool single_reals_ = false;
+  int card_line_ = 0;
+  std::string card_;
 };
 
 // First four characters, lower case: the keyword as the original recognises it.
