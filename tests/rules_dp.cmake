@@ -2,6 +2,4 @@
 # tension branch (kept deviator) and the shear return beyond the cut-off within 20 steps;
 # the method deck has cohesion and a non-zero cut-off.
 rules_add(dp_return_slope ${_rules_inputs}/granular/slope.mpm 40 --rule dp_return=original)
-# Rule clay_return (the newest program's clay): its linearised return on our column.
-rules_add(clay_return_column ${_rules_inputs}/clay/clay_column.mpm 60 --rule clay_return=linear)
 rules_add(dp_return_dpm_linear ${_rules_inputs}/methods/dpm_linear.mpm 40 --rule dp_return=original)

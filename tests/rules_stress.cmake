@@ -16,3 +16,5 @@ rules_add(stress_current ${_rules_inputs}/explosives/water_tube.mpm 40 --rules c
 # weakly compressible EOS (c0) and with Mie-Gruneisen (rho0 c0^2 in the linear term only).
 rules_add(null_eos_weak ${_rules_inputs}/fluids/dam_break_coarse.mpm 40 --rule null_eos=wave_speed)
 rules_add(null_eos_mie_gruneisen ${CMAKE_CURRENT_SOURCE_DIR}/decks/water_tube_mg.mpm 40 --rule null_eos=wave_speed)
+# Rule clay_return (the newest program's clay): its linearised return on our column.
+rules_add(clay_return_column ${_rules_inputs}/clay/clay_column.mpm 60 --rule clay_return=linear)
