@@ -1,4 +1,4 @@
-# The stress update's rules (burn, fluid_viscous, bulk_switch, bulk_linear), each on a deck
+# The stress update's rules (burn, fluid_viscous, bulk_switch, bulk_linear, null_eos, clay_return), each on a deck
 # where it acts (tests/rules.cmake: rules_add). The bulk viscosity decks are current-version
 # decks (bulk viscosity on by default).
 rules_add(burn_step ${_rules_inputs}/explosives/slab_small.mpm 40 --rule burn=step)
