@@ -43,15 +43,19 @@ Also printed: both wall times, mpm3d's ns per particle-step (its --summary) and 
 original's 'Time per particle cycle' (its output or NAME.out).
 
 --rules and --rule are passed to mpm3d (mpm3d --help lists the rules: the places where
-mpm3d deliberately differs from the original programs). --explain answers why a column is
-beyond the tolerance: mpm3d runs again with each rule in turn set to the original program's
-value (the value under --rules original, or under the --rules given if it is book or
-current), then with all of them, and a table gives each column's largest difference under
-each.
+mpm3d deliberately differs from the original programs). --rules original means the rules of
+the original program given: the book version or the current one (2025 and newer), as
+--original-program says, or by default (auto) as its executable tells: the current
+program's holds its version's deck keywords (bimp, sgmp, TLmp, UVFp, QuLo, neoh) as text,
+the book program's none of them; a script tells it in a line
+'# mpm3d-compare: program=book' (or current). --explain answers why a column is beyond the
+tolerance: mpm3d runs again with each rule in turn set to that program's value (to the
+value under --rules book or current where given), then with all of them, and a table gives
+each column's largest difference under each.
 
 Exit status: 0 every compared column within tolerance; 1 some column beyond it;
 2 bad input (a program missing or not executable, a missing deck, a deck either
-program rejects)."""
+program rejects, an original program that auto cannot tell where it must)."""
 
 
 class BadInput(Exception):
@@ -305,6 +309,57 @@ def compare_particles(stem, orig_dir, our_dir):
     return rows
 
 
+# ---------------------------------------------------------------------------- which original
+
+# Deck keywords of the current version that the book version lacks; gfortran keeps them as
+# text in the executable (the keyword tables of its DataIn.f90).
+CURRENT_KEYWORDS = ("bimp", "sgmp", "TLmp", "UVFp", "QuLo", "neoh")
+PROGRAM_LINE = re.compile(rb"^# mpm3d-compare: program=(book|current)[ \t]*$", re.M)
+
+
+def which_program(exe):
+    """('book' or 'current', how that was told) of the original's executable, or (None, why
+    not): a compiled program by CURRENT_KEYWORDS (all: current, none: book), a script by
+    its line '# mpm3d-compare: program=...'."""
+    with open(exe, "rb") as f:
+        data = f.read()
+    if data.startswith(b"#!"):
+        m = PROGRAM_LINE.search(data)
+        if m:
+            return m.group(1).decode(), "its line '%s'" % m.group(0).decode().strip()
+        return None, "a script without a line '# mpm3d-compare: program=book' (or current)"
+    found = [k for k in CURRENT_KEYWORDS if k.encode() in data]
+    names = ", ".join(CURRENT_KEYWORDS)
+    if len(found) == len(CURRENT_KEYWORDS):
+        return "current", "its executable holds the current version's keywords " + names
+    if not found:
+        return "book", "its executable holds none of the current version's keywords " + names
+    return None, "its executable holds only %s of the keywords %s" % (", ".join(found), names)
+
+
+def settle_program(args, original):
+    """args.program: 'book' or 'current', the original program whose rules --rules original
+    and --explain take (printed with how it was told; BadInput where it cannot be told). A
+    --rules book or current that names the other program gets a warning."""
+    args.program = None
+    given = args.rules in ("book", "current")
+    needed = args.rules == "original" or (args.explain and not given)
+    if not (needed or given):
+        return
+    program, how = ((args.original_program, "as --original-program says")
+                    if args.original_program != "auto" else which_program(original))
+    if program is None and needed:
+        raise BadInput("cannot tell which original program %s is (%s): give "
+                       "--original-program book or current" % (args.original, how))
+    if needed:
+        args.program = program
+        print("mpm3d-compare: the original program is taken to be the %s program (%s)"
+              % (program, how))
+    elif program not in (None, args.rules):
+        print("mpm3d-compare: warning: --rules %s, but the original program is the %s "
+              "program (%s)" % (args.rules, program, how), file=sys.stderr)
+
+
 # ---------------------------------------------------------------------------- running
 
 def resolve_program(path, what):
@@ -504,8 +559,10 @@ def compare_runs(stem, orig_dir, our_dir):
 # ---------------------------------------------------------------------------- --explain
 
 def user_rule_args(args):
-    """mpm3d's rule options as given: --rules PRESET, then each --rule NAME=VALUE."""
-    out = ["--rules", args.rules] if args.rules else []
+    """mpm3d's rule options as given: --rules PRESET (original: the original program's,
+    book or current), then each --rule NAME=VALUE."""
+    rules = args.program if args.rules == "original" else args.rules
+    out = ["--rules", rules] if rules else []
     for r in args.rule or []:
         out += ["--rule", r]
     return out
@@ -533,7 +590,7 @@ def explain(deck_name, stem, dirs, args, mpm3d, rows, failed):
     """Rerun mpm3d with each rule that differs from the original program's value set to it,
     then with all of them; print each failing column's largest difference under each."""
     base_args = user_rule_args(args)
-    preset = args.rules if args.rules in ("book", "current") else "original"
+    preset = args.rules if args.rules in ("book", "current") else args.program
     work = os.path.join(os.path.dirname(dirs["mpm3d"]), "explain")
     os.makedirs(work, exist_ok=True)
     shutil.copy(os.path.join(dirs["mpm3d"], deck_name), os.path.join(work, deck_name))
@@ -586,7 +643,12 @@ def parse_args(argv):
                         "magnitude (default 1)")
     p.add_argument("--plot", metavar="DIR", help="write DIR/DECKNAME.png (needs matplotlib)")
     p.add_argument("--rules", metavar="PRESET", choices=["ours", "original", "book", "current"],
-                   help="mpm3d's rules: ours (default), original, book or current")
+                   help="mpm3d's rules: ours (default), original (the original "
+                        "program's: book or current), book or current")
+    p.add_argument("--original-program", choices=["book", "current", "auto"], default="auto",
+                   help="which program --original is, for --rules original and --explain: "
+                        "book, current (2025 and newer), auto (default: told by its "
+                        "executable)")
     p.add_argument("--rule", action="append", metavar="NAME=VALUE",
                    help="set one of mpm3d's rules (repeatable; mpm3d --help lists them)")
     p.add_argument("--explain", action="store_true",
@@ -606,6 +668,7 @@ def main(argv=None):
     try:
         original = resolve_program(args.original, "the original program")
         mpm3d = resolve_program(args.mpm3d or default_mpm3d(), "mpm3d")
+        settle_program(args, original)
         if args.plot and importlib.util.find_spec("matplotlib") is None:
             raise BadInput("--plot needs matplotlib, which %s cannot import (run "
                            "'PYTHON3 mpm3d-compare ...' with one that can)" % sys.executable)

@@ -1,8 +1,9 @@
 # mpm3d-compare (tools/mpm3d_compare.py, copied to the build tree's cxx/mpm3d-compare beside
 # mpm3d) against a stand-in original, fake_original.py: the real mpm3d, one column optionally
-# scaled (MPM3D_FAKE_SCALE), or a rejected deck (MPM3D_FAKE_REJECT). The deck, 336 particles
-# with two particle curves, runs in a fraction of a second. expect.py checks exit status and
-# output together.
+# scaled (MPM3D_FAKE_SCALE), or a rejected deck (MPM3D_FAKE_REJECT), posing as the book
+# program (its line '# mpm3d-compare: program=book'; copies below pose as others). The deck,
+# 336 particles with two particle curves, runs in a fraction of a second. expect.py checks
+# exit status and output together.
 find_package(Python3 COMPONENTS Interpreter)
 if(Python3_Interpreter_FOUND)
   set(_cmp_dir ${CMAKE_CURRENT_SOURCE_DIR}/compare)
@@ -99,7 +100,8 @@ if(Python3_Interpreter_FOUND)
   set(_cmp_slab ${CMAKE_SOURCE_DIR}/inputs/explosives/slab_small.mpm)
   compare_test(rules_passed ENV "MPM3D_FAKE_RULES=--rules original --rule burn=ramp"
     OPTIONS ${_orig} --rules original --rule burn=ramp ${_cmp_slab}
-    EXPECT --rc 0 --stdout "mpm3d run with --rules original --rule burn=ramp"
+    EXPECT --rc 0 --stdout "^mpm3d-compare: the original program is taken to be the book program \\(its line '# mpm3d-compare: program=book'\\)$"
+           --stdout "mpm3d run with --rules book --rule burn=ramp"
            --stdout "kinetic +0\\.000 +0\\.000 +ok" --stdout "all compared columns within 1 %")
   compare_test(explain ENV "MPM3D_FAKE_RULES=--rule bulk_book=ignore"
     OPTIONS ${_orig} --explain ${_cmp_slab}
@@ -107,7 +109,7 @@ if(Python3_Interpreter_FOUND)
            --stdout "^  \\(as compared\\) +[1-9][0-9]*\\.[0-9]+ "
            --stdout "^  bulk_book=ignore +0\\.000 +0\\.000 "
            --stdout "^  deck_reals=single +[1-9][0-9]*\\.[0-9]+ "
-           --stdout "^  all \\(--rules original\\) ")
+           --stdout "^  all \\(--rules book\\) ")
   # The stand-in original differs from mpm3d by the burn alone: the burn's row is 0.000, the
   # other rules' rows keep the difference.
   compare_test(explain_burn ENV "MPM3D_FAKE_RULES=--rule burn=step"
@@ -115,7 +117,48 @@ if(Python3_Interpreter_FOUND)
     EXPECT --rc 1 --stdout "beyond 1 %: kinetic"
            --stdout "^  burn=step +0\\.000 +0\\.000 "
            --stdout "^  bulk_book=ignore +[1-9][0-9]*\\.[0-9]+ "
-           --stdout "^  all \\(--rules original\\) +[1-9][0-9]*\\.[0-9]+ ")
+           --stdout "^  all \\(--rules book\\) +[1-9][0-9]*\\.[0-9]+ ")
+
+  # (h) Which original program --original is: --rules original and --explain take its rules.
+  # The stand-in's copies pose as the current program, as a script that does not say, and
+  # as an executable holding only some of the current version's keywords. On the slab, a
+  # book deck, the current program's rules are not the book's (mpm3d --rules original).
+  file(READ ${_cmp_dir}/fake_original.py _fake)
+  set(_book_line "\n# mpm3d-compare: program=book\n")
+  string(REPLACE "${_book_line}" "\n# mpm3d-compare: program=current\n" _fake_current "${_fake}")
+  string(REPLACE "${_book_line}" "\n" _fake_unknown "${_fake}")
+  file(WRITE ${_cmp_out}/fake_current.py "${_fake_current}")
+  file(WRITE ${_cmp_out}/fake_unknown.py "${_fake_unknown}")
+  file(WRITE ${_cmp_out}/partial_original "a program with the keywords bimp and sgmp\n")
+  file(CHMOD ${_cmp_out}/fake_current.py ${_cmp_out}/fake_unknown.py ${_cmp_out}/partial_original
+       PERMISSIONS OWNER_READ OWNER_WRITE OWNER_EXECUTE GROUP_READ GROUP_EXECUTE WORLD_READ
+                   WORLD_EXECUTE)
+  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${_cmp_dir}/fake_original.py)
+  set(_cur --original ${_cmp_out}/fake_current.py)
+  compare_test(program_current ENV "MPM3D_FAKE_RULES=--rules current"
+    OPTIONS ${_cur} --rules original ${_cmp_slab}
+    EXPECT --rc 0 --stdout "^mpm3d-compare: the original program is taken to be the current program \\(its line '# mpm3d-compare: program=current'\\)$"
+           --stdout "mpm3d run with --rules current\\)" --stdout "all compared columns within 1 %")
+  compare_test(program_current_explain ENV "MPM3D_FAKE_RULES=--rules current"
+    OPTIONS ${_cur} --explain ${_cmp_slab}
+    EXPECT --rc 1 --stdout "^  time_step=current " --stdout "^  all \\(--rules current\\) +0\\.000 +0\\.000 "
+           --not-stdout "bulk_book")
+  # --original-program overrides what the executable says.
+  compare_test(program_given ENV "MPM3D_FAKE_RULES=--rules book"
+    OPTIONS ${_cur} --original-program book --rules original ${_cmp_slab}
+    EXPECT --rc 0 --stdout "taken to be the book program \\(as --original-program says\\)$"
+           --stdout "mpm3d run with --rules book\\)" --stdout "all compared columns within 1 %")
+  # A program it cannot tell: refused where its rules are needed, compared where not.
+  compare_test(program_unknown OPTIONS --original ${_cmp_out}/fake_unknown.py --rules original ${_cmp_slab}
+    EXPECT --rc 2 --stderr "^mpm3d-compare: cannot tell which original program .*fake_unknown\\.py is \\(a script without a line '# mpm3d-compare: program=book' \\(or current\\)\\): give --original-program book or current$")
+  compare_test(program_partial OPTIONS --original ${_cmp_out}/partial_original --explain ${_cmp_slab}
+    EXPECT --rc 2 --stderr "^mpm3d-compare: cannot tell .*partial_original is \\(its executable holds only bimp, sgmp of the keywords bimp, sgmp, TLmp, UVFp, QuLo, neoh\\)")
+  compare_test(program_not_needed OPTIONS --original ${_cmp_out}/fake_unknown.py ${_cmp_deck}
+    EXPECT --rc 0 --stdout "all compared columns within 1 %" --not-stdout "original program")
+  # --rules book or current as given, with a warning where it names the other program.
+  compare_test(program_warning ENV "MPM3D_FAKE_RULES=--rules current" OPTIONS ${_orig} --rules current ${_cmp_slab}
+    EXPECT --rc 0 --stderr "^mpm3d-compare: warning: --rules current, but the original program is the book program \\(its line"
+           --stdout "mpm3d run with --rules current\\)" --not-stdout "taken to be")
 
   # make bench's pass over every public deck (tools/every_deck_speed.py): its cut deck, and one
   # deck name run end to end with the stand-in as both originals (every_deck_test.py).

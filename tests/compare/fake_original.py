@@ -4,6 +4,11 @@ deck.mpm` like the original, it runs the real mpm3d on the deck and leaves Energ
 NAME_curv.dat in the current directory. Run with mpm3d's options before the deck, it stands
 in for mpm3d (passing them on), so that the tests can make that one reject a deck too.
 
+It poses as the book program by its line '# mpm3d-compare: program=book' below, which
+mpm3d-compare reads to tell which original program a script is (--original-program auto);
+compare.cmake writes copies that pose as the current program (program=current) and as a
+program it cannot tell (without the line). Which rules it runs by is MPM3D_FAKE_RULES's.
+
 Environment:
   MPM3D_FAKE_MPM3D   the mpm3d program to run (required)
   MPM3D_FAKE_SCALE   COLUMN:FACTOR, e.g. kinetic:1.05: multiply that column of EnergyPlot.dat
@@ -14,6 +19,7 @@ Environment:
                      stop: as the original's 'stop' (a message, exit 0, no files written);
                      mpm3d: reject the deck when run as mpm3d (exit 1)
 """
+# mpm3d-compare: program=book
 import json
 import os
 import subprocess
