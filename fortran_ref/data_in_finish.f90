@@ -166,7 +166,13 @@ contains
     do p = 1, m%particles%np
       associate (mp => m%mats(m%particles%mat(p) + 1))
         if (mp%eos_type /= EOS_NONE) m%particles%ie(p) = mp%eos_e0 * (m%particles%mass(p) / mp%rho0)
-        if (thermal) m%particles%temp(p) = mp%t_room
+        if (thermal) then  ! rule start_temp
+          if (m%rules%start_temp == 1) then
+            m%particles%temp(p) = 293.0_dp
+          else
+            m%particles%temp(p) = mp%t_room
+          end if
+        end if
       end associate
     end do
     if (m%gimp .and. m%bspline) call ts%fail(max(m%gimp_line, m%bimp_line), &

@@ -19,6 +19,8 @@ if(TARGET mpm3d AND TARGET mpm3d_ref AND MPM3D_H5DIFF)
   rules_add(time_step ${_rules_inputs}/taylor/taylor_coarse.mpm 40 --rule time_step=current)
   rules_add(program_current ${_rules_inputs}/taylor/taylor_coarse.mpm 40 --rules current)
   rules_add(original_book ${_rules_inputs}/explosives/slab_small.mpm 40 --rules original)
+  # Rule start_temp: the particles start at 293, not at the card's room temperature 20.
+  rules_add(start_temp ${_rules_inputs}/rules/john_celsius.mpm 40 --rule start_temp=293)
   # A restart keeps the rules of the run it continues (the checkpoint records them).
   add_test(NAME rules.restart
            COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/rules_restart.sh $<TARGET_FILE:mpm3d>
@@ -53,6 +55,7 @@ if(TARGET mpm3d AND TARGET mpm3d_ref AND MPM3D_H5DIFF)
     rules_reference(viscous_column ${_rules_inputs}/fluids/viscous_column.mpm --rules original)
     rules_reference(j2eos_linear ${_rules_inputs}/methods/j2eos_linear.mpm --rules original)
     rules_reference(john_wall ${_rules_inputs}/rules/john_wall.mpm --rules original)
+    rules_reference(john_celsius ${_rules_inputs}/rules/john_celsius.mpm --rules original)
     rules_reference(clay_column ${_rules_inputs}/clay/clay_column.mpm --rules original)
     rules_reference(water_tube_mg ${CMAKE_CURRENT_SOURCE_DIR}/decks/water_tube_mg.mpm --rules original)
   endif()

@@ -34,12 +34,14 @@ const RuleInfo kRules[kRuleCount] = {
     {"null_eos", {"deck", "wave_speed"}, 0, 1,
      "null's EOS as the deck gives it, or its first coefficient replaced by the null's\n"
      "      wave speed sqrt(K/rho0), as the current program's set-up does"},
+    {"start_temp", {"room", "293"}, 1, 1,
+     "particles' starting temperature: the material card's room temperature, or 293"},
 };
 
 int& rule_value(StepRules& r, int i) {
   int* v[kRuleCount] = {&r.program,  &r.time_step, &r.bulk_book, &r.bulk_switch, &r.bulk_linear, &r.burn,
                         &r.dp_return, &r.deck_reals, &r.tl_shape, &r.sg_lower,   &r.sg_beyond,  &r.fluid_viscous,
-                        &r.bulk_work, &r.pressure_q, &r.clay_return, &r.null_eos};
+                        &r.bulk_work, &r.pressure_q, &r.clay_return, &r.null_eos, &r.start_temp};
   return *v[i];
 }
 

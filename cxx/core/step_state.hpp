@@ -153,6 +153,8 @@ struct StepRules {
                       // linearised step, scaled to the yield stress at the new epeff
   int null_eos;       // null with an EOS: 0 the EOS as the deck gives it, 1 its first coefficient (c0,
                       // C0, A; Mie-Gruneisen's rho0 c0^2) replaced by the null's wave speed (current program)
+  int start_temp;     // particles' starting temperature: 0 the card's room temperature, 1 293 whatever the
+                      // card says (both original programs)
 };
 
 struct StepContext {

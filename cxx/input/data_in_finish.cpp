@@ -156,7 +156,7 @@ void DeckReader::finish(int line) {
   for (int p = 0; p < P.np; ++p) {
     const MaterialParams& mp = m_.mats[size_t(P.mat[p])];
     if (mp.eos_type != EOS_NONE) P.ie[p] = mp.eos_e0 * (P.mass[p] / mp.rho0);
-    if (thermal) P.temp[p] = mp.t_room;
+    if (thermal) P.temp[p] = m_.rules.start_temp ? 293.0 : mp.t_room;  // rule start_temp
   }
   if (m_.gimp && m_.bspline)
     fail(std::max(gimp_line_, bimp_line_), "'gimp' with 'bimp': a deck takes one kind of shape functions");
