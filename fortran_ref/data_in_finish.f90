@@ -187,14 +187,7 @@ contains
         "'sgmp' with 'cont': smoothed-gradient MPM has one velocity field here")
       if (m%regrid_every > 0) call ts%fail(m%sgmp_line, "'sgmp' with 'adgr': the cell-centre grid of sgmp does not move")
     end if
-    if (m%bspline) then
-      do a = 1, 3
-        n = (m%box_hi(a) - m%box_lo(a)) / m%dcell + 0.5_dp
-        fl = aint(n)
-        if (fl > n) fl = fl - 1.0_dp
-        if (fl < 2.0_dp) call ts%fail(m%bimp_line, "'bimp' needs at least two cells along each axis")
-      end do
-    end if
+    if (m%bspline) call two_cells_each_axis(ts, m, m%bimp_line, 'bimp')
     ! GIMP particle half-size lp. Current-version decks: a quarter cell for every particle,
     ! as the current program, whose GIMP weights are written for particles half a cell wide
     ! whatever their volume. Book decks: half the spacing of bloc/sphe/cyli particles, half
@@ -220,13 +213,9 @@ contains
         end do
       end do
       if (clamped) call warn(m, 'gimp: particles larger than the cell size take half a cell as their half-size')
-      do a = 1, 3
-        n = (m%box_hi(a) - m%box_lo(a)) / m%dcell + 0.5_dp
-        fl = aint(n)
-        if (fl > n) fl = fl - 1.0_dp
-        if (fl < 2.0_dp) call ts%fail(line, "'gimp' needs at least two cells along each axis")
-      end do
+      call two_cells_each_axis(ts, m, m%gimp_line, 'gimp')
     end if
+    call outside_grid(m)
     ! dt = dtscale * h / c_max (the dilatational wave speed, D for hiex, c for null), fixed
     ! for the run; with bulk viscosity dtscale h / (c_max (q2 + sqrt(1 + q2^2))).
     if (m%has_bulk .and. .not. m%current_version) then   ! the current version's dt has no q term
@@ -249,5 +238,56 @@ contains
       m%base_name = base
     end if
   end procedure finish
+
+  ! The cells of the grid along axis a (the box length rounded to whole cells).
+  real(dp) function cells_along(m, a) result(fl)
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: a
+    real(dp) :: n
+    n = (m%box_hi(a) - m%box_lo(a)) / m%dcell + 0.5_dp
+    fl = aint(n)
+    if (fl > n) fl = fl - 1.0_dp
+  end function cells_along
+
+  ! A 27-node stencil (gimp, bimp, asked for at `line`) needs two cells along each axis.
+  subroutine two_cells_each_axis(ts, m, line, keyword)
+    type(token_stream), intent(in) :: ts
+    type(model_t), intent(in) :: m
+    integer, intent(in) :: line
+    character(len=*), intent(in) :: keyword
+    integer :: a
+    character(len=1) :: axis
+    do a = 1, 3
+      if (cells_along(m, a) >= 2.0_dp) cycle
+      axis = achar(iachar('x') + a - 1)
+      call ts%fail(line, "'" // keyword // "' needs at least two cells along each axis (its 27-node stencil reaches " // &
+        "the cells beside a particle's own): the grid has " // i2s(int(cells_along(m, a))) // " cell along " // &
+        axis // "; make sp" // axis // " span two cells or more (a plane-strain model keeps its symmetric faces)")
+    end do
+  end subroutine two_cells_each_axis
+
+  ! Particles outside the grid at the start are named (a warning before the first step).
+  subroutine outside_grid(m)
+    type(model_t), intent(inout) :: m
+    integer :: p, a, first
+    integer(int64) :: count
+    real(dp) :: v
+    logical :: in
+    count = 0
+    first = 0
+    do p = 1, m%particles%np
+      in = .true.
+      do a = 1, 3
+        v = (m%particles%x(a, p) - m%box_lo(a)) / m%dcell
+        in = in .and. v >= 0.0_dp .and. v < cells_along(m, a)
+      end do
+      if (in) cycle
+      count = count + 1
+      if (count == 1) first = p
+    end do
+    if (count > 0) call warn(m, itoa(count) // ' particles lie outside the grid at the start (the first: particle ' // &
+      i2s(first) // '): they stay frozen where they are for the whole run; widen the box (spx, spy, spz) to ' // &
+      'hold them')
+  end subroutine outside_grid
 
 end submodule mpm3d_data_in_finish

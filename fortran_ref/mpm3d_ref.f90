@@ -183,6 +183,11 @@ program mpm3d_ref
     do i = 1, model%nwarn
       write (output_unit, '(a)') '  warning: ' // trim(model%warnings(i))
     end do
+  else
+    ! --quiet hides progress, never warnings (as mpm3d).
+    do i = 1, model%nwarn
+      write (error_unit, '(a)') 'mpm3d_ref: warning: ' // trim(model%warnings(i))
+    end do
   end if
   steps = 0
   if (regrid_every > 0) call note_regrid(0)

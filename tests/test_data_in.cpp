@@ -48,6 +48,27 @@ TEST(DataIn, ShortMaterialCardIsNamedAtItsLine) {
       << what;
 }
 
+// gimp on a grid one cell thick along y: refused at the gimp card's line (13), not at the
+// end of the deck, with what to change.
+TEST(DataIn, GimpOnOneCellIsRefusedAtItsCard) {
+  std::string text = deck("1 elas 2.0 200.0 0.25", "gimp\n");
+  text.replace(text.find("spy 0 4"), 7, "spy 0 1");
+  const std::string what = refusal(text, "thin.mpm");
+  EXPECT_NE(what.find("thin.mpm:13: 'gimp' needs at least two cells along each axis"), std::string::npos) << what;
+  EXPECT_NE(what.find("the grid has 1 cell along y; make spy span two cells or more"), std::string::npos) << what;
+}
+
+// Particles outside the grid are named before the first step (a warning of the deck).
+TEST(DataIn, ParticlesOutsideTheGridAreNamed) {
+  std::string text = deck("1 elas 2.0 200.0 0.25");
+  text.replace(text.find("spy 0 4"), 7, "spy 0 2");  // y = 1.75, 2.25, 2.75: 8 particles beyond y = 2
+  const mpm3d::Model m = mpm3d::read_deck_text(text, "out.mpm");
+  ASSERT_EQ(m.warnings.size(), 1u);
+  EXPECT_EQ(m.warnings[0],
+            "8 particles lie outside the grid at the start (the first: particle 3): they stay frozen where they are "
+            "for the whole run; widen the box (spx, spy, spz) to hold them");
+}
+
 TEST(DataIn, BlockParticlesZFastest) {
   mpm3d::Model m = mpm3d::read_deck_text(deck("1 elas 2.0 200.0 0.25"), "b.mpm");
   EXPECT_EQ(m.title, "*** reader test");

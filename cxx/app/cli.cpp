@@ -341,6 +341,9 @@ int run_main(int argc, char** argv, Ranks* ranks) {
     for (const auto& w : m.warnings) head << "\n  warning: " << w;
     out.log(head.str());
     if (!opt.quiet) std::cout << head.str() << std::endl;
+    // --quiet hides progress, never warnings: the deck's go to stderr before the first step.
+    if (opt.quiet && root)
+      for (const auto& w : m.warnings) std::cerr << "mpm3d: warning: " << w << std::endl;
     auto log_regrid = [&]() {
       if (sim.regrid_note.empty()) return;
       out.log(sim.regrid_note);
@@ -400,7 +403,7 @@ int run_main(int argc, char** argv, Ranks* ranks) {
       log_regrid();
       for (const auto& w : sim.new_energy_warnings) {
         out.log("warning: " + w);
-        if (!opt.quiet) std::cerr << "mpm3d: warning: " << w << std::endl;
+        if (root) std::cerr << "mpm3d: warning: " << w << std::endl;
         energy_warnings.push_back(w);
       }
       sim.new_energy_warnings.clear();
@@ -535,8 +538,9 @@ int run_main(int argc, char** argv, Ranks* ranks) {
     if (!opt.quiet) std::cout << tail << std::endl;
     for (size_t i = 0; i < warnings.size(); ++i) {
       const std::string& w = warnings[i];
-      const bool printed = i >= m.warnings.size() && i < m.warnings.size() + printed_already;
-      if (!opt.quiet && !printed && w != failure && w != stop_note) std::cerr << "mpm3d: warning: " << w << "\n";
+      const bool printed = (i >= m.warnings.size() && i < m.warnings.size() + printed_already) ||
+                           (opt.quiet && i < m.warnings.size());  // --quiet: printed before the first step
+      if (root && !printed && w != failure && w != stop_note) std::cerr << "mpm3d: warning: " << w << "\n";
     }
     if (!stop_note.empty() || !failure.empty()) out.log(stop_note.empty() ? failure : stop_note);
     out.flush();

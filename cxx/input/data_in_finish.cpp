@@ -167,10 +167,7 @@ void DeckReader::finish(int line) {
     if (m_.contact) fail(std::max(m_.contact_line, sgmp_line_), "'sgmp' with 'cont': smoothed-gradient MPM has one velocity field here");
     if (m_.regrid_every > 0) fail(sgmp_line_, "'sgmp' with 'adgr': the cell-centre grid of sgmp does not move");
   }
-  if (m_.bspline)
-    for (int a = 0; a < 3; ++a)
-      if (std::floor((m_.box_hi[a] - m_.box_lo[a]) / m_.dcell + 0.5) < 2.0)
-        fail(bimp_line_, "'bimp' needs at least two cells along each axis");
+  if (m_.bspline) two_cells_each_axis(bimp_line_, "bimp");
   // GIMP particle half-size lp. Current-version decks: a quarter cell for every particle,
   // as the current program, whose GIMP weights are written for particles half a cell wide
   // whatever their volume. Book decks: half the spacing of bloc/sphe/cyli particles, half
@@ -190,10 +187,9 @@ void DeckReader::finish(int line) {
         P.psize[p] = lp;
       }
     if (clamped) m_.warnings.push_back("gimp: particles larger than the cell size take half a cell as their half-size");
-    for (int a = 0; a < 3; ++a)
-      if (std::floor((m_.box_hi[a] - m_.box_lo[a]) / m_.dcell + 0.5) < 2.0)
-        fail(line, "'gimp' needs at least two cells along each axis");
+    two_cells_each_axis(gimp_line_, "gimp");
   }
+  outside_grid();
   // dt = dtscale * h / c_max (the dilatational wave speed, D for hiex, c for null), fixed
   // for the run as in the original. With bulk viscosity the stable step of a material at
   // rest is h / (Q + sqrt(Q^2 + c^2)) with Q = q2 c: dt = dtscale h / (c_max (q2 + sqrt(1 + q2^2))).
@@ -212,6 +208,40 @@ void DeckReader::finish(int line) {
   const size_t dot = base.find('.');
   if (dot != std::string::npos && dot > 0) base = base.substr(0, dot);
   m_.base_name = base.empty() ? "mpm3d" : base;
+}
+
+// The cells of the grid along axis a (the box length rounded to whole cells).
+static double cells_along(const Model& m, int a) { return std::floor((m.box_hi[a] - m.box_lo[a]) / m.dcell + 0.5); }
+
+void DeckReader::two_cells_each_axis(int line, const char* keyword) {
+  for (int a = 0; a < 3; ++a) {
+    const double n = cells_along(m_, a);
+    if (n >= 2.0) continue;
+    const std::string axis(1, char('x' + a));
+    fail(line, std::string("'") + keyword + "' needs at least two cells along each axis (its 27-node stencil reaches " +
+                   "the cells beside a particle's own): the grid has " + std::to_string(long(n)) + " cell along " +
+                   axis + "; make sp" + axis + " span two cells or more (a plane-strain model keeps its symmetric faces)");
+  }
+}
+
+void DeckReader::outside_grid() {
+  const Particles& P = m_.particles;
+  long count = 0;
+  int first = -1;
+  for (int p = 0; p < P.np; ++p) {
+    bool in = true;
+    for (int a = 0; a < 3; ++a) {
+      const double v = (P.x[3 * size_t(p) + a] - m_.box_lo[a]) / m_.dcell;
+      in = in && v >= 0.0 && v < cells_along(m_, a);
+    }
+    if (in) continue;
+    if (count++ == 0) first = p;
+  }
+  if (count > 0)
+    m_.warnings.push_back(std::to_string(count) + " particles lie outside the grid at the start (the first: particle " +
+                          std::to_string(first + 1) +
+                          "): they stay frozen where they are for the whole run; widen the box (spx, spy, spz) to "
+                          "hold them");
 }
 
 }  // namespace mpm3d

@@ -46,6 +46,12 @@ class DeckReader {
   void card_target(const Token& at, const std::string& k, const char* what, int& first, int& count);
   std::string output_var(int line);
   void finish(int line);
+  // finish's checks of the grid against the method and the particles:
+  // a 27-node stencil (gimp, bimp, asked for at `line`) needs two cells along each axis;
+  void two_cells_each_axis(int line, const char* keyword);
+  void sgmp_held_cells();
+  // particles outside the grid at the start are named (a warning before the first step).
+  void outside_grid();
 };
 
 }  // namespace mpm3d

@@ -43,6 +43,49 @@ std::string Simulation::about_particle(int deck, F&& format) const {
 // reported, whatever the thread count), then runaway energy. The pass reads two doubles and
 // one int per particle: about 1% of a step. On several ranks every decision is a min or a
 // max over the ranks, so that all of them stop at the same step with the same message.
+std::string Simulation::instability_advice() const {
+  std::string advice = "reduce dtscale";
+  // sgmp holds two node layers on a fixed or symmetric face: particles in a lower face's
+  // first cell sit between them (the current program's ChangeLog asks for one more cell
+  // outside). Axes of one cell (thin plane models) have every particle there and are fine.
+  if (model.sg && model.fix_layers() == 2) {
+    const Particles& P = model.particles;
+    for (int a = 0; a < 3; ++a) {
+      if (model.fix[2 * a] == 0 || std::floor((model.box_hi[a] - model.box_lo[a]) / model.dcell + 0.5) < 2.0) continue;
+      int n = 0;
+      for (int p = 0; p < P.np; ++p) {
+        const double s = (P.x[3 * size_t(p) + a] - model.box_lo[a]) / model.dcell;
+        if (s >= 0.0 && s < 1.0) ++n;
+      }
+      if (n == 0) continue;
+      const std::string axis(1, char('x' + a));
+      advice += "; " + std::to_string(n) + " particles lie in the first cell along " + axis +
+                ", between the two node layers sgmp holds at the " + (model.fix[2 * a] == 1 ? "fixed" : "symmetric") +
+                " lower " + axis + " face: add one cell outside that face (lower sp" + axis +
+                " by one cell), as the current MPM3D-F90's ChangeLog asks for sgmp";
+    }
+  }
+  if (model.scheme != SCHEME_MUSL) advice += ", or use MUSL ('musl on')";
+  for (size_t i = 0; i < model.mats.size(); ++i) {
+    const MaterialParams& m = model.mats[i];
+    if (m.type == MAT_DPM && m.dp_tension == 0.0 && model.rules.dp_return == 0)
+      advice += "; material " + std::to_string(i + 1) +
+                " is a Drucker-Prager material without tensile strength, whose particles dilate without bound "
+                "under our return: run it with the original's return, --rule dp_return=original "
+                "(docs/VERIFICATION.md, granular columns)";
+  }
+  return advice;
+}
+
+std::string Simulation::energy_causes() const {
+  std::string eos;  // the materials with an EOS (the same on every rank)
+  for (size_t i = 0; i < model.mats.size(); ++i)
+    if (model.mats[i].eos_type != EOS_NONE) eos += (eos.empty() ? "" : ", ") + std::to_string(i + 1);
+  const std::string densities = "that the particle cards' densities are the materials'";
+  if (eos.empty()) return "check " + densities + ", or reduce dtscale";
+  return "check the EOS of material " + eos + " and " + densities;
+}
+
 void Simulation::health_check() {
   const Particles& P = model.particles;
   constexpr int kNone = std::numeric_limits<int>::max();
@@ -134,7 +177,7 @@ void Simulation::health_check() {
       os << "numerical instability at step " << steps << " (t = " << time << "): total energy " << total
          << " exceeds twice the initial energy " << initial_total_energy << " plus the external work "
          << external_work << "; fastest particle " << worst + 1 << " (" << body_and_rank(p) << ") at speed "
-         << std::sqrt(vmax) << " (reduce dtscale, or use MUSL)";
+         << std::sqrt(vmax) << " (" << instability_advice() << ")";
       return os.str();
     }));
   }
@@ -170,8 +213,7 @@ void Simulation::energy_check(double ie_min) {
       os << "energy: the internal energy of body " << b + 1 << " is " << body_ie[b] << " at step " << steps
          << " (t = " << time << "), below -" << 100.0 * kEnergyWarnFraction << "% of the initial total energy "
          << initial_total_energy << " plus the external work " << external_work
-         << " (its stress work releases more than it stored: check the EOS and that the particle cards' densities "
-            "are the materials')";
+         << " (its stress work releases more than it stored: " << energy_causes() << ")";
       found.push_back(os.str());
     }
   }

@@ -130,6 +130,14 @@ class Simulation {
   void ensure_patch_buffers();
   void health_check();
   void energy_check(double ie_min);
+  // What a user of this deck can change when its energy runs away (the health check's
+  // advice): a smaller dtscale; MUSL where the deck uses USF or USL; --rule
+  // dp_return=original for a cohesionless Drucker-Prager material under our return; with
+  // sgmp, the cell missing outside a held lower face that particles start next to.
+  std::string instability_advice() const;
+  // The energy warning's likely causes: the EOS of the materials that have one, the
+  // particle cards' densities, else the time step.
+  std::string energy_causes() const;
   // The health check's report on deck particle `deck` (0-based; the lowest of its kind on
   // every rank), written by format(p) on the rank that stores it as p.
   template <class F>
