@@ -39,6 +39,13 @@ order). For decks without tecp no particle fields are compared (neither the Para
 series nor mpm3d's HDF5 files are read). Columns only one program writes are listed,
 marked, and not compared.
 
+Where particles leave the grid, the original's results are undefined from then on (it
+indexes its cell list with -1). mpm3d counts them at its reports (rpttime): from the first
+report that counts any, a line says how many left and when, a column 'before exit %' gives
+each column's largest difference up to the report before it (in % of the original's largest
+magnitude up to then; particle fields: the original's last frame up to then), and that
+column alone decides the result. Without particles leaving, the output is as above.
+
 Also printed: both wall times, mpm3d's ns per particle-step (its --summary) and the
 original's 'Time per particle cycle' (its output or NAME.out).
 
@@ -151,9 +158,17 @@ class Row:
     def __init__(self, file, column, max_diff=None, final_diff=None, note=""):
         self.file, self.column, self.note = file, column, note
         self.max_diff, self.final_diff = max_diff, final_diff
+        self.cut, self.exit_diff = False, None  # cut: particles left; exit_diff decides
+
+    def decisive(self):
+        """The largest difference, before particles left the grid where they did (cut)."""
+        return self.exit_diff if self.cut else self.max_diff
 
     def failed(self, tolerance):
-        """Beyond tolerance; columns not compared (note set) do not fail."""
+        """Beyond tolerance; columns not compared (note set) do not fail. Where particles
+        left the grid (cut), the largest difference before they did decides alone."""
+        if self.cut:
+            return self.exit_diff is not None and not self.exit_diff <= tolerance
         if self.max_diff is None:
             return False
         return not (self.max_diff <= tolerance and (self.final_diff or 0.0) <= tolerance)
@@ -197,24 +212,27 @@ def largest(diffs):
     return math.nan if any(d != d for d in diffs) else max(diffs, default=0.0)
 
 
-def compare_column(t_orig, y_orig, t_ours, y_ours):
+def compare_column(t_orig, y_orig, t_ours, y_ours, until=math.inf):
     """(largest, final) |ours - original| in % of the original's largest magnitude, on
-    the original's times inside both runs' time ranges; None without an overlap. Where
-    the original's column is zero throughout, mpm3d's largest magnitude is the scale."""
-    lo, hi = max(t_orig[0], t_ours[0]), min(t_orig[-1], t_ours[-1])
+    the original's times inside both runs' time ranges (and up to until); None without an
+    overlap. Where the original's column is zero throughout, mpm3d's largest magnitude is
+    the scale."""
+    lo, hi = max(t_orig[0], t_ours[0]), min(t_orig[-1], t_ours[-1], until)
     at = [k for k, t in enumerate(t_orig) if lo <= t <= hi]
     if not at:
         return None
     ours = [interpolate(t_ours, y_ours, t_orig[k]) for k in at]
     diffs = [abs(o - y_orig[k]) for o, k in zip(ours, at)]
-    scale = max((abs(v) for v in y_orig if math.isfinite(v)), default=0.0)
+    scale = max((abs(v) for v, t in zip(y_orig, t_orig) if math.isfinite(v) and t <= until),
+                default=0.0)
     if scale == 0.0:
         scale = max((abs(v) for v in ours if math.isfinite(v)), default=0.0)
     return relative(largest(diffs), scale), relative(diffs[-1], scale)
 
 
-def compare_file(label, orig_path, our_path, default_names=None):
-    """Table rows for one time-history file, plus (names, series) of both for the plot."""
+def compare_file(label, orig_path, our_path, default_names=None, until=None):
+    """Table rows for one time-history file, plus (names, series) of both for the plot;
+    with until (particles left the grid after it), each row's figure up to until too."""
     o_names, o_t, o_cols = read_series(orig_path, default_names)
     if not o_t:
         return [Row(label, "-", note="no data in the original's file")], []
@@ -231,6 +249,10 @@ def compare_file(label, orig_path, our_path, default_names=None):
             rows.append(Row(label, shown, note="no common time range"))
         else:
             rows.append(Row(label, shown, *result))
+            if until is not None:
+                rows[-1].cut = True
+                rows[-1].exit_diff = (compare_column(o_t, o_cols[o_name], c_t, c_cols[c_name],
+                                                     until) or (None,))[0]
         plots.append((label, shown, o_t, o_cols[o_name], c_t, c_cols[c_name]))
     return rows, plots
 
@@ -272,9 +294,10 @@ def read_zone(path, offset):
     return rows
 
 
-def compare_particles(stem, orig_dir, our_dir):
-    """Rows comparing the original's last animation frame with mpm3d's frame at the same
-    time; [] when the original wrote no TecPlot animation."""
+def compare_particles(stem, orig_dir, our_dir, until=None):
+    """Rows comparing the original's last animation frame (up to until, where particles
+    left the grid after it; that frame decides) with mpm3d's frame at the same time; []
+    when the original wrote no TecPlot animation."""
     name = stem + "_anim.dat"
     orig_path, our_path = os.path.join(orig_dir, name), os.path.join(our_dir, name)
     if not os.path.isfile(orig_path):
@@ -282,6 +305,7 @@ def compare_particles(stem, orig_dir, our_dir):
     if not os.path.isfile(our_path):
         return [Row(name, "-", note="not written by mpm3d")]
     o_names, o_zones = scan_anim(orig_path)
+    o_zones = [z for z in o_zones if until is None or z[0] <= until]
     c_names, c_zones = scan_anim(our_path)
     if not o_zones or not c_zones:
         return [Row(name, "-", note="no frames to compare")]
@@ -306,6 +330,7 @@ def compare_particles(stem, orig_dir, our_dir):
         scale = max((abs(v) for v in o_vals if math.isfinite(v)), default=0.0)
         diff = largest([abs(a - b) for a, b in zip(o_vals, c_vals)])
         rows.append(Row(label, shown, relative(diff, scale), None))
+        rows[-1].cut, rows[-1].exit_diff = until is not None, rows[-1].max_diff
     return rows
 
 
@@ -416,6 +441,23 @@ def original_ns(run_dir, stem):
     return None
 
 
+PROGRESS = re.compile(r"^step +\d+ +t +(\S+) .* outside +(\d+)", re.M)
+
+
+def grid_exit(run_dir, stem):
+    """(particles, time) at the first of mpm3d's reports (its progress lines in NAME.out,
+    the last one at the end) that counts particles outside the grid, and the time of the
+    report before it (0 if none); None where none left the grid."""
+    reports = [(0.0, 0)]
+    try:
+        with open(os.path.join(run_dir, stem + ".out"), errors="replace") as f:
+            reports += [(float(t), int(n)) for t, n in PROGRESS.findall(f.read())]
+    except OSError:  # an mpm3d that writes no log (not ours): nothing to tell
+        pass
+    k = next((k for k, (_, n) in enumerate(reports) if n > 0), None)
+    return None if k is None else (reports[k][1], reports[k][0], reports[k - 1][0])
+
+
 def run_original(exe, deck_name, run_dir):
     """Run the original as `exe deck.mpm`; (wall s, its ns per particle cycle). A deck it
     rejects: a non-zero exit, or no EnergyPlot.dat rows (its 'stop' exits with 0)."""
@@ -452,26 +494,35 @@ def fmt(value, spec):
     return "-" if value is None else spec % value
 
 
-def print_table(deck, rows, tolerance, timing):
-    """The per-deck table: one line per column, then the two programs' speeds."""
-    header = ("file", "column", "max diff %", "final diff %", "result")
+def print_table(deck, rows, tolerance, timing, left=None):
+    """The per-deck table: one line per column, then the two programs' speeds. left:
+    grid_exit's (particles, time, report before), adding the column 'before exit %'."""
+    header = ("file", "column", "max diff %", "final diff %") + \
+        (("before exit %",) if left else ()) + ("result",)
     lines = []
     for r in rows:
-        verdict = r.note or ("FAIL" if r.failed(tolerance) else "ok")
-        lines.append((r.file, r.column, fmt(r.max_diff, "%.3f"), fmt(r.final_diff, "%.3f"),
-                      verdict))
-    w = [max(len(str(x[k])) for x in lines + [header]) for k in range(4)]
+        verdict = r.note or ("FAIL" if r.failed(tolerance) else "not judged (after the exit)"
+                             if r.cut and r.exit_diff is None else "ok")
+        figures = [r.max_diff, r.final_diff] + ([r.exit_diff] if left else [])
+        lines.append((r.file, r.column) + tuple(fmt(v, "%.3f") for v in figures) + (verdict,))
+    w = [max(len(x[k]) for x in lines + [header]) for k in range(len(header) - 1)]
     print("== %s (tolerance %g %%)" % (deck, tolerance))
+    if left:
+        print("  %d particles left the grid by t = %.4e (mpm3d counts them at its reports, none "
+              "at t = %.4e);\n  the original's results after that are undefined (it indexes "
+              "its cell list with -1 there),\n  so 'before exit %%' compares up to t = %.4e, "
+              "and it alone decides the result:" % (left[:3] + left[2:]))
     for x in [header] + lines:
-        print("  %-*s  %-*s  %*s  %*s  %s" % (w[0], x[0], w[1], x[1], w[2], x[2], w[3], x[3],
-                                              x[4]))
+        print("  " + "  ".join([x[0].ljust(w[0]), x[1].ljust(w[1])] +
+                               [v.rjust(n) for v, n in zip(x[2:-1], w[2:])] + [x[-1]]))
     (o_wall, o_ns), (c_wall, c_ns) = timing
     print("  %-24s %12s %12s" % ("", "original", "mpm3d"))
     print("  %-24s %12.2f %12.2f" % ("wall time (s)", o_wall, c_wall))
     print("  %-24s %12s %12s" % ("ns per particle-step", fmt(o_ns, "%.1f"), fmt(c_ns, "%.1f")))
     failed = [r.column for r in rows if r.failed(tolerance)]
-    print("  %s\n" % ("beyond %g %%: %s" % (tolerance, ", ".join(failed)) if failed
-                      else "all compared columns within %g %%" % tolerance))
+    before = " before particles left the grid" if left else ""
+    print("  %s\n" % ("beyond %g %%%s: %s" % (tolerance, before, ", ".join(failed)) if failed
+                      else "all compared columns within %g %%%s" % (tolerance, before)))
     sys.stdout.flush()
     return failed
 
@@ -527,13 +578,15 @@ def compare_deck(deck, args, original, mpm3d):
         rule_args = user_rule_args(args)
         timing = (run_original(original, deck_name, dirs["original"]),
                   run_mpm3d(mpm3d, deck_name, dirs["mpm3d"], args.threads, rule_args))
-        rows, plots = compare_runs(stem, dirs["original"], dirs["mpm3d"])
-        rows += compare_particles(stem, dirs["original"], dirs["mpm3d"])
+        left = grid_exit(dirs["mpm3d"], stem)
+        until = left[2] if left else None
+        rows, plots = compare_runs(stem, dirs["original"], dirs["mpm3d"], until)
+        rows += compare_particles(stem, dirs["original"], dirs["mpm3d"], until)
         if rule_args:
             print("  (mpm3d run with %s)" % " ".join(rule_args))
-        failed = print_table(deck_name, rows, args.tolerance, timing)
+        failed = print_table(deck_name, rows, args.tolerance, timing, left)
         if failed and args.explain:
-            explain(deck_name, stem, dirs, args, mpm3d, rows, failed)
+            explain(deck_name, stem, dirs, args, mpm3d, rows, failed, until)
         if args.plot:
             os.makedirs(args.plot, exist_ok=True)
             plot_deck(os.path.join(args.plot, stem + ".png"), deck_name, plots)
@@ -544,14 +597,15 @@ def compare_deck(deck, args, original, mpm3d):
         shutil.rmtree(tmp, ignore_errors=True)
 
 
-def compare_runs(stem, orig_dir, our_dir):
-    """Rows and plot series of the energy file and the curve file of two run directories."""
+def compare_runs(stem, orig_dir, our_dir, until=None):
+    """Rows and plot series of the energy file and the curve file of two run directories
+    (until: see compare_file)."""
     rows, plots = compare_file(ENERGY_FILE, os.path.join(orig_dir, ENERGY_FILE),
-                               os.path.join(our_dir, ENERGY_FILE), ENERGY_COLUMNS)
+                               os.path.join(our_dir, ENERGY_FILE), ENERGY_COLUMNS, until)
     orig_curves = curve_file(orig_dir, stem)
     if orig_curves:
         more, more_plots = compare_file(os.path.basename(orig_curves), orig_curves,
-                                        curve_file(our_dir, stem))
+                                        curve_file(our_dir, stem), None, until)
         rows, plots = rows + more, plots + more_plots
     return rows, plots
 
@@ -586,7 +640,7 @@ def rules_in_force(mpm3d, deck_name, run_dir, rule_args):
     return rules
 
 
-def explain(deck_name, stem, dirs, args, mpm3d, rows, failed):
+def explain(deck_name, stem, dirs, args, mpm3d, rows, failed, until=None):
     """Rerun mpm3d with each rule that differs from the original program's value set to it,
     then with all of them; print each failing column's largest difference under each."""
     base_args = user_rule_args(args)
@@ -604,7 +658,7 @@ def explain(deck_name, stem, dirs, args, mpm3d, rows, failed):
               for r in target if ours.get(r) != target[r]]
     if len(trials) > 1:
         trials.append(("all (--rules %s)" % preset, ["--rules", preset]))
-    as_compared = {r.column: r.max_diff for r in rows if r.column in failed}
+    as_compared = {r.column: r.decisive() for r in rows if r.column in failed}
     table = [("(as compared)", as_compared)]
     for label, rule_args in trials:
         run_dir = os.path.join(work, "run%d" % len(table))
@@ -615,8 +669,8 @@ def explain(deck_name, stem, dirs, args, mpm3d, rows, failed):
         if rc != 0 or not has_data(os.path.join(run_dir, ENERGY_FILE)):
             table.append((label, None))
             continue
-        trial_rows, _ = compare_runs(stem, dirs["original"], run_dir)
-        table.append((label, {r.column: r.max_diff for r in trial_rows if r.column in failed}))
+        trial_rows, _ = compare_runs(stem, dirs["original"], run_dir, until)
+        table.append((label, {r.column: r.decisive() for r in trial_rows if r.column in failed}))
     print("  why: the columns beyond %g %% (largest difference %%) with each rule set to the "
           "original program's value" % args.tolerance)
     w = max(len(label) for label, _ in table)

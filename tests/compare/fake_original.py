@@ -11,8 +11,9 @@ program it cannot tell (without the line). Which rules it runs by is MPM3D_FAKE_
 
 Environment:
   MPM3D_FAKE_MPM3D   the mpm3d program to run (required)
-  MPM3D_FAKE_SCALE   COLUMN:FACTOR, e.g. kinetic:1.05: multiply that column of EnergyPlot.dat
-                     (total, kinetic, internal) or of the curve file (by its header name)
+  MPM3D_FAKE_SCALE   COLUMN:FACTOR[:FROM], e.g. kinetic:1.05: multiply that column of
+                     EnergyPlot.dat (total, kinetic, internal) or of the curve file (by its
+                     header name), in the rows from time FROM on (default: all rows)
   MPM3D_FAKE_RULES   mpm3d options, e.g. "--rule bulk_book=ignore": the stand-in original runs
                      by these rules (as if the original differed from mpm3d by them)
   MPM3D_FAKE_REJECT  original: fail after the run (a message, exit 1, the files written);
@@ -28,8 +29,9 @@ import sys
 ENERGY_COLUMNS = ["Time", "total", "kinetic", "internal"]
 
 
-def scale_column(path, names, column, factor):
-    """Rewrite path with one column multiplied; the other fields keep their text."""
+def scale_column(path, names, column, factor, since):
+    """Rewrite path with one column multiplied in the rows from time since on; the other
+    fields keep their text."""
     with open(path) as f:
         lines = f.read().splitlines()
     out = []
@@ -40,7 +42,8 @@ def scale_column(path, names, column, factor):
             names = tokens or names
             continue
         k = names.index(column)
-        tokens[k] = "%.4E" % (float(tokens[k]) * factor)
+        if float(tokens[0]) >= since:
+            tokens[k] = "%.4E" % (float(tokens[k]) * factor)
         out.append("".join(t.rjust(12) for t in tokens))
     with open(path, "w") as f:
         f.write("\n".join(out) + "\n")
@@ -65,14 +68,14 @@ def main():
         ns = json.load(f)["ns_per_particle_step"]
     print("** Time per particle cycle: %12.4f nanoseconds" % ns)
     if os.environ.get("MPM3D_FAKE_SCALE"):
-        column, factor = os.environ["MPM3D_FAKE_SCALE"].split(":")
+        column, factor, since = (os.environ["MPM3D_FAKE_SCALE"] + ":-inf").split(":")[:3]
         curves = os.path.splitext(os.path.basename(deck))[0] + "_curv.dat"
         with open(curves) as f:
             curve_names = f.readline().split()
         if column in ENERGY_COLUMNS:
-            scale_column("EnergyPlot.dat", ENERGY_COLUMNS, column, float(factor))
+            scale_column("EnergyPlot.dat", ENERGY_COLUMNS, column, float(factor), float(since))
         else:
-            scale_column(curves, curve_names, column, float(factor))
+            scale_column(curves, curve_names, column, float(factor), float(since))
     if reject == "original":
         print(" *** Error *** fake original: deck %s rejected" % deck)
         return 1
