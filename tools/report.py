@@ -39,6 +39,7 @@ import soft_cantilever as SC  # noqa: E402
 import cook_membrane as CM  # noqa: E402
 import landslide_result as LS  # noqa: E402
 import dam_break as DB  # noqa: E402
+import granular_columns as GC  # noqa: E402
 import verification as V  # noqa: E402
 
 
@@ -139,6 +140,8 @@ class Suite(BarStudy, MmsStudy, WaveStudy, SpheresStudy, SodStudy, TaylorStudy, 
         L += CM.section_lines()
         # The dam break against Martin & Moyce (tools/dam_break.py: docs/verification/dam_break.csv)
         L += DB.section_lines()
+        # Granular columns against Lube et al. (tools/granular_columns.py: docs/verification/granular_columns.csv)
+        L += GC.section_lines()
         # The newest program's landslides, run once (tools/landslide_result.py: docs/verification/landslides.csv)
         L += LS.section_lines()
         L += self.taylor_section()
@@ -245,6 +248,8 @@ def main():
     CM.run(s.build, s.threads)
     s.log("dam break: tools/dam_break.py")
     DB.run(s.build, s.threads)
+    s.log("granular columns: tools/granular_columns.py")
+    GC.run(s.build, s.threads)
     s.orders()
     load1 = loadavg()
     save_results(s, load0, load1, time.time() - s.t0)
