@@ -12,10 +12,10 @@ mpm3d=$1; counter=$2; deck=$3; work=$4
 rm -rf "$work"; mkdir -p "$work"
 steps=12
 for t in 1 2 3; do
-  OMP_REGIONS_OUT="$work/r$t.0" LD_PRELOAD="$counter" "$mpm3d" --threads "$t" --steps 0 --no-output --quiet "$deck"
+  OMP_REGIONS_OUT="$work/r$t.0" LD_PRELOAD="$counter" "$mpm3d" --threads "$t" --team fixed --steps 0 --no-output --quiet "$deck"
   read -r setup _ < "$work/r$t.0"
   OMP_REGIONS_SKIP=$setup OMP_REGIONS_OUT="$work/r$t.$steps" LD_PRELOAD="$counter" \
-    "$mpm3d" --threads "$t" --steps "$steps" --no-output --quiet "$deck"
+    "$mpm3d" --threads "$t" --team fixed --steps "$steps" --no-output --quiet "$deck"
   read -r regions _ < "$work/r$t.$steps"
   echo "threads $t: $setup regions in the set-up, $regions in $steps steps"
   [ "$setup" -gt 0 ] || { echo "no region counted in the set-up"; exit 1; }

@@ -587,3 +587,57 @@ TEST(Solver, BoundaryConditionsHoldOneOrTwoNodeLayers) {
         }
   }
 }
+
+// The time loop's choice of threads (solver/thread_team.hpp), fed step times by hand: a
+// step on one thread takes `one` seconds, on the most threads `most_s`.
+namespace {
+struct TeamRun {
+  mpm3d::TeamChooser team;
+  long on_one = 0, on_most = 0;  // of the steps counted
+  void run(long steps, double one, double most_s, int most = 2, bool count = true) {
+    for (long s = 0; s < steps; ++s) {
+      const int n = team.next(most);
+      if (count) (n == 1 ? on_one : on_most) += 1;
+      team.took(n == 1 ? one : most_s);
+    }
+  }
+};
+}  // namespace
+
+TEST(ThreadTeam, KeepsOneThreadWhereTwoAreSlower) {
+  TeamRun r;
+  r.run(2000, 1e-3, 3e-3);
+  EXPECT_GT(r.on_one, 1900);  // the probes' steps on two threads at most
+  EXPECT_EQ(r.team.steps_on_one, r.on_one);
+  EXPECT_GE(r.team.probes, 1);
+}
+
+TEST(ThreadTeam, KeepsTheThreadsWhereTheyPay) {
+  TeamRun r;
+  r.run(2000, 2e-3, 1e-3);
+  EXPECT_GT(r.on_most, 1900);
+  // Probes cost about 1/64 of the run: here a probe of 0.05 s, half of it on one thread
+  // at twice the time, costs 1/3 of its time, so the probes stay below 3 % of the steps.
+  EXPECT_LT(r.on_one, 60);
+}
+
+TEST(ThreadTeam, NoticesABusyMachine) {
+  TeamRun r;
+  r.run(300, 2e-3, 1e-3);            // idle: two threads pay; the next probe is due in
+                                     // about 1 s (64 times the probe's 0.017 s)
+  r.run(60, 2e-3, 8e-3, 2, false);   // another process takes a core: 0.5 s
+  EXPECT_EQ(r.team.next(2), 1);      // the slowdown was noticed without waiting for the gap
+  r.run(400, 2e-3, 8e-3);
+  EXPECT_GT(r.on_one, 380);
+}
+
+TEST(ThreadTeam, FixedOrOneThreadNeverProbes) {
+  TeamRun fixed;
+  fixed.team.adaptive = false;
+  fixed.run(500, 1e-3, 3e-3, 4);
+  EXPECT_EQ(fixed.on_most, 500);
+  TeamRun one;
+  one.run(500, 1e-3, 3e-3, 1);
+  EXPECT_EQ(one.on_one, 500);
+  EXPECT_EQ(fixed.team.probes + one.team.probes, 0);
+}

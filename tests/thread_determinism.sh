@@ -4,7 +4,9 @@
 # program given, its state must match too. 8 and 16 threads run oversubscribed on a small
 # machine: they check the many-thread paths (16 runs of the bin stage's counting sort, 16
 # threads stealing from each other, more threads than non-empty patches on the small decks),
-# not their speed. Exit 77 (skipped) when the deck is absent.
+# not their speed. These runs keep every step on their threads (--team fixed); one more at 2
+# threads lets the time loop choose (--team adaptive: its probes alternate 2 and 1 threads
+# from the third step). Exit 77 (skipped) when the deck is absent.
 # OPTIONS (e.g. --regrid-every 5) go to both programs; MPM3D_REF may be '' (none).
 # usage: thread_determinism.sh MPM3D DECK STEPS WORKDIR [MPM3D_REF [OPTIONS...]]
 set -euo pipefail
@@ -15,8 +17,11 @@ opts=("$@")
 rm -rf "$work"; mkdir -p "$work"
 threads=(1 2 3 4 8 16)
 for t in "${threads[@]}"; do
-  "$mpm3d" --threads "$t" --steps "$steps" --no-output --quiet ${opts[@]+"${opts[@]}"} --state "$work/t$t.h5" "$deck"
+  "$mpm3d" --threads "$t" --team fixed --steps "$steps" --no-output --quiet ${opts[@]+"${opts[@]}"} --state "$work/t$t.h5" "$deck"
 done
+"$mpm3d" --threads 2 --team adaptive --steps "$steps" --no-output --quiet ${opts[@]+"${opts[@]}"} \
+  --state "$work/adaptive.h5" "$deck"
+h5diff "$work/t1.h5" "$work/adaptive.h5" || { echo "--team adaptive differs from 1 thread"; exit 1; }
 for t in "${threads[@]:1}"; do
   h5diff "$work/t1.h5" "$work/t$t.h5" || { echo "threads $t differ from 1 thread"; exit 1; }
 done
@@ -31,4 +36,4 @@ fi
 # Sanity: the run moved the particles (so equal files are not trivially equal).
 "$mpm3d" --steps 0 --no-output --quiet --state "$work/t0.h5" "$deck"
 if h5diff -q "$work/t0.h5" "$work/t1.h5" > /dev/null; then echo "state did not change"; exit 1; fi
-echo "identical bits at ${threads[*]} threads, with MPM3D_ISA=baseline${ref:+ and mpm3d_ref} after $steps steps ${opts[*]+(${opts[*]})}"
+echo "identical bits at ${threads[*]} threads, --team adaptive, with MPM3D_ISA=baseline${ref:+ and mpm3d_ref} after $steps steps ${opts[*]+(${opts[*]})}"

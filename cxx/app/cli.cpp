@@ -42,7 +42,8 @@ struct Options {
   long regrid_every = -1;  // -1: the deck's
   std::string particle_order = "blocks";
   RuleRequest rules;  // --rules, --rule, --time-step
-  bool no_output = false, quiet = false, hdf5 = false, vtu_binary = false, patch_given = false, strict_energy = false, no_rest_skip = false;
+  bool no_output = false, quiet = false, hdf5 = false, vtu_binary = false, patch_given = false, strict_energy = false, no_rest_skip = false,
+       fixed_team = false;
 };
 
 // SIGINT/SIGTERM: the time loop finishes the current step, writes a checkpoint and exits
@@ -90,6 +91,10 @@ Options parse_args(int argc, char** argv, bool& exit_now) {
     } else if (a == "--threads") {
       o.threads = int(to_long(a, value()));
       if (o.threads < 1) throw UsageError("--threads must be at least 1");
+    } else if (a == "--team") {
+      const std::string v = value();
+      if (v != "adaptive" && v != "fixed") throw UsageError("--team takes adaptive or fixed, not '" + v + "'");
+      o.fixed_team = v == "fixed";
     } else if (a == "--steps") {
       o.max_steps = to_long(a, value());
       if (o.max_steps < 0) throw UsageError("--steps must not be negative");
@@ -267,6 +272,7 @@ int run_main(int argc, char** argv, Ranks* ranks) {
                    opt.particle_order == "deck" ? ParticleOrder::deck : ParticleOrder::blocks);
     sim.strict_energy = opt.strict_energy;
     sim.skip_rest = !opt.no_rest_skip;
+    sim.team.adaptive = !opt.fixed_team;
     if (!root) opt.quiet = true;  // the root reports for every rank
     {
       StageTable t = cxx_stages();
@@ -492,6 +498,8 @@ int run_main(int argc, char** argv, Ranks* ranks) {
               return s;
             }() << "}"
          << ",\n  \"dt_min\": " << json_number(dt_min) << ",\n  \"dt_max\": " << json_number(dt_max) << ",\n  \"threads\": " << threads
+         << ",\n  \"team\": {\"adaptive\": " << (sim.team.adaptive ? "true" : "false")
+         << ", \"steps_on_one_thread\": " << sim.team.steps_on_one << ", \"probes\": " << sim.team.probes << "}"
          << ",\n  \"ranks\": " << (ranks ? ranks->size() : 1)
          << ",\n  \"rank_imbalance\": " << json_number(ranks ? ranks->imbalance() : 1.0)
          << ",\n  \"rank_bytes_sent_per_step\": " << json_number(rank_bytes)

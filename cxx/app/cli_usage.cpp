@@ -12,6 +12,9 @@ namespace {
 const char* const kOptions =
     "usage: mpm3d [options] DECK.mpm\n"
     "  --threads N        OpenMP threads (default: OMP_NUM_THREADS or all cores)\n"
+    "  --team adaptive|fixed  adaptive (default): each step runs on the threads or on one,\n"
+    "                     whichever the run measures faster (small decks, busy machines);\n"
+    "                     fixed: every step on all of them. The bits are the same.\n"
     "  --steps N          stop after N steps\n"
     "  --end-time T       stop at time T instead of the deck's end time\n"
     "  --out-dir DIR      where result files go, created if missing (default: the current\n"

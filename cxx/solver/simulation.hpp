@@ -10,6 +10,7 @@
 #include "core/grid.hpp"
 #include "input/data_in.hpp"
 #include "solver/ranks.hpp"
+#include "solver/thread_team.hpp"
 #include "stages/update_step.hpp"
 
 namespace mpm3d {
@@ -56,6 +57,7 @@ class Simulation {
   int contact_nodes = 0;                // contact: nodes corrected in the last step
   long steps = 0;
   double time = 0.0;
+  TeamChooser team;  // threads per step in the time loop (cxx/solver/time_loop.cpp)
   double kinetic = 0.0, internal = 0.0, momentum[3] = {0, 0, 0};
   double initial_total_energy = 0.0;
   // Bound of the work of gravity and loads so far (health check): the energy stage's

@@ -1,0 +1,36 @@
+// How many threads the next step runs on. Every stage gives the same bits on any number of
+// threads, so this decides speed only. Two threads do not pay on every step: on a small deck
+// a step is a row of parallel regions too short to pay for the threads' meetings, and on a
+// busy machine a thread waiting at a meeting spins while the thread it waits for has no core.
+// So the time loop measures: it alternates steps on the most threads the run may use and on
+// one, keeps the faster, and measures again after a gap of 64 times what the probe cost
+// (docs/PERFORMANCE.md, "Threads that pay"), or early when steps on the most threads slow
+// down by half on average. The probes thus cost about 1/64 of the run.
+#pragma once
+#include <cstdint>
+
+namespace mpm3d {
+
+class TeamChooser {
+ public:
+  // Threads for the next step: `most` (the run's --threads or OpenMP's default), or one.
+  int next(int most);
+  // The wall time of the step just run on next()'s threads.
+  void took(double seconds);
+  bool adaptive = true;  // false: always `most` (--team fixed)
+  long steps_on_one = 0, steps_on_most = 0;  // the run's steps on each (the summary)
+  long probes = 0;
+
+ private:
+  enum class Phase { warm_up, probe, run };
+  Phase phase_ = Phase::warm_up;
+  int most_ = 0, current_ = 0, chosen_ = 0;
+  int probe_step_ = 0;  // within the probe: even steps on the most threads, odd on one
+  long run_steps_ = 0;
+  double probe_time_[2] = {0.0, 0.0};  // the probe's wall time on the most threads, on one
+  double mean_most_ = 0.0;             // its mean step on the most threads
+  double gap_ = 0.0, since_probe_ = 0.0;     // wall time to the next probe, and so far
+  void start_probe();
+};
+
+}  // namespace mpm3d
