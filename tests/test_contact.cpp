@@ -153,6 +153,15 @@ TEST(Contact, CollidingSpheresDoNotInterpenetrateConserveMomentumAndSeparate) {
   EXPECT_GT(sim.kinetic + sim.internal, 0.85 * E0) << "too much dissipation";
 }
 
+TEST(Contact, PatchStatisticsCountBothComponents) {
+  // The summary's patch figures (Simulation::stats) over both components' lists: the
+  // non-empty patches' mean times their number is every particle of the two spheres.
+  mpm3d::Simulation sim(mpm3d::read_deck(MPM3D_INPUTS "/contact/spheres.mpm"));
+  sim.step();
+  EXPECT_DOUBLE_EQ(sim.stats.mean * sim.stats.nonempty, double(sim.model.particles.np));
+  EXPECT_GE(sim.stats.max, sim.stats.mean);
+}
+
 TEST(Contact, SpheresGainNoEnergyWithLargerStepsOrUsf) {
   // The spheres deck with other steps and schemes. Before the recontact stage the rebound
   // gained energy in proportion to the step (MUSL: end 1.09 E0 at dtscale 0.1, 1.21 at 0.2,

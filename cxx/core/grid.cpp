@@ -109,12 +109,13 @@ int count_escaped(const Grid& g, const double* x, const int* cell, int np) {
   return n;
 }
 
-PatchStats patch_stats(const Grid& g, const int* patch_start) {
+PatchStats patch_stats(const Grid& g, const int* patch_start, const int* second_start) {
   PatchStats s;
   s.patches = g.npatch;
   long total = 0;
   for (int q = 0; q < g.npatch; ++q) {
-    const int n = patch_start[q + 1] - patch_start[q];
+    int n = patch_start[q + 1] - patch_start[q];
+    if (second_start) n += second_start[q + 1] - second_start[q];
     if (n == 0) continue;
     ++s.nonempty;
     total += n;

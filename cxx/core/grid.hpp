@@ -73,12 +73,13 @@ void adaptive_window(const Grid& g, const double* x, const double* v, int np, in
                      int off[3], int nc[3]);
 // Particles outside the window (cell < 0) but inside the deck's box.
 int count_escaped(const Grid& g, const double* x, const int* cell, int np);
-// Particles per patch over the non-empty patches of the last binning.
+// Particles per patch over the non-empty patches of the last binning; with contact, both
+// components' lists (second_start: component 2's, on the same patches; else null).
 struct PatchStats {
   int patches = 0, nonempty = 0, empty = 0, max = 0;
   double mean = 0.0, imbalance = 0.0;  // mean over the non-empty patches; max / mean
 };
-PatchStats patch_stats(const Grid& g, const int* patch_start);
+PatchStats patch_stats(const Grid& g, const int* patch_start, const int* second_start = nullptr);
 
 // Trilinear shape functions of the 8 nodes of a cell at local coordinates lx in [0,1)^3.
 // Local node k = a + 2 b + 4 c has offset (a, b, c). Explicit operation order (bit-for-bit
