@@ -8,7 +8,8 @@ namespace mpm3d {
 namespace {
 constexpr int kWarmUpSteps = 2;    // the first steps touch their memory first: not timed
 constexpr int kProbeSteps = 6;     // at least: three on the most threads, three on one
-constexpr double kProbeSeconds = 0.05;  // at least: scheduler time slices of a busy machine
+constexpr double kProbeSeconds = 0.05;  // at least, once the run has taken 64 times this:
+                                        // scheduler time slices of a busy machine
 constexpr int kProbeMaxSteps = 2000;
 constexpr long kMinRunSteps = 16;  // steps between two probes at least
 constexpr double kGapPerCost = 64.0;  // the wall time between probes, in probe costs
@@ -48,6 +49,7 @@ int TeamChooser::next(int most) {
 void TeamChooser::took(double seconds) {
   (current_ == 1 ? steps_on_one : steps_on_most) += 1;
   if (!adaptive || most_ <= 1) return;
+  run_seconds_ += seconds;
   switch (phase_) {
     case Phase::warm_up:
       if (++run_steps_ >= kWarmUpSteps) start_probe();
@@ -58,7 +60,9 @@ void TeamChooser::took(double seconds) {
       probe_time_[current_ == 1 ? 1 : 0] += seconds;
       ++probe_step_;
       const double total = probe_time_[0] + probe_time_[1];
-      if (probe_step_ % 2 != 0 || probe_step_ < kProbeSteps || (total < kProbeSeconds && probe_step_ < kProbeMaxSteps))
+      // A probe lasts a 64th of the run so far, up to kProbeSeconds: short runs stay short.
+      const double length = std::min(kProbeSeconds, run_seconds_ / kGapPerCost);
+      if (probe_step_ % 2 != 0 || probe_step_ < kProbeSteps || (total < length && probe_step_ < kProbeMaxSteps))
         return;
       const double half = 0.5 * probe_step_;  // steps on each
       mean_most_ = probe_time_[0] / half;

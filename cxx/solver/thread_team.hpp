@@ -5,7 +5,8 @@
 // So the time loop measures: it alternates steps on the most threads the run may use and on
 // one, keeps the faster, and measures again after a gap of 64 times what the probe cost
 // (docs/PERFORMANCE.md, "Threads that pay"), or early when steps on the most threads slow
-// down by half on average. The probes thus cost about 1/64 of the run.
+// down by half on average. A probe lasts at most a 64th of the run so far, so the probes
+// cost a few percent of a run at most, however short.
 #pragma once
 #include <cstdint>
 
@@ -30,6 +31,7 @@ class TeamChooser {
   double probe_time_[2] = {0.0, 0.0};  // the probe's wall time on the most threads, on one
   double mean_most_ = 0.0;             // its mean step on the most threads
   double gap_ = 0.0, since_probe_ = 0.0;     // wall time to the next probe, and so far
+  double run_seconds_ = 0.0;                 // wall time of every step so far
   void start_probe();
 };
 
