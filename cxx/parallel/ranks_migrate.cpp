@@ -249,10 +249,10 @@ void MpiRanks::add_ghost_slots(Simulation& sim) {
       for (int q : n.recv)
         if (count(q, c->contact.only_comp) > 0) c->patch.patch_slot[q] = c->patch.nslot++;
   }
-  // The patch statistics of the whole run (with contact, component 1's, as on one rank).
+  // The patch statistics of the whole run (with contact, of both components, as on one rank).
   const StepContext& c = sim.ctx;
   std::vector<int> start(size_t(c.patch.npatch) + 1, 0);
-  for (int q = 0; q < c.patch.npatch; ++q) start[size_t(q) + 1] = start[size_t(q)] + count(q, c.contact.only_comp);
+  for (int q = 0; q < c.patch.npatch; ++q) start[size_t(q) + 1] = start[size_t(q)] + count(q, 0);
   sim.stats = patch_stats(sim.grid, start.data());
 }
 
