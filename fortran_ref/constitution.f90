@@ -252,6 +252,7 @@ contains
     end if
     p_new = (a + (b * e_star)) / (1.0_dp + ((0.5_dp * b) * dv))
     if (failed .and. p_new < 0.0_dp) p_new = 0.0_dp
+    if (m%has_p_min /= 0 .and. p_new < m%p_min) p_new = m%p_min
     e_new = e_star - ((0.5_dp * p_new) * dv)
     ie = e_new * vol0
     call stress_of(s, p_new, q_on, q_new, sig)

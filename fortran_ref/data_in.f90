@@ -308,7 +308,7 @@ contains
             call ts%fail(key%line, 'face conditions are 0 (free), 1 (fixed) or 2 (symmetry)')
           m%fix(f) = int(v)
         end do
-      case ('mate', 'seos', 'part', 'velo', 'load')
+      case ('mate', 'seos', 'pmin', 'part', 'velo', 'load')
         call read_card(ts, m, key, k)
       case ('musl', 'usf', 'usl')
         if (on_off(ts, key)) then

@@ -12,6 +12,8 @@ contains
       call read_materials(ts, m, key)
     case ('seos')
       call read_eos(ts, m, key)
+    case ('pmin')
+      call read_pressure_floor(ts, m, key)
     case ('part')
       call read_particles(ts, m, key)
     case ('velo')
@@ -192,6 +194,28 @@ contains
       call ts%fail(key%line, 'a ' // trim(material_keyword(m%mats(mid)%type)) // ' material takes no equation of state')
     m%mats(mid)%eos_type = int(et)
   end subroutine read_eos
+
+  ! 'pmin MID P' (extension): the pressure of null material MID never falls below P <= 0.
+  subroutine read_pressure_floor(ts, m, key)
+    type(token_stream), intent(inout) :: ts
+    type(model_t), intent(inout) :: m
+    type(token_t), intent(in) :: key
+    type(token_t) :: at
+    integer(int64) :: mid
+    real(dp) :: p
+    call need_counts(ts, m, key, .false., .true., .false.)
+    mid = read_material_number(ts, m, at)
+    if (m%mats(mid)%type == 0) &
+      call ts%fail(at%line, "'pmin' for material " // itoa(mid) // " before its 'mate' card")
+    if (m%mats(mid)%type /= MAT_NULL) &
+      call ts%fail(key%line, "'pmin' is for null materials; material " // itoa(mid) // ' is ' // &
+                   trim(material_keyword(m%mats(mid)%type)))
+    p = ts%real('the minimum pressure')
+    if (.not. (p <= 0.0_dp)) &
+      call ts%fail(key%line, "'pmin' takes a pressure of 0 or less (the tension the fluid can carry)")
+    m%mats(mid)%p_min = p
+    m%mats(mid)%has_p_min = 1
+  end subroutine read_pressure_floor
 
   integer function read_material_id(ts, m) result(id0)
     type(token_stream), intent(inout) :: ts

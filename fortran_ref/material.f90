@@ -52,6 +52,9 @@ module mpm3d_material
     real(c_double) :: clay_softening = 0.0_dp  ! eta: softening coefficient
     ! Mie-Gruneisen: the linear term's coefficient when non-zero, else rho0 c0^2 (rule null_eos).
     real(c_double) :: eos_k1 = 0.0_dp
+    ! Extension 'pmin' (null only): cavitation cut-off p_min (<= 0) where has_p_min /= 0.
+    real(c_double) :: p_min = 0.0_dp
+    integer(c_int) :: has_p_min = 0
   end type material_params
 
 end module mpm3d_material

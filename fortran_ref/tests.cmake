@@ -55,6 +55,7 @@ if(TARGET mpm3d AND TARGET mpm3d_ref)
   fref_deck(slab_small ${CMAKE_SOURCE_DIR}/inputs/explosives/slab_small.mpm)
   fref_deck(slope ${CMAKE_SOURCE_DIR}/inputs/granular/slope.mpm)
   fref_deck(null_gas ${_fref_own}/null_gas.mpm)
+  fref_deck(water_tension ${CMAKE_SOURCE_DIR}/inputs/fluids/water_tension.mpm)
   fref_deck(deto1k ${_fref_shared}/Deto1k.mpm)
   fref_deck(tnt3d ${_fref_shared}/TNT3D.mpm)
   # The adaptive background grid (regrid every 5 steps): C++ stages, Fortran stages, each

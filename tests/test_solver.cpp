@@ -641,3 +641,56 @@ TEST(ThreadTeam, FixedOrOneThreadNeverProbes) {
   EXPECT_EQ(one.on_one, 500);
   EXPECT_EQ(fixed.team.probes + one.team.probes, 0);
 }
+
+// 'pmin' (extension, null only): inputs/fluids/water_tension.mpm pulls a water bar apart at
+// 10 m/s a side. Without the card its middle carries about -rho0 c0 v = -14.8 MPa; with
+// 'pmin 1 -0.1' no particle's pressure (the EOS's, the only stress of a book null without
+// viscosity) falls below -0.1 MPa, and the energy equation takes the cut pressure, so the
+// internal energy of the cut run stays below the uncut run's elastic tension energy.
+namespace {
+double lowest_pressure_run(const std::string& deck, double* internal_end) {
+  mpm3d::Simulation sim(mpm3d::read_deck_text(deck, "water_tension.mpm"));
+  double lowest = INFINITY;
+  while (sim.time < sim.model.endtime - 1e-12) {
+    sim.step();
+    const double* s = sim.model.particles.sig.data();
+    for (int p = 0; p < sim.model.particles.np; ++p)
+      lowest = std::min(lowest, -(s[6 * p] + s[6 * p + 1] + s[6 * p + 2]) / 3.0);
+  }
+  *internal_end = sim.internal;
+  return lowest;
+}
+}  // namespace
+
+TEST(NullFluid, PressureCutOffHoldsTheTension) {
+  const std::string deck = testutil::read_file(std::string(MPM3D_INPUTS) + "/fluids/water_tension.mpm");
+  const std::string card = "pmin 1 -0.1\n";
+  ASSERT_NE(deck.find(card), std::string::npos);
+  std::string uncut = deck;
+  uncut.erase(uncut.find(card), card.size());
+  double ie_cut = 0.0, ie_uncut = 0.0;
+  const double p_cut = lowest_pressure_run(deck, &ie_cut);
+  const double p_uncut = lowest_pressure_run(uncut, &ie_uncut);
+  EXPECT_LT(p_uncut, -10.0);  // measured below
+  EXPECT_GE(p_cut, -0.1 * (1.0 + 1e-14));  // the mean of three equal stresses, to rounding
+  EXPECT_LT(p_cut, -0.09);  // the cut-off is reached, not just never approached
+  EXPECT_LT(ie_cut, 0.1 * ie_uncut);
+}
+
+TEST(NullFluid, PressureCutOffCardIsChecked) {
+  const std::string deck = testutil::read_file(std::string(MPM3D_INPUTS) + "/fluids/water_tension.mpm");
+  auto refused = [&](const std::string& from, const std::string& to, const std::string& what) {
+    std::string d = deck;
+    d.replace(d.find(from), from.size(), to);
+    try {
+      mpm3d::read_deck_text(d, "water_tension.mpm");
+      ADD_FAILURE() << "accepted: " << to;
+    } catch (const std::exception& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  refused("\npmin 1 -0.1", "\npmin 1 0.5", "water_tension.mpm:28: 'pmin' takes a pressure of 0 or less");
+  refused("\npmin 1 -0.1", "\npmin 2 -0.1", "material number 2 out of range 1..1");
+  refused("1    null  1.0d-3   1483\nseos 1 2 1483 1.79 1.65 0.0", "1    elas  1.0d-3   1.0 0.3",
+          "'pmin' is for null materials; material 1 is elas");
+}

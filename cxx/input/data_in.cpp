@@ -148,6 +148,8 @@ Model DeckReader::read() {
       read_velocities(key);
     } else if (k == "seos") {
       read_eos(key);
+    } else if (k == "pmin") {  // extension: a null material's cavitation cut-off
+      read_pressure_floor(key);
     } else if (k == "outr") {
       // A variable asked for twice is written once (the animation files name their
       // variables; an HDF5 frame cannot hold two datasets of one name).

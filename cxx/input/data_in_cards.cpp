@@ -76,6 +76,22 @@ void DeckReader::read_eos(const Token& key) {
   mp.eos_type = int(et);
 }
 
+// 'pmin MID P' (extension): the pressure of null material MID never falls below P <= 0.
+void DeckReader::read_pressure_floor(const Token& key) {
+  need_counts(key, false, true, false);
+  const Token& at = ts_.peek();
+  const long mid = ts_.integer("a material number");
+  if (mid < 1 || mid > m_.nmat) fail(at.line, "material number " + std::to_string(mid) + " out of range 1.." + std::to_string(m_.nmat));
+  MaterialParams& mp = m_.mats[size_t(mid - 1)];
+  if (mp.type == 0) fail(at.line, "'pmin' for material " + std::to_string(mid) + " before its 'mate' card");
+  if (mp.type != MAT_NULL)
+    fail(key.line, "'pmin' is for null materials; material " + std::to_string(mid) + " is " + material_keyword(mp.type));
+  const double p = ts_.real("the minimum pressure");
+  if (!(p <= 0.0)) fail(key.line, "'pmin' takes a pressure of 0 or less (the tension the fluid can carry)");
+  mp.p_min = p;
+  mp.has_p_min = 1;
+}
+
 void DeckReader::read_particles(const Token& key) {
   need_counts(key, true, true, true);
   if (int(m_.bodies.size()) >= m_.nbbo)

@@ -39,6 +39,7 @@ class DeckReader {
   void read_velocities(const Token& key);
   void read_loads(const Token& key);
   void read_eos(const Token& key);
+  void read_pressure_floor(const Token& key);
   int body_index(const Token& at, long ib);
   int particle_index(const Token& at, long pid);
   // The particles a 'node' (one particle, already defined) or 'body' line of velo and load

@@ -199,6 +199,7 @@ struct LaneUpdate {
     }
     T p_new = (a + b * e_star) / (1.0 + (0.5 * b) * dv);
     if (can_fail) p_new = TL::select(failed & (p_new < 0.0), TL::splat(0.0), p_new);
+    if (m.has_p_min) p_new = TL::select(p_new < m.p_min, TL::splat(m.p_min), p_new);
     const T e_new = e_star - (0.5 * p_new) * dv;
     ie = e_new * vol0;
     const T p_tot = q_on ? p_new + q_new : p_new;

@@ -65,6 +65,10 @@ struct MaterialParams {
   // Mie-Gruneisen: the linear term's coefficient when non-zero, else rho0 c0^2 (rule
   // null_eos=wave_speed puts the current program's null wave speed there).
   double eos_k1;
+  // Extension 'pmin' (null only): the pressure never falls below p_min (a cavitation
+  // cut-off, <= 0) where has_p_min; the energy equation takes the cut pressure.
+  double p_min;
+  int has_p_min;
 };
 
 }  // extern "C"
