@@ -10,11 +10,11 @@
 // placeholders), so that the Fortran stages reach the ranks' hooks. Every group's and every
 // member's offset is compared: padding after a short group cannot hide a missing member.
 
-extern "C" void mpm3d_f_context_layout(size_t out[122]);
+extern "C" void mpm3d_f_context_layout(size_t out[123]);
 extern "C" void mpm3d_f_step_constants(int out[17]);
 
 int main() {
-  constexpr int kChecks = 122;
+  constexpr int kChecks = 123;
   size_t f[kChecks];
   mpm3d_f_context_layout(f);
   const size_t c[kChecks] = {
@@ -139,7 +139,8 @@ int main() {
       offsetof(MaterialParams, eos_k1),
       offsetof(StepContext, rules.start_temp),
       offsetof(MaterialParams, p_min),
-      offsetof(MaterialParams, has_p_min)};
+      offsetof(MaterialParams, has_p_min),
+      offsetof(StepContext, rules.contact)};
   const char* what[kChecks] = {
       "sizeof(StepContext)",
       "offsetof(part)",
@@ -262,7 +263,8 @@ int main() {
       "offsetof(MaterialParams::eos_k1)",
       "offsetof(rules.start_temp)",
       "offsetof(MaterialParams::p_min)",
-      "offsetof(MaterialParams::has_p_min)"};
+      "offsetof(MaterialParams::has_p_min)",
+      "offsetof(rules.contact)"};
   int bad = 0;
   for (int i = 0; i < kChecks; ++i) {
     const bool ok = c[i] == f[i];

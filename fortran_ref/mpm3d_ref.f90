@@ -508,6 +508,7 @@ contains
     end if
     do s = 1, nstage
       if (mpm3d_stage_needs_contact(step_order(s)) /= 0 .and. .not. model%contact) cycle
+      if (step_order(s) == ST_RECONTACT .and. ctx%rules%contact /= 0) cycle  ! rule contact=original
       if (step_order(s) == ST_BIN) then
         call bin_stage()
       else

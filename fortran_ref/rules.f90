@@ -8,7 +8,7 @@ module mpm3d_rules
   implicit none
   private
 
-  integer, parameter, public :: RULE_COUNT = 17
+  integer, parameter, public :: RULE_COUNT = 18
 
   ! struct StepRules, member for member (0 is always ours).
   type, bind(C), public :: step_rules
@@ -29,6 +29,7 @@ module mpm3d_rules
     integer(c_int) :: clay_return = 0    ! clay: 0 return solved (Newton), 1 the newest program's linearised step
     integer(c_int) :: null_eos = 0       ! null's EOS: 0 as the deck gives it, 1 first coefficient := wave speed
     integer(c_int) :: start_temp = 0     ! particles' starting temperature: 0 the card's room temperature, 1 293
+    integer(c_int) :: contact = 0        ! contact: 0 ours (recontact; force d / dt_int), 1 once, force d / dt
   end type step_rules
 
   ! The --rules preset and the --rule settings (rule, value), in order; the last wins.
@@ -42,16 +43,16 @@ module mpm3d_rules
   character(len=13), parameter :: rule_name(RULE_COUNT) = [character(len=13) :: &
     'program', 'time_step', 'bulk_book', 'bulk_switch', 'bulk_linear', 'burn', 'dp_return', &
     'deck_reals', 'tl_shape', 'sg_lower', 'sg_beyond', 'fluid_viscous', &
-    'bulk_work', 'pressure_q', 'clay_return', 'null_eos', 'start_temp']
+    'bulk_work', 'pressure_q', 'clay_return', 'null_eos', 'start_temp', 'contact']
   character(len=10), parameter :: value0(RULE_COUNT) = [character(len=10) :: &
     'book', 'book', 'apply', 'volume', 'all', 'ramp', 'surface', 'double', 'particle', 'nearest', &
-    'nearest', 'deviator', 'mean', 'in', 'solved', 'deck', 'room']
+    'nearest', 'deviator', 'mean', 'in', 'solved', 'deck', 'room', 'twice']
   character(len=10), parameter :: value1(RULE_COUNT) = [character(len=10) :: &
     'current', 'current', 'ignore', 'stress', 'original', 'step', 'original', 'single', 'centre', &
-    'truncate', 'drop', 'full', 'new', 'out', 'linear', 'wave_speed', '293']
+    'truncate', 'drop', 'full', 'new', 'out', 'linear', 'wave_speed', '293', 'original']
   ! The book program's and the current program's value of each rule.
-  integer, parameter :: book_value(RULE_COUNT) = [0, 0, 1, 0, 0, 1, 1, 1, 0, 0, 0, 0, 0, 0, 1, 0, 1]
-  integer, parameter :: current_value(RULE_COUNT) = [1, 1, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1]
+  integer, parameter :: book_value(RULE_COUNT) = [0, 0, 1, 0, 0, 1, 1, 1, 0, 0, 0, 0, 0, 0, 1, 0, 1, 1]
+  integer, parameter :: current_value(RULE_COUNT) = [1, 1, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1]
 
   public :: parse_rule_preset, add_rule_setting, resolve_rules
 
@@ -132,7 +133,8 @@ contains
       time_step_set = time_step_set .or. req%set_rule(i) == 2
     end do
     if (.not. time_step_set) v(2) = v(1)
-    r = step_rules(v(1), v(2), v(3), v(4), v(5), v(6), v(7), v(8), v(9), v(10), v(11), v(12), v(13), v(14), v(15), v(16), v(17))
+    r = step_rules(v(1), v(2), v(3), v(4), v(5), v(6), v(7), v(8), v(9), v(10), v(11), v(12), v(13), v(14), &
+                   v(15), v(16), v(17), v(18))
   end function resolve_rules
 
 end module mpm3d_rules

@@ -316,7 +316,7 @@ contains
   ! The layout of step_context (its size, then every group's and every member's offset, in
   ! the order of layout_check.cpp) and of material_params (size, eos_e0, eos_type, dp_tension, clay_peak, eos_k1).
   subroutine mpm3d_f_context_layout(out) bind(C, name='mpm3d_f_context_layout')
-    integer(c_size_t), intent(out) :: out(122)
+    integer(c_size_t), intent(out) :: out(123)
     type(step_context), target :: c
     type(material_params), target :: m(2)
     integer(c_intptr_t) :: c0, m0
@@ -444,6 +444,7 @@ contains
     out(120) = transfer(c_loc(c%rules%start_temp), 0_c_intptr_t) - c0
     out(121) = transfer(c_loc(m(1)%p_min), 0_c_intptr_t) - m0
     out(122) = transfer(c_loc(m(1)%has_p_min), 0_c_intptr_t) - m0
+    out(123) = transfer(c_loc(c%rules%contact), 0_c_intptr_t) - c0
   end subroutine mpm3d_f_context_layout
 
 end module mpm3d_stage_common

@@ -60,7 +60,7 @@ contains
     logical, intent(in) :: remap
     type(step_context), pointer :: c2
     real(dp), pointer :: m1(:), m2(:), p1(:,:), p2(:,:), f1(:,:), f2(:,:), g1(:,:), g2(:,:), cpart(:,:)
-    real(dp) :: part(3), nv(3), un(3), qv(3), t(3), len, mt, qn, tl, fr, ft, d, fc, s(4)
+    real(dp) :: part(3), nv(3), un(3), qv(3), t(3), len, mt, qn, tl, fr, ft, d, fc, s(4), dt_force
     integer :: q, i, j, k, n, a, nb, ncount
     integer :: q3(3), lo(3), hi(3)
     call c_f_pointer(c%contact%other, c2)
@@ -74,6 +74,12 @@ contains
     call c_f_pointer(c2%contact%gnormal, g2, [3, c%grid%nnode])
     call c_f_pointer(c%contact%cpartials, cpart, [4, c%patch%npatch])
     nb = c%contact%contact_normbody
+    ! Rule contact=original: the force by the full dt also in the first step (of half dt).
+    if (c%rules%contact /= 0) then
+      dt_force = c%clock%dt
+    else
+      dt_force = c%clock%dt_int
+    end if
     do q = 0, c%patch%npatch - 1
       part = 0.0_dp
       ncount = 0
@@ -151,7 +157,7 @@ contains
                 p1(a, n) = p1(a, n) + d
                 p2(a, n) = p2(a, n) - d
                 if (.not. remap) then
-                  fc = d / c%clock%dt_int
+                  fc = d / dt_force
                   f1(a, n) = f1(a, n) + fc
                   f2(a, n) = f2(a, n) - fc
                   part(a) = part(a) + fc

@@ -21,6 +21,10 @@ if(TARGET mpm3d AND TARGET mpm3d_ref AND MPM3D_H5DIFF)
   rules_add(original_book ${_rules_inputs}/explosives/slab_small.mpm 40 --rules original)
   # Rule start_temp: the particles start at 293, not at the card's room temperature 20.
   rules_add(start_temp ${_rules_inputs}/rules/john_celsius.mpm 40 --rule start_temp=293)
+  # Rule contact: the originals' contact (no recontact stage, forces by the full dt), MUSL
+  # and USF with friction.
+  rules_add(contact_musl ${_rules_inputs}/contact/spheres.mpm 120 --rule contact=original)
+  rules_add(contact_usf ${_rules_inputs}/contact/oblique.mpm 400 --rule contact=original)
   # A restart keeps the rules of the run it continues (the checkpoint records them).
   add_test(NAME rules.restart
            COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/rules_restart.sh $<TARGET_FILE:mpm3d>
@@ -56,6 +60,8 @@ if(TARGET mpm3d AND TARGET mpm3d_ref AND MPM3D_H5DIFF)
     rules_reference(j2eos_linear ${_rules_inputs}/methods/j2eos_linear.mpm --rules original)
     rules_reference(john_wall ${_rules_inputs}/rules/john_wall.mpm --rules original)
     rules_reference(john_celsius ${_rules_inputs}/rules/john_celsius.mpm --rules original)
+    rules_reference(spheres ${_rules_inputs}/contact/spheres.mpm --rules original)
+    rules_reference(oblique ${_rules_inputs}/contact/oblique.mpm --rules original)
     rules_reference(clay_column ${_rules_inputs}/clay/clay_column.mpm --rules original)
     rules_reference(water_tube_mg ${CMAKE_CURRENT_SOURCE_DIR}/decks/water_tube_mg.mpm --rules original)
   endif()

@@ -36,12 +36,17 @@ const RuleInfo kRules[kRuleCount] = {
      "      wave speed sqrt(K/rho0), as the current program's set-up does"},
     {"start_temp", {"room", "293"}, 1, 1,
      "particles' starting temperature: the material card's room temperature, or 293"},
+    {"contact", {"twice", "original"}, 1, 1,
+     "contact: the nodes in contact corrected again before the strain rates read them\n"
+     "      (MUSL's remapped, USF's P2G momenta) and their forces by the step's momentum dt,\n"
+     "      or once a step with forces by the full dt, as the original programs"},
 };
 
 int& rule_value(StepRules& r, int i) {
   int* v[kRuleCount] = {&r.program,  &r.time_step, &r.bulk_book, &r.bulk_switch, &r.bulk_linear, &r.burn,
                         &r.dp_return, &r.deck_reals, &r.tl_shape, &r.sg_lower,   &r.sg_beyond,  &r.fluid_viscous,
-                        &r.bulk_work, &r.pressure_q, &r.clay_return, &r.null_eos, &r.start_temp};
+                        &r.bulk_work, &r.pressure_q, &r.clay_return, &r.null_eos, &r.start_temp,
+                        &r.contact};
   return *v[i];
 }
 

@@ -12,7 +12,7 @@
 
 namespace mpm3d {
 
-constexpr int kRuleCount = 17;
+constexpr int kRuleCount = 18;
 
 struct RuleInfo {
   const char* name;

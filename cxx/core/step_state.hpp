@@ -155,6 +155,8 @@ struct StepRules {
                       // C0, A; Mie-Gruneisen's rho0 c0^2) replaced by the null's wave speed (current program)
   int start_temp;     // particles' starting temperature: 0 the card's room temperature, 1 293 whatever the
                       // card says (both original programs)
+  int contact;        // contact: 0 ours (recontact stage; force corrections d / dt_int), 1 the originals'
+                      // (no recontact; d / dt, so the first step's half dt moves the particles by d / 2)
 };
 
 struct StepContext {

@@ -381,6 +381,7 @@ void Simulation::step() {
   for (int k = 0; k < nstage; ++k) {
     const int s = order[k];
     if (mpm3d_stage_needs_contact(s) && !contact) continue;
+    if (s == ST_RECONTACT && c->rules.contact) continue;  // rule contact=original
     if (s == ST_BIN) {
       bin_stage();
       const bool rest = rest_possible();

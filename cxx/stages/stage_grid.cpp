@@ -192,7 +192,9 @@ void scatter_mass_gradient(StepContext* c) {
 // is marked); the contact force on component 1 is added to part. True when corrected.
 template <bool kRemap>
 inline bool contact_node(StepContext* c, StepContext* c2, int n, double part[3]) {
-  const double cutoff = c->grid.mass_cutoff, mu = c->contact.contact_mu, dt_int = c->clock.dt_int;
+  const double cutoff = c->grid.mass_cutoff, mu = c->contact.contact_mu;
+  // Rule contact=original: the force by the full dt also in the first step (of half dt).
+  const double dt_force = c->rules.contact ? c->clock.dt : c->clock.dt_int;
   const int nb = c->contact.contact_normbody;
   const double m1 = c->grid.gmass[n], m2 = c2->grid.gmass[n];
   double* g1 = c->contact.gnormal + 3 * n;
@@ -234,7 +236,7 @@ inline bool contact_node(StepContext* c, StepContext* c2, int n, double part[3])
     p1[a] = p1[a] + d;
     p2[a] = p2[a] - d;
     if (!kRemap) {
-      const double fc = d / dt_int;
+      const double fc = d / dt_force;
       f1[a] = f1[a] + fc;
       f2[a] = f2[a] - fc;
       part[a] += fc;
