@@ -40,6 +40,7 @@ import cook_membrane as CM  # noqa: E402
 import landslide_result as LS  # noqa: E402
 import dam_break as DB  # noqa: E402
 import granular_columns as GC  # noqa: E402
+import contact_spheres as CS  # noqa: E402
 import verification as V  # noqa: E402
 
 
@@ -129,6 +130,8 @@ class Suite(BarStudy, MmsStudy, WaveStudy, SpheresStudy, SodStudy, TaylorStudy, 
         L += self.smooth_mms_section()
         L += self.waves_section()
         L += self.spheres_section()
+        # Colliding spheres through the contact, ours and the originals' (tools/contact_spheres.py)
+        L += CS.section_lines()
         L += self.sod_section()
         # Hypervelocity (tools/hypervelocity.py: its files in docs/verification/)
         L += H.section_lines()
@@ -250,6 +253,8 @@ def main():
     DB.run(s.build, s.threads)
     s.log("granular columns: tools/granular_columns.py")
     GC.run(s.build, s.threads)
+    s.log("colliding spheres, contact: tools/contact_spheres.py")
+    CS.run(s.build, s.threads)
     s.orders()
     load1 = loadavg()
     save_results(s, load0, load1, time.time() - s.t0)
