@@ -75,6 +75,12 @@ add_test(NAME health.advice_fits_the_deck
 set_tests_properties(health.advice_fits_the_deck PROPERTIES
   PASS_REGULAR_EXPRESSION "numerical instability at step [0-9]+ .*\\(reduce dtscale; material 1 is a Drucker-Prager material without tensile strength.*--rule dp_return=original"
   FAIL_REGULAR_EXPRESSION "use MUSL")
+# Explosive products expanded past the density bound among water (tests/decks/
+# charge_in_water.mpm): the stop gives the charge's volume and names contact as the remedy.
+add_test(NAME health.products_advice
+         COMMAND $<TARGET_FILE:mpm3d> --no-output --quiet --threads 2 ${CMAKE_CURRENT_SOURCE_DIR}/decks/charge_in_water.mpm)
+set_tests_properties(health.products_advice PROPERTIES
+  PASS_REGULAR_EXPRESSION "numerical breakdown at step [0-9]+ .*particle [0-9]+ \\(body 1\\) has density .* rho0\\), outside the bounds .*; the explosive's particles add up to [0-9.]+ times its initial volume: products mixed into heavier material .*'cont lagr 0 0'")
 # --quiet hides progress, never warnings: a deck with particles outside the grid says so.
 add_test(NAME health.quiet_keeps_warnings
          COMMAND sh -c "printf 'mpm3d *** q\\nnbmp 12\\nnbbo 1\\nnmat 1\\nspx 0 4\\nspy 0 2\\nspz 0 4\\ndcel 1.0\\ndtsc 0.5\\nendt 1.0\\nmate\\n1 elas 2.0 200.0 0.25\\npart bloc 1 1 2.0 0.5 1.0 1.5 2.0 2 3 2\\nendi\\n' > quiet_out.mpm && $<TARGET_FILE:mpm3d> --quiet --steps 2 --no-output quiet_out.mpm"

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -43,6 +44,44 @@ std::string Simulation::about_particle(int deck, F&& format) const {
 // reported, whatever the thread count), then runaway energy. The pass reads two doubles and
 // one int per particle: about 1% of a step. On several ranks every decision is a min or a
 // max over the ranks, so that all of them stop at the same step with the same message.
+// Explosive products expanded past the bound: among heavier material (water, soil) a
+// products particle takes the velocity gradient of its neighbourhood in the one velocity
+// field, so the charge's particle volumes grow past what the products occupy. The charges'
+// volume now against their initial volume, and what to change; "" without hiex. Collective
+// on several ranks (every rank calls it).
+std::string Simulation::products_advice() const {
+  const Particles& P = model.particles;
+  double now = 0.0, initial = 0.0;
+  for (int p = 0; p < P.np; ++p) {
+    const MaterialParams& m = model.mats[size_t(P.mat[p])];
+    if (m.type != MAT_HIEX) continue;
+    now += P.vol[p];
+    initial += P.mass[p] / m.rho0;
+  }
+  if (ranks) {  // every rank's two sums (a max over slots only one rank fills), added in rank order
+    const int n = ranks->size();
+    std::vector<double> sums(2 * size_t(n), -std::numeric_limits<double>::infinity());
+    sums[2 * size_t(ranks->rank())] = now;
+    sums[2 * size_t(ranks->rank()) + 1] = initial;
+    ranks->max(sums);
+    now = initial = 0.0;
+    for (int r = 0; r < n; ++r) {
+      now += sums[2 * size_t(r)];
+      initial += sums[2 * size_t(r) + 1];
+    }
+  }
+  if (!(initial > 0.0)) return "";
+  std::ostringstream os;
+  os << "; the explosive's particles add up to " << now / initial << " times its initial volume: ";
+  if (model.contact)
+    os << "stop the run earlier (endtime) or refine the grid";
+  else
+    os << "products mixed into heavier material take its expansion in the one velocity field; give the charge "
+          "a velocity field of its own (nbco 2, the charge component 1, 'cont lagr 0 0'), stop the run earlier "
+          "(endtime), or refine the grid";
+  return os.str();
+}
+
 std::string Simulation::instability_advice() const {
   std::string advice = "reduce dtscale";
   // sgmp holds two node layers on a fixed or symmetric face: particles in a lower face's
@@ -132,7 +171,8 @@ void Simulation::health_check() {
     }
     bad = lowest(bad);
     if (ranks) ie_min = ranks->min(ie_min);
-    if (bad != kNone)
+    if (bad != kNone) {
+      const std::string products = products_advice();  // every rank: a sum over the ranks
       throw HealthError(about_particle(bad, [&](int p) {
         std::ostringstream os;
         os << "numerical breakdown at step " << steps << " (t = " << time << "): particle " << bad + 1 << " ("
@@ -143,9 +183,11 @@ void Simulation::health_check() {
              << " (crushed: reduce dtscale, or the impact speed is too high for the grid)";
         else
           os << "density " << mass[p] / vol[p] << " = " << (mass[p] / vol[p]) / rho0 << " rho0 (rho0 = " << rho0
-             << "), outside the bounds [" << kDensityRatioMin << ", " << kDensityRatioMax << "] rho0";
+             << "), outside the bounds [" << kDensityRatioMin << ", " << kDensityRatioMax << "] rho0"
+             << (mats[mat[p]].type == MAT_HIEX && mass[p] < kDensityRatioMin * rho0 * vol[p] ? products : "");
         return os.str();
       }));
+    }
   }
   if (std::isfinite(kinetic) && std::isfinite(internal)) {
     // Runaway energy: the total may not exceed twice the initial energy plus the bound of

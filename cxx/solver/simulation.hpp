@@ -137,6 +137,7 @@ class Simulation {
   // dp_return=original for a cohesionless Drucker-Prager material under our return; with
   // sgmp, the cell missing outside a held lower face that particles start next to.
   std::string instability_advice() const;
+  std::string products_advice() const;
   // The energy warning's likely causes: the EOS of the materials that have one, the
   // particle cards' densities, else the time step.
   std::string energy_causes() const;
