@@ -11,7 +11,7 @@ largest difference over the run in % of the column's largest magnitude in the or
 run. Within: kinetic and total energy and every curve within 1 %, internal energy (and
 the internal-energy curves engi*) within 5 %. Exit 0 when every column is within; with
 --beyond, exit 0 when some column is beyond instead (the run under our own rules, to show
-that the rule is what brings the agreement). Exit 2 on a missing file or a failed run.
+that the rule is what brings the agreement). Exit 2 on a missing or empty file or a failed run.
 """
 import os
 import shutil
@@ -41,6 +41,10 @@ def main(argv):
     for path in (mpm3d, deck, os.path.join(ref, compare.ENERGY_FILE)):
         if not os.path.exists(path):
             print("rules_reference: %s: no such file" % path, file=sys.stderr)
+            return 2
+    with open(os.path.join(ref, compare.ENERGY_FILE)) as f:
+        if sum(1 for line in f if line.strip()) < 2:  # an original that crashed writes nothing
+            print("rules_reference: %s holds no run" % os.path.join(ref, compare.ENERGY_FILE), file=sys.stderr)
             return 2
     work = tempfile.mkdtemp(prefix="rules-reference-%s-" % stem)
     try:
