@@ -621,6 +621,18 @@ TEST(ThreadTeam, KeepsTheThreadsWhereTheyPay) {
   EXPECT_LT(r.on_one, 60);
 }
 
+TEST(ThreadTeam, AClearLossEndsTheProbeAtOnce) {
+  // Warm-up and the probe's first step on one thread; a step on the most threads three
+  // times slower than that ends the probe (a busy machine pays for one such step only).
+  TeamRun r;
+  r.run(4, 1e-3, 5e-3);
+  EXPECT_EQ(r.on_most, 1);
+  EXPECT_EQ(r.team.next(2), 1);
+  TeamRun close;  // 2.5 times: the probe goes on
+  close.run(6, 1e-3, 2.5e-3);
+  EXPECT_EQ(close.on_most, 2);
+}
+
 TEST(ThreadTeam, NoticesABusyMachine) {
   TeamRun r;
   r.run(300, 2e-3, 1e-3);            // idle: two threads pay; the next probe is due in

@@ -14,6 +14,8 @@ constexpr int kProbeMaxSteps = 2000;
 constexpr long kMinRunSteps = 16;  // steps between two probes at least
 constexpr double kGapPerCost = 64.0;  // the wall time between probes, in probe costs
 constexpr double kGapCap = 30.0;      // seconds: a busy machine that frees up is noticed
+constexpr double kClearLoss = 3.0;    // a probe's step on the most threads this many times its
+                                      // steps on one so far: the probe ends on one thread
 constexpr double kSlowFactor = 1.5;   // steps on the most threads this much slower than the
                                       // probe's, on average since it: probe again
 }  // namespace
@@ -33,11 +35,11 @@ int TeamChooser::next(int most) {
     run_steps_ = 0;
   }
   switch (phase_) {
-    case Phase::warm_up:
-      current_ = most_;
+    case Phase::warm_up:  // on one thread: a busy machine costs these steps nothing
+      current_ = 1;
       break;
-    case Phase::probe:
-      current_ = probe_step_ % 2 == 0 ? most_ : 1;
+    case Phase::probe:  // one thread first, so that a clear loss ends the probe at once
+      current_ = probe_step_ % 2 == 0 ? 1 : most_;
       break;
     case Phase::run:
       current_ = chosen_;
@@ -62,7 +64,9 @@ void TeamChooser::took(double seconds) {
       const double total = probe_time_[0] + probe_time_[1];
       // A probe lasts a 64th of the run so far, up to kProbeSeconds: short runs stay short.
       const double length = std::min(kProbeSeconds, run_seconds_ / kGapPerCost);
-      if (probe_step_ % 2 != 0 || probe_step_ < kProbeSteps || (total < length && probe_step_ < kProbeMaxSteps))
+      const bool clear_loss = probe_step_ % 2 == 0 && probe_time_[0] > kClearLoss * probe_time_[1];
+      if (!clear_loss &&
+          (probe_step_ % 2 != 0 || probe_step_ < kProbeSteps || (total < length && probe_step_ < kProbeMaxSteps)))
         return;
       const double half = 0.5 * probe_step_;  // steps on each
       mean_most_ = probe_time_[0] / half;
