@@ -112,6 +112,20 @@ contains
       call ts%fail(at%line, 'material number ' // itoa(id) // ' out of range 1..' // i2s(m%nmat))
   end function read_material_number
 
+  ! The material that card `card` (keyword token key) names by its first number, after the
+  ! materials' cards; a bad number fails at its own line (the C++ card_material).
+  integer(int64) function card_material(ts, m, key, card) result(mid)
+    type(token_stream), intent(inout) :: ts
+    type(model_t), intent(in) :: m
+    type(token_t), intent(in) :: key
+    character(len=*), intent(in) :: card
+    type(token_t) :: at
+    call need_counts(ts, m, key, .false., .true., .false.)
+    mid = read_material_number(ts, m, at)
+    if (m%mats(mid)%type == 0) &
+      call ts%fail(at%line, "'" // card // "' for material " // itoa(mid) // " before its 'mate' card")
+  end function card_material
+
   subroutine read_materials(ts, m, key)
     type(token_stream), intent(inout) :: ts
     type(model_t), intent(inout) :: m
@@ -155,13 +169,9 @@ contains
     type(token_stream), intent(inout) :: ts
     type(model_t), intent(inout) :: m
     type(token_t), intent(in) :: key
-    type(token_t) :: at
     integer(int64) :: mid, et
     integer :: i
-    call need_counts(ts, m, key, .false., .true., .false.)
-    mid = read_material_number(ts, m, at)
-    if (m%mats(mid)%type == 0) &
-      call ts%fail(at%line, "'seos' for material " // itoa(mid) // " before its 'mate' card")
+    mid = card_material(ts, m, key, 'seos')
     et = ts%integer('an EOS type')
     if (et == 1) then
       do i = 1, 7
@@ -200,13 +210,9 @@ contains
     type(token_stream), intent(inout) :: ts
     type(model_t), intent(inout) :: m
     type(token_t), intent(in) :: key
-    type(token_t) :: at
     integer(int64) :: mid
     real(dp) :: p
-    call need_counts(ts, m, key, .false., .true., .false.)
-    mid = read_material_number(ts, m, at)
-    if (m%mats(mid)%type == 0) &
-      call ts%fail(at%line, "'pmin' for material " // itoa(mid) // " before its 'mate' card")
+    mid = card_material(ts, m, key, 'pmin')
     if (m%mats(mid)%type /= MAT_NULL) &
       call ts%fail(key%line, "'pmin' is for null materials; material " // itoa(mid) // ' is ' // &
                    trim(material_keyword(m%mats(mid)%type)))

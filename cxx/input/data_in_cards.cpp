@@ -44,13 +44,21 @@ void DeckReader::read_materials(const Token& key) {
   }
 }
 
-void DeckReader::read_eos(const Token& key) {
+// The material that card `card` (keyword token key) names by its first number, after the
+// materials' cards; a bad number fails at its own line.
+MaterialParams& DeckReader::card_material(const Token& key, const char* card, long& mid) {
   need_counts(key, false, true, false);
   const Token& at = ts_.peek();
-  const long mid = ts_.integer("a material number");
+  mid = ts_.integer("a material number");
   if (mid < 1 || mid > m_.nmat) fail(at.line, "material number " + std::to_string(mid) + " out of range 1.." + std::to_string(m_.nmat));
   MaterialParams& mp = m_.mats[size_t(mid - 1)];
-  if (mp.type == 0) fail(at.line, "'seos' for material " + std::to_string(mid) + " before its 'mate' card");
+  if (mp.type == 0) fail(at.line, std::string("'") + card + "' for material " + std::to_string(mid) + " before its 'mate' card");
+  return mp;
+}
+
+void DeckReader::read_eos(const Token& key) {
+  long mid = 0;
+  MaterialParams& mp = card_material(key, "seos", mid);
   const long et = ts_.integer("an EOS type");
   if (et == 1) {
     for (int i = 0; i < 7; ++i) mp.eos[i] = ts_.real("an EOS coefficient");
@@ -78,12 +86,8 @@ void DeckReader::read_eos(const Token& key) {
 
 // 'pmin MID P' (extension): the pressure of null material MID never falls below P <= 0.
 void DeckReader::read_pressure_floor(const Token& key) {
-  need_counts(key, false, true, false);
-  const Token& at = ts_.peek();
-  const long mid = ts_.integer("a material number");
-  if (mid < 1 || mid > m_.nmat) fail(at.line, "material number " + std::to_string(mid) + " out of range 1.." + std::to_string(m_.nmat));
-  MaterialParams& mp = m_.mats[size_t(mid - 1)];
-  if (mp.type == 0) fail(at.line, "'pmin' for material " + std::to_string(mid) + " before its 'mate' card");
+  long mid = 0;
+  MaterialParams& mp = card_material(key, "pmin", mid);
   if (mp.type != MAT_NULL)
     fail(key.line, "'pmin' is for null materials; material " + std::to_string(mid) + " is " + material_keyword(mp.type));
   const double p = ts_.real("the minimum pressure");

@@ -38,6 +38,7 @@ class DeckReader {
   void read_particles(const Token& key);
   void read_velocities(const Token& key);
   void read_loads(const Token& key);
+  MaterialParams& card_material(const Token& key, const char* card, long& mid);
   void read_eos(const Token& key);
   void read_pressure_floor(const Token& key);
   int body_index(const Token& at, long ib);
