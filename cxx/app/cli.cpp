@@ -262,6 +262,9 @@ int run_main(int argc, char** argv, Ranks* ranks) {
 #ifdef _OPENMP
     if (opt.threads > 0) omp_set_num_threads(opt.threads);
     const int threads = omp_get_max_threads();
+    // --team adaptive: the set-up on one thread (a busy machine makes its parallel regions
+    // spin; docs/PERFORMANCE.md, "Threads that pay"); the time loop chooses per step.
+    if (!opt.fixed_team) omp_set_num_threads(1);
 #else
     const int threads = 1;
 #endif
@@ -440,6 +443,9 @@ int run_main(int argc, char** argv, Ranks* ranks) {
       return interrupted == 0;
     };
     stepping = true;
+#ifdef _OPENMP
+    omp_set_num_threads(threads);  // the run's threads, for the time loop to choose from
+#endif
     const LoopProgress progress = run_steps(sim, limits, hooks);
     const long steps_run = progress.steps_run;
     const double step_seconds = progress.step_seconds;
