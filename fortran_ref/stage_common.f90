@@ -21,7 +21,7 @@ module mpm3d_stage_common
   ! gradient loop through particle_shape (8 or 27 nodes), sgmp has its own (stage_sg.f90).
   integer, parameter, public :: TRANSFER_TRILINEAR = 0, TRANSFER_STENCIL27 = 1, TRANSFER_SMOOTHED_GRADIENT = 2
   ! Fields of the energy stage's columns: kinetic, internal energy, momentum (3), sum |f.v|.
-  integer, parameter, public :: REDUCE_FIELDS = 6
+  integer, parameter, public :: REDUCE_FIELDS = 7
 
   ! The particles (np) and their materials and bodies (struct StepParticles).
   type, bind(C), public :: step_particles
@@ -108,7 +108,7 @@ module mpm3d_stage_common
     ! (kReduceFields, npatch + 1) the energy stage's columns, the last for the particles outside the grid
     type(c_ptr) :: partials = c_null_ptr
     ! energy: kinetic, internal, momentum (3) in 0..4, sum |f.v| in 8; contact: force in 5..7
-    real(c_double) :: result(9) = 0.0_c_double
+    real(c_double) :: result(10) = 0.0_c_double
     integer(c_int) :: noutside = 0  ! bin stage: particles outside the grid
   end type step_results
 

@@ -13,6 +13,7 @@ module mpm3d_stage_energy
 contains
 
   ! Energy: result(1:5) = sum_p (m_p |v_p|^2 / 2, e_p, m_p v_p), result(9) = sum_p |f_p . v_p|
+  ! and result(10) = sum_p f_p . v_p with the point loads ramped as P2G applies them (QuLo)
   ! (0 without body forces). Column q+1 (q = 0..npatch-1) sums patch q's list, then (contact)
   ! component 2's list of patch q; column npatch+1 the particles outside the grid (cell < 0,
   ! the cell array shared by both components) in ascending index, scanned only when there are
@@ -80,6 +81,7 @@ contains
     end do
     c%out%result(1:5) = s(1:5)
     c%out%result(9) = s(6)
+    c%out%result(10) = s(7)
 
   contains
 
@@ -87,7 +89,7 @@ contains
     ! body forces, |f . v| with f = m g + f_ext (neither ramped nor damped).
     subroutine add_particle(p)
       integer, intent(in) :: p
-      real(dp) :: m, f, fe, pw
+      real(dp) :: m, f, fe, pw, sw, tr
       integer :: a
       m = mass(p)
       part(1) = part(1) + ((0.5_dp * m) * (((v(1, p) * v(1, p)) + (v(2, p) * v(2, p))) + (v(3, p) * v(3, p))))
@@ -104,6 +106,16 @@ contains
         pw = pw + (f * v(a, p))
       end do
       part(6) = part(6) + abs(pw)
+      sw = pw
+      tr = c%method%load_ramp_time
+      if (has_fext .and. tr > 0.0_dp .and. c%clock%time < tr) then  ! QuLo: (f_ext / T) t
+        sw = 0.0_dp
+        do a = 1, 3
+          f = (m * grav(a, body(p) + 1)) + ((fext(a, p) / tr) * c%clock%time)
+          sw = sw + (f * v(a, p))
+        end do
+      end if
+      part(7) = part(7) + sw
     end subroutine add_particle
 
   end subroutine mpm3d_f_energy

@@ -26,7 +26,7 @@ run=(--steps "$steps" --no-output --quiet "${opts[@]}")
 # The summary's figures of the run (energies, momentum, external work, bounding box...), to
 # the last bit (printed with 17 digits); not its timings, its thread or rank counts.
 figures() {
-  grep -E '"(particles|steps|time|kinetic_energy|internal_energy|initial_total_energy|external_work|momentum|bbox_min|bbox_max|max_epeff|contact_force|contact_nodes|particles_outside_grid|patches_empty|patch_max_particles|regrids|regrids_forced|grid_window_offset|grid_window_cells)"' "$1"
+  grep -E '"(particles|steps|time|kinetic_energy|internal_energy|initial_total_energy|external_work|work_of_loads|energy_balance|momentum|bbox_min|bbox_max|max_epeff|contact_force|contact_nodes|particles_outside_grid|patches_empty|patch_max_particles|regrids|regrids_forced|grid_window_offset|grid_window_cells)"' "$1"
 }
 for rt in "${configs[@]}"; do
   r=${rt%x*}; t=${rt#*x}

@@ -187,6 +187,7 @@ TEST_F(Reliability, CheckpointHoldsEveryParticleArrayAndRestoresInProcess) {
   EXPECT_EQ(b.steps, 7);
   EXPECT_EQ(b.time, a.time);
   EXPECT_EQ(b.external_work, a.external_work);
+  EXPECT_EQ(b.load_work, a.load_work);
   EXPECT_EQ(b.initial_total_energy, a.initial_total_energy);
   EXPECT_EQ(ob.next_out, 1.5);
   EXPECT_EQ(ob.next_rpt, 2.5);

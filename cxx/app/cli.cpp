@@ -513,7 +513,9 @@ int run_main(int argc, char** argv, Ranks* ranks) {
          << ",\n  \"wall_seconds\": " << json_number(wall) << ",\n  \"ns_per_particle_step\": " << json_number(ns)
          << ",\n  \"kinetic_energy\": " << json_number(sim.kinetic) << ",\n  \"internal_energy\": " << json_number(sim.internal)
          << ",\n  \"initial_total_energy\": " << json_number(sim.initial_total_energy)
-         << ",\n  \"external_work\": " << json_number(sim.external_work) << ",\n  \"momentum\": ["
+         << ",\n  \"external_work\": " << json_number(sim.external_work)
+         << ",\n  \"work_of_loads\": " << json_number(sim.load_work) << ",\n  \"energy_balance\": "
+         << json_number(sim.kinetic + sim.internal - sim.initial_total_energy - sim.load_work) << ",\n  \"momentum\": ["
          << json_number(sim.momentum[0]) << ", " << json_number(sim.momentum[1]) << ", " << json_number(sim.momentum[2])
          << "],\n  \"bbox_min\": [" << json_number(lo[0]) << ", " << json_number(lo[1]) << ", " << json_number(lo[2]) << "],\n  \"bbox_max\": ["
          << json_number(hi[0]) << ", " << json_number(hi[1]) << ", " << json_number(hi[2]) << "],\n  \"max_epeff\": " << json_number(max_epeff)

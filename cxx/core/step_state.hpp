@@ -81,8 +81,9 @@ struct StepMethod {
 struct StepResults {
   // (kReduceFields, npatch + 1) the energy stage's columns, the last for the particles outside the grid
   double *partials;
-  // energy: kinetic, internal, momentum (3) in 0..4, sum |f.v| in 8; contact: force in 5..7
-  double result[9];
+  // energy: kinetic, internal, momentum (3) in 0..4, sum |f.v| in 8, sum f.v (loads as
+  // P2G applies them, without damping) in 9; contact: force in 5..7
+  double result[10];
   int noutside;  // bin stage: particles outside the grid
 };
 
@@ -188,7 +189,7 @@ namespace mpm3d {
 constexpr int kAuxFields = 34;  // doubles per cell in StepContext::aux (sgmp)
 constexpr int kSgWeights = 16;  // doubles per patch-list entry in StepContext::sg_w (sgmp)
 // Fields of the energy stage's columns: kinetic, internal energy, momentum (3), sum |f.v|.
-constexpr int kReduceFields = 6;
+constexpr int kReduceFields = 7;
 // StepContext::exchange's kind: what the stage is about to assemble or fold.
 enum ExchangeKind { EXCHANGE_BUFFERS = 0, EXCHANGE_PARTIALS = 1, EXCHANGE_CONTACT = 2 };
 // Fields of the contact stage's columns: the force on component 1 (3), corrected nodes.

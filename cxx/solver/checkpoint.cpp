@@ -141,6 +141,7 @@ void write_checkpoint(const std::string& path, const Simulation& sim, const Outp
       put(path, s.id, "momentum", H5T_NATIVE_DOUBLE, sim.momentum, 3);
       put(path, s.id, "initial_total_energy", H5T_NATIVE_DOUBLE, &sim.initial_total_energy);
       put(path, s.id, "external_work", H5T_NATIVE_DOUBLE, &sim.external_work);
+      put(path, s.id, "load_work", H5T_NATIVE_DOUBLE, &sim.load_work);
       put(path, s.id, "particles_outside_grid", H5T_NATIVE_INT, &sim.outside);
       put(path, s.id, "grid_origin", H5T_NATIVE_DOUBLE, sim.grid.origin, 3);
       put(path, s.id, "grid_cell", H5T_NATIVE_DOUBLE, &sim.grid.h);
@@ -255,7 +256,7 @@ void read_checkpoint(const std::string& path, Simulation& sim, OutputSchedule& o
   for (int a = 0; a < 3; ++a)
     if (woff[a] < 0 || wnc[a] < 1 || woff[a] + wnc[a] > nc[a]) fail(path, "bad grid window");
   long steps;
-  double time, dt, ke, ie, mom[3], e0, work;
+  double time, dt, ke, ie, mom[3], e0, work, load_work = 0.0;
   int outside;
   get(path, s.id, "step", H5T_NATIVE_LONG, &steps);
   get(path, s.id, "time", H5T_NATIVE_DOUBLE, &time);
@@ -265,6 +266,8 @@ void read_checkpoint(const std::string& path, Simulation& sim, OutputSchedule& o
   get(path, s.id, "momentum", H5T_NATIVE_DOUBLE, mom, 3);
   get(path, s.id, "initial_total_energy", H5T_NATIVE_DOUBLE, &e0);
   get(path, s.id, "external_work", H5T_NATIVE_DOUBLE, &work);
+  // Written since 2026-12-05; an older checkpoint's balance starts from its restart.
+  if (H5Aexists(s.id, "load_work") > 0) get(path, s.id, "load_work", H5T_NATIVE_DOUBLE, &load_work);
   get(path, s.id, "particles_outside_grid", H5T_NATIVE_INT, &outside);
   if (steps < 0 || !(dt > 0.0) || !(h > 0.0)) fail(path, "bad step, dt or cell size");
   {
@@ -376,6 +379,7 @@ void read_checkpoint(const std::string& path, Simulation& sim, OutputSchedule& o
   for (int a = 0; a < 3; ++a) sim.momentum[a] = mom[a];
   sim.initial_total_energy = e0;
   sim.external_work = work;
+  sim.load_work = load_work;
   sim.outside = outside;
   out = std::move(o);
 }

@@ -421,6 +421,7 @@ void Simulation::step() {
   // The bound of the work of gravity and loads: the energy stage's sum of |f . v| with the
   // end-of-step velocities (0 without body forces), times this step's dt.
   external_work += c->out.result[8] * model.dt;
+  load_work += c->out.result[9] * model.dt;
   if (model.dt_per_step) model.dt = velocity_time_step();
   if (model.dynamic_relaxation && kinetic - kinetic_before <= 0.0) {
     std::fill(model.particles.v.begin(), model.particles.v.end(), 0.0);

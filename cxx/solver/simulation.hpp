@@ -63,6 +63,10 @@ class Simulation {
   // Bound of the work of gravity and loads so far (health check): the energy stage's
   // sum |f.v| (result[8]) times dt, added after each step.
   double external_work = 0.0;
+  // The work of gravity and the point loads so far: the energy stage's sum f.v (result[9])
+  // times dt, with the end-of-step velocities (first order in dt). The energy balance:
+  // kinetic + internal - initial_total_energy - load_work (damping and contact losses in it).
+  double load_work = 0.0;
   int outside = 0;  // particles outside the grid after the last step
   // Energy warnings of the health check (health_check), each raised once per run (per
   // body for the internal energy); the driver prints and clears new_energy_warnings. With

@@ -20,16 +20,18 @@ constexpr int kEnergyLanes = 2;
 // without it the stage took twice as long on taylor_coarse (300 steps, docs/PERFORMANCE.md).
 constexpr int kPrefetchAhead = 96;
 
-// One column's running sums: m |v|^2 / 2, e, m v (3), |f . v|.
+// One column's running sums: m |v|^2 / 2, e, m v (3), |f . v|, f . v.
 struct Sums {
-  double f[kReduceFields] = {0, 0, 0, 0, 0, 0};
+  double f[kReduceFields] = {0, 0, 0, 0, 0, 0, 0};
 };
 
 // Adds the particles p[0 .. L::W-1] (in this order) to s: m |v|^2 / 2, e, m v (3) and,
 // with body forces (kWork), |f . v| with f = m g + f_ext (neither ramped nor damped): the
 // rate of the health check's bound of the external work (Simulation::external_work), per
 // particle in absolute value so that forces changing sign (vibrations, manufactured
-// solutions) do not cancel out. Each lane performs the scalar operations (lanes.hpp).
+// solutions) do not cancel out; and f . v with the point loads ramped as P2G applies them
+// (QuLo), the rate of the work of gravity and loads (Simulation::load_work). Each lane
+// performs the scalar operations (lanes.hpp).
 template <bool kWork, class L>
 inline void add_particles(const StepContext* c, const int* p, Sums& s) {
   int i3[L::W];
@@ -39,7 +41,7 @@ inline void add_particles(const StepContext* c, const int* p, Sums& s) {
   const auto ke = (0.5 * m) * ((vx * vx + vy * vy) + vz * vz);
   const auto e = L::gather(c->part.ie, p);
   const auto mx = m * vx, my = m * vy, mz = m * vz;
-  decltype(L::splat(0.0)) work = L::splat(0.0);
+  decltype(L::splat(0.0)) work = L::splat(0.0), signed_work = L::splat(0.0);
   if (kWork) {
     int g3[L::W];
     for (int k = 0; k < L::W; ++k) g3[k] = 3 * c->part.body[p[k]];
@@ -50,6 +52,14 @@ inline void add_particles(const StepContext* c, const int* p, Sums& s) {
     const auto fz = m * L::gather(c->part.gravity + 2, g3) + (fext ? L::gather(fext + 2, i3) : zero);
     const auto pw = ((zero + fx * vx) + fy * vy) + fz * vz;
     for (int k = 0; k < L::W; ++k) L::set(work, k, std::fabs(L::get(pw, k)));
+    signed_work = pw;
+    const double T = c->method.load_ramp_time, t = c->clock.time;
+    if (fext && T > 0.0 && t < T) {  // QuLo: (f_ext / T) t, as transfer_common.hpp's body force
+      const auto rx = m * L::gather(c->part.gravity, g3) + (L::gather(fext, i3) / T) * t;
+      const auto ry = m * L::gather(c->part.gravity + 1, g3) + (L::gather(fext + 1, i3) / T) * t;
+      const auto rz = m * L::gather(c->part.gravity + 2, g3) + (L::gather(fext + 2, i3) / T) * t;
+      signed_work = ((zero + rx * vx) + ry * vy) + rz * vz;
+    }
   }
   for (int k = 0; k < L::W; ++k) {
     s.f[0] += L::get(ke, k);
@@ -58,6 +68,7 @@ inline void add_particles(const StepContext* c, const int* p, Sums& s) {
     s.f[3] += L::get(my, k);
     s.f[4] += L::get(mz, k);
     if (kWork) s.f[5] += L::get(work, k);
+    if (kWork) s.f[6] += L::get(signed_work, k);
   }
 }
 
@@ -110,8 +121,8 @@ void compute_columns(StepContext* c) {
 
 }  // namespace
 
-// result[0..4] = sum_p (m_p |v_p|^2 / 2, e_p, m_p v_p), result[8] = sum_p |f_p . v_p| (0
-// without body forces). All npatch + 1 columns are computed first and then folded, every
+// result[0..4] = sum_p (m_p |v_p|^2 / 2, e_p, m_p v_p), result[8] = sum_p |f_p . v_p| and
+// result[9] = sum_p f_p . v_p (0 without body forces). All npatch + 1 columns are computed first and then folded, every
 // column, empty or not, in column order: ((0.0 + col 0) + col 1) + ... + col npatch. The
 // columns depend on the patch lists only, so the sums are the same for any thread count and
 // (folding gathered columns) for any split of the patches among ranks.
@@ -121,9 +132,10 @@ extern "C" void mpm3d_cxx_energy(StepContext* c) {
   else
     compute_columns<false>(c);
   if (c->ranks.exchange) c->ranks.exchange(c, EXCHANGE_PARTIALS, 0, 0);  // other ranks' columns
-  double sum[kReduceFields] = {0, 0, 0, 0, 0, 0};
+  double sum[kReduceFields] = {0, 0, 0, 0, 0, 0, 0};
   for (int q = 0; q <= c->patch.npatch; ++q)
     for (int f = 0; f < kReduceFields; ++f) sum[f] += c->out.partials[size_t(kReduceFields) * q + f];
   for (int f = 0; f < 5; ++f) c->out.result[f] = sum[f];
   c->out.result[8] = sum[5];
+  c->out.result[9] = sum[6];
 }
