@@ -19,7 +19,7 @@ import time
 
 import numpy as np
 
-from study import read_dicts, write_dicts
+from study import section_start, write_dicts
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CSV = os.path.join(ROOT, "docs", "verification", "contact_spheres.csv")
@@ -85,10 +85,10 @@ def run(build, threads=2):
 
 def section_lines():
     """The report's section (docs/VERIFICATION.md) from docs/verification/contact_spheres.csv."""
-    L = ["## Colliding spheres: contact against the exact answer", ""]
-    rows, _ = read_dicts(CSV)
+    L, rows, _ = section_start("## Colliding spheres: contact against the exact answer",
+                               CSV, "`make report`, or `tools/contact_spheres.py BUILD_DIR`")
     if rows is None:
-        return L + ["Not run (`make report`, or `tools/contact_spheres.py BUILD_DIR`).", ""]
+        return L
     L += ["`tools/contact_spheres.py` (run %s, `--threads %s`): `inputs/contact/spheres.mpm`, two equal elastic "
           "spheres (radius 2 mm, E 1000 MPa, nu 0.3, 280 particles each, cells of 1 mm) at +-20 m/s, frictionless "
           "multi-velocity contact, MUSL, to t = 0.12 ms (the spheres have separated), by our contact and by the "

@@ -17,7 +17,7 @@ import os
 import subprocess
 import sys
 
-from study import read_dicts
+from study import section_start
 
 WIDTH, LEFT_H, RIGHT_LO, RIGHT_HI = 48.0, 44.0, 44.0, 60.0
 AREA = WIDTH * ((LEFT_H + (RIGHT_HI - RIGHT_LO)) / 2.0)  # 1440
@@ -151,10 +151,10 @@ def tip_of(rows, method):
 
 def section_lines():
     """The report's section (docs/VERIFICATION.md) from docs/verification/cook_membrane.csv."""
-    L = ["## Cook's membrane: the locking remedies under refinement", ""]
-    rows, when = read_dicts(CSV)
+    L, rows, when = section_start("## Cook's membrane: the locking remedies under refinement",
+                                  CSV, "`python3 tools/cook_membrane.py study build/cxx/mpm3d DIR`")
     if rows is None:
-        return L + ["Not run (`python3 tools/cook_membrane.py study build/cxx/mpm3d DIR`).", ""]
+        return L
     L += ["`tools/cook_membrane.py` (run %s, 2 threads): the trapezoid (0,0) (48,44) (48,60) (0,44), "
           "clamped at x = 0, a vertical force of 1 on its right edge ramped over t = 15 (`QuLo`), damped "
           "(`Damp 0.3`), neo-Hookean with E 70, nu 0.499, rho 1, one particle layer in plane strain, two "

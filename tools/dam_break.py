@@ -21,7 +21,7 @@ import os
 import subprocess
 import sys
 
-from study import read_dicts
+from study import section_start
 
 A, G = 1.0, 9.81
 CELLS = (0.25, 0.125, 0.0625)
@@ -148,10 +148,10 @@ def plot(runs):
 
 def section_lines():
     """The report's section (docs/VERIFICATION.md) from docs/verification/dam_break.csv."""
-    L = ["## Dam break: the surge front against Martin & Moyce", ""]
-    rows, when = read_dicts(CSV)
+    L, rows, when = section_start("## Dam break: the surge front against Martin & Moyce",
+                                  CSV, "`make report`")
     if rows is None:
-        return L + ["Not run (`make report`).", ""]
+        return L
     cells = sorted({float(r["dcell"]) for r in rows}, reverse=True)
     ok = [r for r in rows if r["T"]]
     info = {float(r["dcell"]): r for r in ok}

@@ -14,7 +14,7 @@ import time
 
 import numpy as np
 
-from study import read_dicts, write_dicts
+from study import section_start, write_dicts
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CSV = os.path.join(ROOT, "docs", "verification", "granular_columns.csv")
@@ -135,10 +135,10 @@ def plot(rows):
 
 def section_lines():
     """The report's section (docs/VERIFICATION.md) from docs/verification/granular_columns.csv."""
-    L = ["## Granular columns: collapse run-out and final height against Lube et al. (2005)", ""]
-    rows, _ = read_dicts(CSV)
+    L, rows, _ = section_start("## Granular columns: collapse run-out and final height against Lube et al. (2005)",
+                               CSV, "`make report`, or `tools/granular_columns.py BUILD_DIR`")
     if rows is None:
-        return L + ["Not run (`make report`, or `tools/granular_columns.py BUILD_DIR`).", ""]
+        return L
     L += ["`tools/granular_columns.py` (run %s, `--threads %s`; decks `inputs/granular/column_a{0.5,1,2,4}.mpm`): "
           "plane-strain columns of cohesionless sand (`dpm`, rho 2.0e-3 g/mm^3, E 10 MPa, nu 0.3, phi = 30 degrees, "
           "no dilatancy, no tension) L0 wide and a L0 high (L0 = %s mm), against a smooth wall on a rough (fixed) "

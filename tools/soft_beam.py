@@ -19,7 +19,7 @@ import math
 import os
 import sys
 
-from study import deck_run, read_dicts, write_dicts
+from study import deck_run, section_start, write_dicts
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CSV = os.path.join(ROOT, "docs", "verification", "soft_beam.csv")
@@ -127,10 +127,10 @@ def run(build, threads=2):
 
 
 def section_lines():
-    L_ = ["## Free soft beam: vibration period and volumetric locking", ""]
-    rows, when = read_dicts(CSV)
+    L_, rows, when = section_start("## Free soft beam: vibration period and volumetric locking",
+                                   CSV, "`python3 tools/soft_beam.py build`")
     if rows is None:
-        return L_ + ["Not run (`python3 tools/soft_beam.py build`).", ""]
+        return L_
     L_ += ["The current MPM3D-F90's free soft beam (`tools/soft_beam.py`): a neo-Hookean beam 1 x 6 in "
            "plane strain, E 17 MPa, rho 1100, free at both ends, started with `vsin 1`; 2,400 particles "
            "(spacing 0.05, cells 0.1), MUSL: standard MPM (trilinear), the smoothed-gradient MPM (`sgmp`) and "

@@ -14,7 +14,7 @@ section_lines(); writes docs/verification/soft_cantilever.csv)
 import argparse
 import os
 
-from study import deck_run, read_dicts, write_dicts
+from study import deck_run, section_start, write_dicts
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CSV = os.path.join(ROOT, "docs", "verification", "soft_cantilever.csv")
@@ -82,10 +82,10 @@ def run(build, threads=2):
 
 
 def section_lines():
-    L = ["## Soft cantilever: total Lagrangian MPM with and without the smoothed gradient", ""]
-    rows, when = read_dicts(CSV)
+    L, rows, when = section_start("## Soft cantilever: total Lagrangian MPM with and without the smoothed gradient",
+                                  CSV, "`python3 tools/soft_cantilever.py build`")
     if rows is None:
-        return L + ["Not run (`python3 tools/soft_cantilever.py build`).", ""]
+        return L
     L += ["`tools/soft_cantilever.py` (run %s, 2 threads): the current MPM3D-F90's soft beam (after Kadapa "
           "2019): a neo-Hookean beam 1 x 6 in plane strain, E 17 MPa, rho 1100, clamped at y = 0 and started "
           "with v_x = 10 m/s everywhere; 2,400 particles (spacing 0.05, cells 0.1), MUSL, `smoo`, `UVFp`, "

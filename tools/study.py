@@ -35,6 +35,16 @@ def write_dicts(path, rows):
         w.writerows(rows)
 
 
+def section_start(title, path, how_to_run):
+    """A report section's heading and its study's rows from the CSV at path: (lines, rows, the
+    CSV's date); without the CSV, rows is None and the lines say how to run the study."""
+    L = [title, ""]
+    rows, when = read_dicts(path)
+    if rows is None:
+        L += ["Not run (%s)." % how_to_run, ""]
+    return L, rows, when
+
+
 def read_dicts(path):
     """(rows, the file's UTC date as YYYY-MM-DD), or (None, None) when the study has not run."""
     if not os.path.exists(path):
