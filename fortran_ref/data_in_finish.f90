@@ -215,6 +215,7 @@ contains
       if (clamped) call warn(m, 'gimp: particles larger than the cell size take half a cell as their half-size')
       call two_cells_each_axis(ts, m, m%gimp_line, 'gimp')
     end if
+    if (m%sg) call sgmp_held_cells(ts, m)
     call outside_grid(m)
     ! dt = dtscale * h / c_max (the dilatational wave speed, D for hiex, c for null), fixed
     ! for the run; with bulk viscosity dtscale h / (c_max (q2 + sqrt(1 + q2^2))).
@@ -265,6 +266,48 @@ contains
         axis // "; make sp" // axis // " span two cells or more (a plane-strain model keeps its symmetric faces)")
     end do
   end subroutine two_cells_each_axis
+
+  ! sgmp's particles between the two node layers of a held lower face (cxx sgmp_held_cells):
+  ! refused by our rules, a warning under the original's (sg_lower=truncate).
+  subroutine sgmp_held_cells(ts, m)
+    type(token_stream), intent(in) :: ts
+    type(model_t), intent(inout) :: m
+    integer :: p, a
+    integer(int64) :: count
+    real(dp) :: s
+    character(len=1) :: axis
+    character(len=:), allocatable :: what, keep, held
+    logical :: fixed
+    what = ''
+    do a = 1, 3
+      if (m%fix(2 * a - 1) == 0 .or. cells_along(m, a) < 2.0_dp) cycle
+      count = 0
+      do p = 1, m%particles%np
+        s = (m%particles%x(a, p) - m%box_lo(a)) / m%dcell
+        if (s >= 0.0_dp .and. s < 1.0_dp) count = count + 1
+      end do
+      if (count == 0) cycle
+      axis = achar(iachar('x') + a - 1)
+      fixed = m%fix(2 * a - 1) == 1
+      if (fixed) then
+        held = 'fixed'
+        keep = 'still'
+      else
+        held = 'symmetric'
+        keep = 'from moving along ' // axis
+      end if
+      if (len(what) > 0) what = what // '; '
+      what = what // itoa(count) // ' particles lie in the first cell along ' // axis // &
+        ', between the two node layers sgmp holds at the ' // held // ' lower ' // &
+        axis // ' face, which keep them ' // keep // ': add one cell outside that face (lower the first value of sp' // &
+        axis // ' by dcel)'
+    end do
+    if (len(what) == 0) return
+    what = what // ", as the current MPM3D-F90's ChangeLog asks for sgmp"
+    if (m%rules%sg_lower == 0) call ts%fail(m%sgmp_line, what // &
+      '; --rule sg_lower=truncate (in --rules original) runs the deck as that program does')
+    call warn(m, what)
+  end subroutine sgmp_held_cells
 
   ! Particles outside the grid at the start are named (a warning before the first step).
   subroutine outside_grid(m)

@@ -87,13 +87,17 @@ add_test(NAME health.quiet_keeps_warnings
          WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
 set_tests_properties(health.quiet_keeps_warnings PROPERTIES
   PASS_REGULAR_EXPRESSION "mpm3d: warning: 8 particles lie outside the grid at the start")
-# sgmp without the extra cell outside its held lower faces (the public SGR2 dam break with
-# its grid moved to start at the water, written from ../shared/decks at test time; skipped
-# without it): both programs go unstable (the original's internal energy jumps 800-fold); the
-# stop names the cell to add.
+# sgmp without the extra cell outside its held lower faces: the particles of a held face's
+# first cell lie between its two held node layers. Our rules refuse such a deck at its sgmp
+# card, both readers alike (tests/sgmp_held_cells.sh on our block_floor_sgmp.mpm); the public
+# SGR2 dam break with its grid moved to start at the water (written from ../shared/decks at
+# test time; skipped without it), unstable in the current program, is refused at once.
+add_test(NAME health.sgmp_held_cells_refused
+         COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/sgmp_held_cells.sh $<TARGET_FILE:mpm3d> "${_mpm3d_ref_exe}"
+                 ${CMAKE_SOURCE_DIR}/inputs/hyperelastic/block_floor_sgmp.mpm ${CMAKE_CURRENT_BINARY_DIR}/sgmp_held_cells)
 set(_sgr2 ${CMAKE_SOURCE_DIR}/../shared/decks/current/DamBreak_SGMPM_Dam_SGR2.mpm)
-add_test(NAME health.sgmp_advice_names_the_missing_cell
+add_test(NAME health.sgmp_unshifted_dam_break_refused
          COMMAND sh -c "[ -f '${_sgr2}' ] || exit 77; sed 's/^spx *-0.125/spx 0/; s/^spy *-0.125/spy 0/' '${_sgr2}' > sgr2_unshifted.mpm && $<TARGET_FILE:mpm3d> --no-output --quiet --threads 2 sgr2_unshifted.mpm"
          WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
-set_tests_properties(health.sgmp_advice_names_the_missing_cell PROPERTIES SKIP_RETURN_CODE 77
-  PASS_REGULAR_EXPRESSION "numerical instability.*particles lie in the first cell along x, between the two node layers sgmp holds at the symmetric lower x face: add one cell outside that face \\(lower spx by one cell\\)")
+set_tests_properties(health.sgmp_unshifted_dam_break_refused PROPERTIES SKIP_RETURN_CODE 77
+  PASS_REGULAR_EXPRESSION "sgr2_unshifted.mpm:[0-9]+: [0-9]+ particles lie in the first cell along x, between the two node layers sgmp holds at the symmetric lower x face, which keep them from moving along x: add one cell outside that face \\(lower the first value of spx by dcel\\)")

@@ -40,21 +40,27 @@ if(TARGET mpm3d AND TARGET mpm3d_ref AND MPM3D_H5DIFF)
   # our rules beyond them (the rule is what brings the agreement). tests/rules_reference.py.
   find_package(Python3 COMPONENTS Interpreter)
   function(rules_reference stem deck)
+    # REFUSED_BY_OURS: a deck our rules refuse (the reader's check has its own test): no _ours run.
+    set(_args ${ARGN})
+    list(FIND _args REFUSED_BY_OURS _refused)
+    list(REMOVE_ITEM _args REFUSED_BY_OURS)
     set(_ref ${CMAKE_CURRENT_SOURCE_DIR}/reference/rules/${stem})
     add_test(NAME rules_reference.${stem}
              COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/rules_reference.py
-                     $<TARGET_FILE:mpm3d> ${deck} ${_ref} ${ARGN})
-    add_test(NAME rules_reference.${stem}_ours
-             COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/rules_reference.py
-                     $<TARGET_FILE:mpm3d> ${deck} ${_ref} --beyond)
-    set_tests_properties(rules_reference.${stem} rules_reference.${stem}_ours PROPERTIES
-                         TIMEOUT 300 LABELS rules)
+                     $<TARGET_FILE:mpm3d> ${deck} ${_ref} ${_args})
+    set_tests_properties(rules_reference.${stem} PROPERTIES TIMEOUT 300 LABELS rules)
+    if(_refused EQUAL -1)
+      add_test(NAME rules_reference.${stem}_ours
+               COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/rules_reference.py
+                       $<TARGET_FILE:mpm3d> ${deck} ${_ref} --beyond)
+      set_tests_properties(rules_reference.${stem}_ours PROPERTIES TIMEOUT 300 LABELS rules)
+    endif()
   endfunction()
   if(Python3_Interpreter_FOUND)
     rules_reference(bar_bulk_book ${_rules_inputs}/rules/bar_bulk_book.mpm --rules original)
     rules_reference(block_single_reals ${_rules_inputs}/rules/block_single_reals.mpm --rules original)
     rules_reference(slope ${_rules_inputs}/granular/slope.mpm --rules original)
-    rules_reference(block_floor_sgmp ${_rules_inputs}/hyperelastic/block_floor_sgmp.mpm --rules original)
+    rules_reference(block_floor_sgmp ${_rules_inputs}/hyperelastic/block_floor_sgmp.mpm --rules original REFUSED_BY_OURS)
     rules_reference(soft_beam_tl ${_rules_inputs}/hyperelastic/soft_beam_tl.mpm --rules original)
     rules_reference(viscous_column ${_rules_inputs}/fluids/viscous_column.mpm --rules original)
     rules_reference(j2eos_linear ${_rules_inputs}/methods/j2eos_linear.mpm --rules original)

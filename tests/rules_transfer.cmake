@@ -5,8 +5,8 @@
 # particles a cell here) and the work of P on dF by the current volume; with sgmp the work alone.
 rules_add(tl_shape ${_rules_inputs}/hyperelastic/soft_beam_tl.mpm 40 --rule tl_shape=centre)
 rules_add(tl_shape_sgmp ${_rules_inputs}/hyperelastic/soft_beam_sgtl.mpm 40 --rule tl_shape=centre)
-# sg_lower=truncate: the block's first layers along x and z lie in the outer half of the
-# grid's first cells.
-rules_add(sg_lower ${_rules_inputs}/hyperelastic/block_floor_sgmp.mpm 40 --rule sg_lower=truncate)
+# sg_lower=truncate: the block's first layer along x lies in the outer half of the grid's
+# first cell, on a free face (our rules refuse particles in a held lower face's first cell).
+rules_add(sg_lower ${CMAKE_SOURCE_DIR}/tests/decks/sg_lower_free_face.mpm 40 --rule sg_lower=truncate)
 # sg_beyond=drop: a bar one cell thick in y and z, its particles at three quarters of it.
 rules_add(sg_beyond ${_rules_inputs}/explosives/thin_bar_sgmp.mpm 40 --rule sg_beyond=drop)

@@ -51,6 +51,7 @@ class DeckReader {
   // finish's checks of the grid against the method and the particles:
   // a 27-node stencil (gimp, bimp, asked for at `line`) needs two cells along each axis;
   void two_cells_each_axis(int line, const char* keyword);
+  // sgmp's particles between the two node layers of a held lower face (refused by our rules);
   void sgmp_held_cells();
   // particles outside the grid at the start are named (a warning before the first step).
   void outside_grid();
