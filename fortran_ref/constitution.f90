@@ -80,7 +80,8 @@ contains
   end function burn_fraction
 
   ! de: strain increment (Voigt, tensor components); dw: spin increment (w_yz, w_xz, w_xy).
-  ! vol_old/vol_new: particle volume before and after the increment. temp is read and
+  ! vol_old/vol_new: particle volume before and after the increment (vol_new less a dpm
+  ! particle's opening beyond its tension cut-off, on return). temp is read and
   ! written only when has_temp; q (bulk viscosity pressure) only when has_q. burn: the
   ! programmed-burn fraction (hiex); q1, q2, qlen: bulk viscosity coefficients and length.
   ! rules: the rules in force (rules.f90; read: bulk_switch, bulk_linear, dp_return, fluid_viscous,
@@ -89,10 +90,10 @@ contains
                            has_q, q, burn, q1, q2, qlen, rules)
     type(material_params), intent(in) :: m
     type(step_rules), intent(in) :: rules
-    real(dp), intent(in) :: de(6), dw(3), dt, mass, vol_old, vol_new, burn, q1, q2, qlen
-    real(dp), intent(inout) :: sig(6), epeff, ie, temp, q
+    real(dp), intent(in) :: de(6), dw(3), dt, mass, vol_old, burn, q1, q2, qlen
+    real(dp), intent(inout) :: vol_new, sig(6), epeff, ie, temp, q
     logical, intent(in) :: has_temp, has_q
-    real(dp) :: sig_r(6), dev(6), s(6), s_r(6)
+    real(dp) :: sig_r(6), dev(6), s(6), s_r(6), mean_trial, bulk
     real(dp) :: dkk, third, two_g, two_mu, vavg, strain_rate, tp, mean_r, lam_dkk, mean, deps, p_new
     real(dp) :: vol0, dv, p_old, dwork, e_star, mu, a, b, e_new, q_new, q_old, base, q_speed, work
     logical :: failed, fluid, q_on
@@ -153,7 +154,13 @@ contains
         if (rules%dp_return /= 0) then
           deps = dp_return_original(m, s, mean, m%lambda + (two_g / 3.0_dp), m%shear)
         else
-          deps = dp_return(m, s, mean, m%lambda + (two_g / 3.0_dp), m%shear)
+          ! Beyond the tension cut-off the particles separate: the return's volumetric opening
+          ! is space between them, not a larger particle (as the cxx update).
+          mean_trial = mean
+          bulk = m%lambda + (two_g / 3.0_dp)
+          deps = dp_return(m, s, mean, bulk, m%shear)
+          if (mean == m%dp_tension .and. mean_trial > mean) &
+            vol_new = vol_new - (vol_old * ((mean_trial - mean) / bulk))
         end if
         epeff = epeff + deps
       else if (m%type == MAT_CLAY) then

@@ -158,10 +158,10 @@ TEST(StressLanes, EveryLaneEqualsTheScalarUpdateBitForBit) {
         const double dw[3] = {(0.5 * (L[5] - L[7])) * dt, (0.5 * (L[2] - L[6])) * dt,
                               (0.5 * (L[1] - L[3])) * dt};
         const double vol_old = in.vol[i];
-        const double vol_new = vol_old * (1.0 + ((de[0] + de[1]) + de[2]));
+        double vol_new = vol_old * (1.0 + ((de[0] + de[1]) + de[2]));
         double sig[6], epeff = in.epeff[i], ie = in.ie[i], temp = in.temp[i], qv = in.qv[i];
         for (int c = 0; c < 6; ++c) sig[c] = in.sig[c][i];
-        mpm3d::StressState st{sig, &epeff, &ie, k.thermal ? &temp : nullptr, k.bulk ? &qv : nullptr};
+        mpm3d::StressState st{sig, &epeff, &ie, k.thermal ? &temp : nullptr, k.bulk ? &qv : nullptr, &vol_new};
         mpm3d::stress_update(k.m, de, dw, dt, in.mass[i], vol_old, vol_new, st, in.burn[i], args.q1,
                              args.q2, args.qlen);
         const double got[] = {vec.vol[i], vec.sig[0][i], vec.sig[1][i], vec.sig[2][i], vec.sig[3][i],

@@ -175,9 +175,10 @@ double clay_return(const MaterialParams& m, double s[6], double* epeff, bool ori
 void stress_update(const MaterialParams& m, const double de[6], const double dw[3], double dt,
                    double mass, double vol_old, double vol_new, StressState st, double burn, double q1,
                    double q2, double qlen, const StepRules& rules) {
-  double temp = st.temp ? *st.temp : 0.0, qv = st.q ? *st.q : 0.0;
-  Scalar::update(m, de, dw, dt, mass, vol_old, vol_new, st.sig, *st.epeff, *st.ie, temp,
+  double temp = st.temp ? *st.temp : 0.0, qv = st.q ? *st.q : 0.0, vol = vol_new;
+  Scalar::update(m, de, dw, dt, mass, vol_old, vol, st.sig, *st.epeff, *st.ie, temp,
                  st.temp != nullptr, qv, st.q != nullptr, burn, q1, q2, qlen, rules);
+  if (st.vol) *st.vol = vol;
   if (st.temp) *st.temp = temp;
   if (st.q) *st.q = qv;
 }

@@ -14,6 +14,8 @@ struct StressState {
   double* temp;   // temperature (thermal Johnson-Cook only; else nullptr)
   double* q;      // artificial bulk viscosity pressure of the last update (only with
                   // 'bulk'; else nullptr). The stored stress includes it: sig = s - (p + q).
+  double* vol = nullptr;  // if given: the new volume, vol_new less a dpm particle's opening
+                          // beyond its tension cut-off (space between particles)
 };
 
 // de: strain increment (tensor components, Voigt order); dw: spin increment

@@ -64,7 +64,7 @@ struct LaneUpdate {
   // The whole update (contract of stress_update in constitution.hpp). temp and q are
   // read and written only when has_temp / has_q.
   static void update(const MaterialParams& m, const T de[6], const T dw[3], double dt, T mass,
-                     T vol_old, T vol_new, T sig[6], T& epeff, T& ie, T& temp, bool has_temp,
+                     T vol_old, T& vol_new, T sig[6], T& epeff, T& ie, T& temp, bool has_temp,
                      T& qv, bool has_q, T burn, double q1, double q2, double qlen, const StepRules& rules) {
     Ops::jaumann_rotate(sig, dw);
     T sig_r[6];
@@ -109,8 +109,19 @@ struct LaneUpdate {
       if (m.type == MAT_DPM) {
         if (rules.dp_return)
           deps = DruckerPrager::dp_return_original(m, s, mean, m.lambda + two_g / 3.0, m.shear);
-        else
-          deps = DruckerPrager::dp_return(m, s, mean, m.lambda + two_g / 3.0, m.shear);
+        else {
+          // Beyond the tension cut-off the particles separate: the return's volumetric
+          // opening (mean stress above sigma_t over K) is space between particles, not a
+          // larger particle, so the volume keeps only the rest of the increment. A particle
+          // that grew by it would, compressed again, push with the dense moduli from a
+          // fraction of the dense mass per volume (cohesionless columns: docs/VERIFICATION.md).
+          const T mean_trial = mean;
+          const double K = m.lambda + two_g / 3.0;
+          deps = DruckerPrager::dp_return(m, s, mean, K, m.shear);
+          const T opening = TL::select((mean == m.dp_tension) & (mean_trial > mean), (mean_trial - mean) / K,
+                                       TL::splat(0.0));
+          vol_new = vol_new - vol_old * opening;
+        }
         epeff = epeff + deps;
       } else if (m.type == MAT_CLAY) {
         deps = J2::clay_return_lanes(m, s, epeff, rules.clay_return != 0);
@@ -246,7 +257,7 @@ void stress_block_lanes(const MaterialParams& m, StressBlock& b, int first, cons
   T dL[9];
   if (from_det)
     for (int r = 0; r < 9; ++r) dL[r] = L[r] * dt;
-  const T vol_new = from_det ? vol_old * Ops::det_identity_plus(dL) : vol_old * (1.0 + ((de[0] + de[1]) + de[2]));
+  T vol_new = from_det ? vol_old * Ops::det_identity_plus(dL) : vol_old * (1.0 + ((de[0] + de[1]) + de[2]));
   T sig[6];
   for (int c = 0; c < 6; ++c) sig[c] = TL::load(b.sig[c] + first);
   if (m.type == MAT_NEOH) {

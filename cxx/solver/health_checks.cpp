@@ -105,14 +105,6 @@ std::string Simulation::instability_advice() const {
     }
   }
   if (model.scheme != SCHEME_MUSL) advice += ", or use MUSL ('musl on')";
-  for (size_t i = 0; i < model.mats.size(); ++i) {
-    const MaterialParams& m = model.mats[i];
-    if (m.type == MAT_DPM && m.dp_tension == 0.0 && model.rules.dp_return == 0)
-      advice += "; material " + std::to_string(i + 1) +
-                " is a Drucker-Prager material without tensile strength, whose particles dilate without bound "
-                "under our return: run it with the original's return, --rule dp_return=original "
-                "(docs/VERIFICATION.md, granular columns)";
-  }
   return advice;
 }
 
