@@ -33,9 +33,9 @@ contains
     logical, intent(in) :: g2p
     integer, intent(out) :: idx(8)
     real(dp), intent(out) :: w(8)
-    integer :: ci(3), lo(3), hi(3), ijk(3), a, al, near, last, k
+    integer :: ci(3), lo(3), hi(3), ijk(3), a, al, near, last, k, n, bits
     real(dp) :: w0(3), w1(3), wk(3), s, x, xn
-    logical :: held
+    logical :: held, beyond(3)
     ci(1) = mod(cl, c%grid%nc(1))
     ci(2) = mod(cl / c%grid%nc(1), c%grid%nc(2))
     ci(3) = cl / (c%grid%nc(1) * c%grid%nc(2))
@@ -72,11 +72,13 @@ contains
       w1(a) = 0.5_dp * (1.0_dp + x)
       last = c%grid%nc(a) - 1
       ! Rules sg_lower=truncate (the first two centres for the outer half of a first cell) and
-      ! sg_beyond=drop (no weight for a centre beyond a one-cell axis): the current program's.
+      ! sg_beyond=drop (no weight for a centre beyond a one-cell axis where the current
+      ! program's number for it is past its last cell, below): the current program's.
       if (c%rules%sg_lower /= 0 .and. al < 0) al = 0
+      beyond(a) = .false.
       if (c%rules%sg_beyond /= 0 .and. last == 0) then
         if (al < 0) w0(a) = 0.0_dp
-        if (al + 1 > last) w1(a) = 0.0_dp
+        beyond(a) = al + 1 > last
       end if
       if (al < 0) then
         lo(a) = 0
@@ -91,6 +93,10 @@ contains
         hi(a) = al + 1
       end if
     end do
+    bits = 0
+    do a = 1, 3
+      if (beyond(a)) bits = ior(bits, ishft(1, a - 1))
+    end do
     do k = 0, 7
       do a = 1, 3
         if (iand(ishft(k, -(a - 1)), 1) /= 0) then
@@ -103,6 +109,19 @@ contains
       end do
       idx(k + 1) = ijk(1) + c%grid%nc(1) * (ijk(2) + c%grid%nc(2) * ijk(3))
       w(k + 1) = (wk(1) * wk(2)) * wk(3)
+      ! sg_beyond=drop: the current program numbers the centre beyond a one-cell axis as one
+      ! past its last, the next row's first; past its last cell it skips it.
+      if (any(beyond)) then
+        n = 0
+        do a = 3, 1, -1
+          if (iand(ishft(k, -(a - 1)), 1) /= 0 .and. beyond(a)) then
+            n = n * c%grid%nc(a) + c%grid%nc(a)
+          else
+            n = n * c%grid%nc(a) + ijk(a)
+          end if
+        end do
+        if (iand(k, bits) /= 0 .and. n >= c%grid%nc(1) * c%grid%nc(2) * c%grid%nc(3)) w(k + 1) = 0.0_dp
+      end if
     end do
   end subroutine sg_weights
 

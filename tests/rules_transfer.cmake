@@ -10,3 +10,5 @@ rules_add(tl_shape_sgmp ${_rules_inputs}/hyperelastic/soft_beam_sgtl.mpm 40 --ru
 rules_add(sg_lower ${CMAKE_SOURCE_DIR}/tests/decks/sg_lower_free_face.mpm 40 --rule sg_lower=truncate)
 # sg_beyond=drop: a bar one cell thick in y and z, its particles at three quarters of it.
 rules_add(sg_beyond ${_rules_inputs}/explosives/thin_bar_sgmp.mpm 40 --rule sg_beyond=drop)
+# ... and on a grid one cell thick in y alone: dropped only in the top row of cells.
+rules_add(sg_beyond_rows ${CMAKE_SOURCE_DIR}/tests/decks/sg_beyond_rows.mpm 40 --rule sg_beyond=drop)

@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "core/grid.hpp"
+#include "core/patch_index.hpp"
+#include "transfer/smoothed_gradient.hpp"
 
 namespace {
 
@@ -317,4 +319,45 @@ TEST(ShapeBspline, GradientsAreTheDerivativesOfTheWeights) {
   expect_gradients_are_derivatives(lx, h, [&](const double* x, double* N, double* G) {
     mpm3d::shape_bspline(x, o, 1.0 / h, N, G);
   });
+}
+
+// Rule sg_beyond=drop on a grid one cell thick in y (4 x 1 x 4 cells): the current program
+// numbers the centre beyond y as one past the axis's last, which is the first cell of the
+// next z row, and skips it only past its last cell. So a particle in the second z row keeps
+// every weight (beyond y they go to the nearest centre, as under our rules); one in the top
+// z row loses the corners beyond y (their number is past the last cell).
+TEST(ShapeSgmp, BeyondAOneCellAxisDroppedOnlyPastTheLastCell) {
+  StepContext c{};
+  c.grid.nc[0] = 4, c.grid.nc[1] = 1, c.grid.nc[2] = 4;
+  c.grid.nn[0] = 5, c.grid.nn[1] = 2, c.grid.nn[2] = 5;
+  c.rules.sg_beyond = 1;
+  const mpm3d::SgGeometry g(&c);
+  const mpm3d::CellDecoder dec(&c);
+  const double lx[3] = {0.6, 0.75, 0.6};  // upper halves: the auxiliary cell reaches up along each axis
+  auto weights = [&](int cell, bool rules, double w[8]) {
+    int lo[3], hi[3];
+    double wg[8];
+    if (rules)
+      mpm3d::sg_corner_weights<true>(g, dec, cell, lx, lo, hi, w, wg);
+    else
+      mpm3d::sg_corner_weights<false>(g, dec, cell, lx, lo, hi, w, wg);
+    for (int k = 0; k < 8; ++k) EXPECT_EQ(w[k], wg[k]);
+  };
+  double ours[8], rule[8];
+  const int second_row = 1 + 4 * (0 + 1 * 1), top_row = 1 + 4 * (0 + 1 * 3);  // cells (1, 0, 1) and (1, 0, 3)
+  weights(second_row, false, ours);
+  weights(second_row, true, rule);
+  double sum = 0.0;
+  for (int k = 0; k < 8; ++k) {
+    EXPECT_EQ(rule[k], ours[k]) << "corner " << k;
+    sum += rule[k];
+  }
+  EXPECT_NEAR(sum, 1.0, 1e-15);
+  weights(top_row, true, rule);
+  sum = 0.0;
+  for (int k = 0; k < 8; ++k) {
+    if (k & 2) EXPECT_EQ(rule[k], 0.0) << "corner " << k;
+    sum += rule[k];
+  }
+  EXPECT_NEAR(sum, 0.75, 1e-15);  // the y factor of the lower centre: (1 - X) / 2, X = 2 (0.75 - 1) = -0.5
 }

@@ -68,7 +68,8 @@ inline bool sg_rules_move_weights(const StepContext* c) { return c->rules.sg_low
 // which): sg_lower=truncate, in the outer half of a first cell the auxiliary cell of the
 // first two centres (its truncation toward zero of (x - x0 - h/2) / h), with the weights
 // meant for the cell around the face node; sg_beyond=drop, on a one-cell axis no weight
-// for a centre beyond the grid (the current program skips those centres).
+// for a centre beyond the grid where the current program's number for it is past its last
+// cell (it skips those centres).
 template <bool kRules = false>
 __attribute__((always_inline)) inline void sg_corner_weights(const SgGeometry& g, const CellDecoder& dec, int cell,
                                                              const double* lx, int lo[3], int hi[3], double w[8],
@@ -77,6 +78,7 @@ __attribute__((always_inline)) inline void sg_corner_weights(const SgGeometry& g
   dec(cell, ci[0], ci[1], ci[2]);
   double w0[3], w1[3], g0[3], g1[3];
   bool any_held = false;
+  int beyond = 0;  // sg_beyond=drop: bit a, the upper centre lies beyond one-cell axis a
   for (int a = 0; a < 3; ++a) {
     const double s = lx[a];
     const int al = s < 0.5 ? ci[a] - 1 : ci[a];  // lower centre of the auxiliary cell
@@ -102,7 +104,7 @@ __attribute__((always_inline)) inline void sg_corner_weights(const SgGeometry& g
       if (g.lower_truncate && cl < 0) cl = 0;
       if (g.beyond_drop && last == 0) {
         if (cl < 0) w0[a] = g0[a] = 0.0;
-        if (cl + 1 > last) w1[a] = g1[a] = 0.0;
+        beyond |= (cl + 1 > last ? 1 : 0) << a;
       }
     }
     lo[a] = cl < 0 ? 0 : (cl > last ? last : cl);
@@ -118,9 +120,22 @@ __attribute__((always_inline)) inline void sg_corner_weights(const SgGeometry& g
   products(w0, w1, w);
   if (!any_held) {
     for (int k = 0; k < 8; ++k) wg[k] = w[k];
-    return;
+  } else {
+    products(g0, g1, wg);
   }
-  products(g0, g1, wg);
+  if (kRules && beyond != 0) {
+    // The current program numbers that centre as one past the axis's last (its cell
+    // numbers run x fastest), which is the first cell of the next row along the following
+    // axes, and skips it only where that number is past its last cell: there the weight
+    // is dropped; elsewhere it goes to the nearest centre (ours; the row it lands in is
+    // not copied).
+    for (int k = 0; k < 8; ++k) {
+      if ((k & beyond) == 0) continue;
+      int n = 0;
+      for (int a = 2; a >= 0; --a) n = n * g.nc[a] + ((k >> a & 1) ? ((beyond >> a & 1) ? g.nc[a] : hi[a]) : lo[a]);
+      if (n >= g.nc[0] * g.nc[1] * g.nc[2]) w[k] = wg[k] = 0.0;
+    }
+  }
 }
 
 // Cell index of corner k of an auxiliary cell with corner cells lo, hi per axis.
