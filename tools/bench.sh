@@ -65,10 +65,12 @@ if command -v mpirun > /dev/null && ldd "$build/cxx/mpm3d" | grep -q libmpi; the
 fi
 # Every public deck against the original programs (issue 36), when the user names them:
 # BENCH_MPM3D_F90 (a checkout of the public MPM3D-F90, for its decks), BENCH_BOOK and
-# BENCH_CURRENT (its programs at commits 2284feb and 4a6275f, built outside this repository).
+# BENCH_CURRENT (its programs at commits 2284feb and 4a6275f, built outside this repository);
+# with BENCH_NEWEST (the newest program, commit 17fd4ee) also the newest decks (37 runs).
 if [ -n "${BENCH_MPM3D_F90:-}" ] && [ -n "${BENCH_BOOK:-}" ] && [ -n "${BENCH_CURRENT:-}" ]; then
   "$py" tools/every_deck_speed.py "$build" --repo "$BENCH_MPM3D_F90" --book "$BENCH_BOOK" \
-    --current "$BENCH_CURRENT" --rounds "${BENCH_ROUNDS:-3}" --csv "$outdir/every_deck.csv"
+    --current "$BENCH_CURRENT" --rounds "${BENCH_ROUNDS:-3}" --csv "$outdir/every_deck.csv" \
+    ${BENCH_NEWEST:+--newest "$BENCH_NEWEST"}
 fi
 "$py" tools/bench_plot.py "$csv" "$outdir"
 column -s, -t < "$csv"

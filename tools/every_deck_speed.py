@@ -4,10 +4,13 @@
 usage: tools/every_deck_speed.py BUILD_DIR --repo MPM3D_F90 --book EXE --current EXE
                                  [--threads 1,2] [--rounds 3] [--target 4] [--only NAME[,NAME...]]
                                  [--csv docs/bench/every_deck.csv] [--doc docs/PERFORMANCE.md]
+                                 [--newest EXE [--newest-decks DIR]]
 
 The decks and originals are those of tools/public_decks.py (31 runs: the 26 readable decks of
 the current version against the current program, the five book decks also against the book
-program); the programs are built outside this repository (see that tool). Each deck is cut so
+program; with --newest also the newest program's six, 37 runs: its R1 dam breaks and the three
+3D landslides written by its make_landslide_decks.py); the programs are built outside this
+repository (see that tool). Each deck is cut so
 that the original runs about TARGET seconds: its end time is set to the time mpm3d reaches at
 step K, K scaled from a run of the original to mpm3d's time at step 50 and checked once more
 (the current program computes its time step every step, so its steps may differ from ours),
@@ -112,8 +115,8 @@ def full_end_time(deck):
     with open(deck, errors="replace") as f:
         for line in f:
             w = line.split()
-            if w and w[0].lower()[:4] == "endt":
-                return float(w[1].replace("d", "e").replace("D", "e"))
+            if w and w[0].lower()[:4] == "endt":  # a comment may follow the number without a space
+                return float(w[1].split("!")[0].replace("d", "e").replace("D", "e"))
     return None
 
 
@@ -179,7 +182,8 @@ def table(results, threads, rounds, target, when):
            f"{platform.machine()}, {os.cpu_count()} cores: every public deck cut so that the original runs "
            f"about {target:g} s, whole process, wall time; the ratio original / mpm3d is the median of "
            f"{rounds} interleaved rounds (range in brackets). Book decks against the book program, "
-           "current decks against the current program, both gfortran 12 `-O2`, serial. Memory: mpm3d's "
+           "current decks against the current program, the newest decks against the newest program, all "
+           "gfortran 12 `-O2`, serial. Memory: mpm3d's "
            "peak resident bytes per particle at the highest thread count (the original's in brackets).", "",
            f"| deck | program | particles | steps | original s | {t_hdr} | bytes/particle |",
            "|---|---|---|---|---|" + "---|" * len(threads) + "---|"]
@@ -205,20 +209,32 @@ def main():
     ap.add_argument("--only", default="", help="only the decks whose names contain one of these")
     ap.add_argument("--csv", default=os.path.join(ROOT, "docs", "bench", "every_deck.csv"))
     ap.add_argument("--doc", default=os.path.join(ROOT, "docs", "PERFORMANCE.md"))
+    ap.add_argument("--newest", help="the newest program (commit 17fd4ee): also its six decks (37 runs)")
+    ap.add_argument("--newest-decks", default=os.path.join(ROOT, "..", "shared", "decks", "newest"),
+                    help="the newest decks (the R1 dam breaks and make_landslide_decks.py)")
     a = ap.parse_args()
     mpm3d = os.path.join(os.path.abspath(a.build), "cxx", "mpm3d")
     threads = [int(t) for t in a.threads.split(",")]
     wanted = [w for w in a.only.split(",") if w]
     results = []
     print(f"every_deck_speed: load before: {open('/proc/loadavg').read().split()[0]}", flush=True)
-    for name, rel, which, _ in public.DECKS:
+    todo = list(public.DECKS)
+    landslides = tempfile.TemporaryDirectory()
+    if a.newest:  # each deck is cut by the target below, so the list's end times are not used
+        todo += [(name, rel, "newest", None) for name, rel, _ in public.NEWEST_DECKS]
+        subprocess.run([sys.executable, os.path.join(a.newest_decks, "make_landslide_decks.py"), landslides.name],
+                       check=True, stdout=subprocess.DEVNULL)
+    for name, rel, which, _ in todo:
         if wanted and not any(w in name for w in wanted):
             continue
-        src = os.path.join(a.repo, rel)
+        if which == "newest":
+            src = os.path.join(landslides.name if rel in public.LANDSLIDES else a.newest_decks, rel)
+        else:
+            src = os.path.join(a.repo, rel)
         if not os.path.exists(src):
-            print(f"every_deck_speed: {rel} not in {a.repo}: skipped", file=sys.stderr)
+            print(f"every_deck_speed: {src} not found: skipped", file=sys.stderr)
             continue
-        exe = os.path.abspath(a.book if which == "book" else a.current)
+        exe = os.path.abspath({"book": a.book, "current": a.current, "newest": a.newest or ""}[which])
         with tempfile.TemporaryDirectory() as tmp:
             r = measure(name, src, exe, mpm3d, threads, a.rounds, a.target, tmp)
         r.update(name=name, program=which)
