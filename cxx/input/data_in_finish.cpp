@@ -236,11 +236,7 @@ void DeckReader::sgmp_held_cells() {
   std::string what;
   for (int a = 0; a < 3; ++a) {
     if (m_.fix[2 * a] == 0 || cells_along(m_, a) < 2.0) continue;
-    long count = 0;
-    for (int p = 0; p < P.np; ++p) {
-      const double s = (P.x[3 * size_t(p) + a] - m_.box_lo[a]) / m_.dcell;
-      if (s >= 0.0 && s < 1.0) ++count;
-    }
+    const long count = particles_in_first_cell(P, a, m_.box_lo[a], m_.dcell);
     if (count == 0) continue;
     const std::string axis(1, char('x' + a));
     const bool fixed = m_.fix[2 * a] == 1;

@@ -85,17 +85,14 @@ std::string Simulation::products_advice() const {
 std::string Simulation::instability_advice() const {
   std::string advice = "reduce dtscale";
   // sgmp holds two node layers on a fixed or symmetric face: particles in a lower face's
-  // first cell sit between them (the current program's ChangeLog asks for one more cell
-  // outside). Axes of one cell (thin plane models) have every particle there and are fine.
+  // first cell sit between them. Our rules refuse such a deck (the reader); under the
+  // original's (sg_lower=truncate) the stop names the cell to add, as the current program's
+  // ChangeLog asks. Axes of one cell (thin plane models) have every particle there.
   if (model.sg && model.fix_layers() == 2) {
     const Particles& P = model.particles;
     for (int a = 0; a < 3; ++a) {
       if (model.fix[2 * a] == 0 || std::floor((model.box_hi[a] - model.box_lo[a]) / model.dcell + 0.5) < 2.0) continue;
-      int n = 0;
-      for (int p = 0; p < P.np; ++p) {
-        const double s = (P.x[3 * size_t(p) + a] - model.box_lo[a]) / model.dcell;
-        if (s >= 0.0 && s < 1.0) ++n;
-      }
+      const long n = particles_in_first_cell(P, a, model.box_lo[a], model.dcell);
       if (n == 0) continue;
       const std::string axis(1, char('x' + a));
       advice += "; " + std::to_string(n) + " particles lie in the first cell along " + axis +
