@@ -17,10 +17,6 @@ constexpr int kProbeMaxSteps = 2000;
 constexpr long kMinRunSteps = 16;  // steps between two probes at least
 constexpr double kGapPerCost = 64.0;  // the wall time between probes, in probe costs
 constexpr double kGapCap = 30.0;      // seconds: a busy machine that frees up is noticed
-constexpr double kGapMin = 0.25;      // seconds at least: every switch of the team costs more
-                                      // than its steps show (a short run of a small deck on an
-                                      // idle machine took 1.21 times the fixed team's time with
-                                      // probes every 70 steps)
 constexpr double kClearLoss = 3.0;    // a probe's step on the most threads this many times its
                                       // steps on one so far: the probe ends on one thread
 constexpr double kSlowFactor = 1.5;   // steps on the most threads this much slower than the
@@ -79,7 +75,7 @@ void TeamChooser::took(double seconds) {
       mean_most_ = probe_time_[0] / half;
       chosen_ = probe_time_[1] < probe_time_[0] ? 1 : most_;
       const double cost = total - 2.0 * std::min(probe_time_[0], probe_time_[1]);
-      gap_ = std::max(kGapMin, std::min(kGapPerCost * cost, std::max(kGapCap, 0.25 * kGapPerCost * cost)));
+      gap_ = std::min(kGapPerCost * cost, std::max(kGapCap, 0.25 * kGapPerCost * cost));
       phase_ = Phase::run;
       run_steps_ = 0;
       since_probe_ = 0.0;
