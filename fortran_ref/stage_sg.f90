@@ -33,7 +33,7 @@ contains
     logical, intent(in) :: g2p
     integer, intent(out) :: idx(8)
     real(dp), intent(out) :: w(8)
-    integer :: ci(3), lo(3), hi(3), ijk(3), a, al, near, last, k, n, bits
+    integer :: ci(3), lo(3), hi(3), ijk(3), a, al, near, last, k, n
     real(dp) :: w0(3), w1(3), wk(3), s, x, xn
     logical :: held, beyond(3)
     ci(1) = mod(cl, c%grid%nc(1))
@@ -93,10 +93,6 @@ contains
         hi(a) = al + 1
       end if
     end do
-    bits = 0
-    do a = 1, 3
-      if (beyond(a)) bits = ior(bits, ishft(1, a - 1))
-    end do
     do k = 0, 7
       do a = 1, 3
         if (iand(ishft(k, -(a - 1)), 1) /= 0) then
@@ -110,7 +106,8 @@ contains
       idx(k + 1) = ijk(1) + c%grid%nc(1) * (ijk(2) + c%grid%nc(2) * ijk(3))
       w(k + 1) = (wk(1) * wk(2)) * wk(3)
       ! sg_beyond=drop: the current program numbers the centre beyond a one-cell axis as one
-      ! past its last, the next row's first; past its last cell it skips it.
+      ! past its last, the next row's first; past its last cell it skips it (a corner not
+      ! beyond any axis numbers its own cell, always within).
       if (any(beyond)) then
         n = 0
         do a = 3, 1, -1
@@ -120,7 +117,7 @@ contains
             n = n * c%grid%nc(a) + ijk(a)
           end if
         end do
-        if (iand(k, bits) /= 0 .and. n >= c%grid%nc(1) * c%grid%nc(2) * c%grid%nc(3)) w(k + 1) = 0.0_dp
+        if (n >= c%grid%nc(1) * c%grid%nc(2) * c%grid%nc(3)) w(k + 1) = 0.0_dp
       end if
     end do
   end subroutine sg_weights

@@ -84,13 +84,4 @@ std::vector<int> stored_index(const Particles& P) {
   return at;
 }
 
-long particles_in_first_cell(const Particles& P, int a, double lo, double h) {
-  long n = 0;
-  for (int p = 0; p < P.np; ++p) {
-    const double s = (P.x[3 * size_t(p) + a] - lo) / h;
-    if (s >= 0.0 && s < 1.0) ++n;
-  }
-  return n;
-}
-
 }  // namespace mpm3d

@@ -82,8 +82,4 @@ struct Energies {
   double momentum[3] = {0.0, 0.0, 0.0};
 };
 
-// How many particles lie in a grid's first cell along axis a: lo <= x_a < lo + h (cell size
-// h; sgmp's held lower faces, deck reader and health check).
-long particles_in_first_cell(const Particles& P, int a, double lo, double h);
-
 }  // namespace mpm3d

@@ -101,6 +101,12 @@ double deck_memory_budget();
 // Reads the deck; throws DeckError (file, line, problem) on any input error. memory_budget:
 // the memory limit above in bytes, taken once for the whole deck.
 // rules: the --rules preset and --rule settings (default: ours).
+// sgmp's particles in a held lower face's first cell, between the two node layers sgmp holds:
+// a clause for each such face with the cell to add, "" when none (an axis of one cell, a
+// plane model, holds every particle there). The reader refuses or warns with it, the
+// instability stop repeats it.
+std::string sgmp_held_cells_text(const Model& m);
+
 Model read_deck(const std::string& path, double memory_budget = deck_memory_budget(),
                 const RuleRequest& rules = RuleRequest());
 Model read_deck_text(const std::string& text, const std::string& name, double memory_budget = deck_memory_budget(),

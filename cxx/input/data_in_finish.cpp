@@ -225,28 +225,33 @@ void DeckReader::two_cells_each_axis(int line, const char* keyword) {
   }
 }
 
-// sgmp holds two node layers on a fixed or symmetric face (the current program's): particles
-// in a lower face's first cell lie between them and cannot move across the face (at all, on
-// a fixed face), and the smoothed gradient there grows the energy until the run stops. The
-// current MPM3D-F90's ChangeLog asks for one more cell outside such faces. Our rules refuse
-// the deck; the original's (sg_lower=truncate) run it as that program does, with a warning.
-// An axis of one cell (a plane model between symmetric faces) holds every particle there.
-void DeckReader::sgmp_held_cells() {
-  const Particles& P = m_.particles;
+std::string sgmp_held_cells_text(const Model& m) {
+  const Particles& P = m.particles;
   std::string what;
   for (int a = 0; a < 3; ++a) {
-    if (m_.fix[2 * a] == 0 || cells_along(m_, a) < 2.0) continue;
-    const long count = particles_in_first_cell(P, a, m_.box_lo[a], m_.dcell);
+    if (m.fix[2 * a] == 0 || cells_along(m, a) < 2.0) continue;
+    long count = 0;
+    for (int p = 0; p < P.np; ++p) {
+      const double s = (P.x[3 * size_t(p) + a] - m.box_lo[a]) / m.dcell;
+      if (s >= 0.0 && s < 1.0) ++count;
+    }
     if (count == 0) continue;
     const std::string axis(1, char('x' + a));
-    const bool fixed = m_.fix[2 * a] == 1;
+    const bool fixed = m.fix[2 * a] == 1;
     what += (what.empty() ? "" : "; ") + std::to_string(count) + " particles lie in the first cell along " + axis +
             ", between the two node layers sgmp holds at the " + (fixed ? "fixed" : "symmetric") + " lower " + axis +
             " face, which keep them " + (fixed ? "still" : "from moving along " + axis) +
             ": add one cell outside that face (lower the first value of sp" + axis + " by dcel)";
   }
+  return what.empty() ? what : what + ", as the current MPM3D-F90's ChangeLog asks for sgmp";
+}
+
+// sgmp's held first cells (sgmp_held_cells_text): the smoothed gradient there grows the
+// energy until the run stops. Our rules refuse the deck; the original's (sg_lower=truncate)
+// run it as the current program does, with a warning.
+void DeckReader::sgmp_held_cells() {
+  const std::string what = sgmp_held_cells_text(m_);
   if (what.empty()) return;
-  what += ", as the current MPM3D-F90's ChangeLog asks for sgmp";
   if (m_.rules.sg_lower == 0) fail(sgmp_line_, what + "; --rule sg_lower=truncate (in --rules original) runs the deck as that program does");
   m_.warnings.push_back(what);
 }

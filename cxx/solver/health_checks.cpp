@@ -84,22 +84,11 @@ std::string Simulation::products_advice() const {
 
 std::string Simulation::instability_advice() const {
   std::string advice = "reduce dtscale";
-  // sgmp holds two node layers on a fixed or symmetric face: particles in a lower face's
-  // first cell sit between them. Our rules refuse such a deck (the reader); under the
-  // original's (sg_lower=truncate) the stop names the cell to add, as the current program's
-  // ChangeLog asks. Axes of one cell (thin plane models) have every particle there.
-  if (model.sg && model.fix_layers() == 2) {
-    const Particles& P = model.particles;
-    for (int a = 0; a < 3; ++a) {
-      if (model.fix[2 * a] == 0 || std::floor((model.box_hi[a] - model.box_lo[a]) / model.dcell + 0.5) < 2.0) continue;
-      const long n = particles_in_first_cell(P, a, model.box_lo[a], model.dcell);
-      if (n == 0) continue;
-      const std::string axis(1, char('x' + a));
-      advice += "; " + std::to_string(n) + " particles lie in the first cell along " + axis +
-                ", between the two node layers sgmp holds at the " + (model.fix[2 * a] == 1 ? "fixed" : "symmetric") +
-                " lower " + axis + " face: add one cell outside that face (lower sp" + axis +
-                " by one cell), as the current MPM3D-F90's ChangeLog asks for sgmp";
-    }
+  // sgmp's held first cells: our rules refuse such a deck, the original's (sg_lower=truncate)
+  // run it; the stop repeats the reader's warning.
+  if (model.sg) {
+    const std::string held = sgmp_held_cells_text(model);
+    if (!held.empty()) advice += "; " + held;
   }
   if (model.scheme != SCHEME_MUSL) advice += ", or use MUSL ('musl on')";
   return advice;
