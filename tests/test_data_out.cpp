@@ -4,9 +4,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <random>
 #include <string>
+#include <vector>
 
 #include "input/data_in.hpp"
+#include "io/ascii_out.hpp"
 #include "io/data_out.hpp"
 
 TEST(DataOut, FortranE12_4) {
@@ -20,6 +27,25 @@ TEST(DataOut, FortranE12_4) {
   // Rounding carries into the exponent: 9.99996 -> 0.1000E+02.
   EXPECT_EQ(mpm3d::fortran_e12_4(9.99996), "  0.1000E+02");
   EXPECT_EQ(mpm3d::fortran_e12_4(-2.5e-17), " -0.2500E-16");
+}
+
+// The same E12.4 text as printf's "%.3E" digits rearranged (the formatter's first form),
+// over every exponent: the plot files are compared with the original's as text.
+TEST(DataOut, FortranE12_4AsPrintfsDigits) {
+  std::mt19937_64 bits(11);
+  for (int i = 0; i < 100000; ++i) {
+    const uint64_t b = bits();
+    double v;
+    std::memcpy(&v, &b, sizeof v);
+    if (!std::isfinite(v) || v == 0.0) continue;
+    char e[32], want[64];
+    std::snprintf(e, sizeof e, "%.3E", std::fabs(v));
+    const int exponent = std::atoi(e + 6) + 1;
+    std::snprintf(want, sizeof want, "%12s", (std::string(v < 0 ? "-" : "") + "0." + e[0] + e[2] + e[3] + e[4] + "E" +
+                                              (exponent < 0 ? "-" : "+") + (std::abs(exponent) < 10 ? "0" : "") +
+                                              std::to_string(std::abs(exponent))).c_str());
+    ASSERT_EQ(mpm3d::fortran_e12_4(v), want) << v;
+  }
 }
 
 TEST(DataOut, ParticleVariables) {
@@ -87,5 +113,53 @@ TEST(SmoothedPressure, UniformPressureIsKept) {
       diff += std::fabs(m.spre[size_t(p)] - double(p % 7));
     }
     EXPECT_GT(diff, 1.0);
+  }
+}
+
+// The animation writers' numbers (AsciiOut, by std::to_chars) are printf's text byte for
+// byte: ParaView and TecPlot frames are compared with the original's as text.
+TEST(DataOut, AsciiOutWritesPrintfsText) {
+  std::vector<double> v = {0.0, -0.0, 1.0, -1.0, 0.5, 9.9999999995e99, 9.99999949999e-5, 1.0e300, -2.5e-308,
+                           4.9e-324, std::numeric_limits<double>::max(), std::numeric_limits<double>::quiet_NaN(),
+                           -std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
+                           -std::numeric_limits<double>::infinity(), 123456789.5, 0.1, 1.0 / 3.0};
+  std::mt19937_64 bits(7);
+  for (int i = 0; i < 20000; ++i) {  // any bit pattern: every exponent, subnormals, NaNs
+    const uint64_t b = bits();
+    double x;
+    std::memcpy(&x, &b, sizeof x);
+    v.push_back(x);
+  }
+  std::uniform_real_distribution<double> u(-1.0e3, 1.0e3);
+  for (int i = 0; i < 20000; ++i) v.push_back(u(bits));  // the usual magnitudes, ties of the last digit
+  for (const int digits : {6, 9}) {
+    std::string want;
+    char one[64];
+    for (const double x : v) {
+      std::snprintf(one, sizeof one, "%.*E", digits, x);
+      want += one;
+      want += ' ';
+    }
+    want += "-12 0 2147483647\n";
+    FILE* f = std::tmpfile();
+    ASSERT_NE(f, nullptr);
+    {
+      mpm3d::AsciiOut out(f);
+      for (const double x : v) {
+        out.sci(x, digits);
+        out.put(' ');
+      }
+      out.integer(-12);
+      out.text(" ");
+      out.integer(0);
+      out.put(' ');
+      out.integer(2147483647);
+      out.put('\n');
+    }
+    std::string got(size_t(std::ftell(f)), '\0');
+    std::rewind(f);
+    ASSERT_EQ(std::fread(&got[0], 1, got.size(), f), got.size());
+    std::fclose(f);
+    EXPECT_EQ(got, want) << "digits " << digits;
   }
 }

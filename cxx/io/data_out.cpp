@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <charconv>
 #include <cstring>
 #include <cmath>
 #include <cstdio>
@@ -26,14 +27,24 @@ std::string fortran_e12_4(double v) {
     else std::snprintf(buf, sizeof buf, "  0.0000E+00");
     return buf;
   }
+  // d.ddde+xx by to_chars (printf's "%.3E" digits; every plot line holds several).
   char e[32];
-  std::snprintf(e, sizeof e, "%.3E", std::fabs(v));  // d.dddE+xx
+  *std::to_chars(e, e + sizeof e - 1, std::fabs(v), std::chars_format::scientific, 3).ptr = '\0';
   const int exponent = std::atoi(e + 6) + 1;
-  std::snprintf(buf, sizeof buf, "%s0.%c%c%c%cE%c%02d", v < 0 ? "-" : "", e[0], e[2], e[3], e[4],
-                exponent < 0 ? '-' : '+', std::abs(exponent));
-  std::string s = buf;
-  if (s.size() < 12) s.insert(0, 12 - s.size(), ' ');
-  return s;
+  const int mag = std::abs(exponent);
+  char* c = buf + 12;  // right-aligned in 12: "  0.1326E-03", " -0.3999E+02"
+  *c = '\0';
+  *--c = char('0' + mag % 10);
+  *--c = char('0' + mag / 10 % 10);
+  if (mag >= 100) *--c = char('0' + mag / 100);
+  *--c = exponent < 0 ? '-' : '+';
+  *--c = 'E';
+  for (int d : {4, 3, 2, 0}) *--c = e[d];
+  *--c = '.';
+  *--c = '0';
+  if (v < 0) *--c = '-';
+  while (c > buf) *--c = ' ';
+  return c;
 }
 
 void held_curve_values(const Model& m, std::vector<int>& held, std::vector<double>& values) {

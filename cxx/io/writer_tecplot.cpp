@@ -2,6 +2,7 @@
 // one POINT zone per frame (particles skipped by 'tecp's list left out).
 #include <cstdio>
 
+#include "io/ascii_out.hpp"
 #include "io/data_out.hpp"
 #include "io/output_writer.hpp"
 
@@ -29,13 +30,20 @@ class TecplotWriter : public OutputWriter {
     int n = 0;
     for (int i = 0; i < P.np; ++i) n += all || !m.tec_skip[size_t(i)];
     std::fprintf(f_, "ZONE T=\"%.6E\" I=%d F=POINT\n", time, n);
+    AsciiOut out(f_);  // each line "%.6E %.6E %.6E" and " %.6E" per variable
     for (int i = 0; i < P.np; ++i) {
       if (!all && m.tec_skip[size_t(i)]) continue;
       const int p = at[size_t(i)];
       const double* x = &P.x[3 * size_t(p)];
-      std::fprintf(f_, "%.6E %.6E %.6E", x[0], x[1], x[2]);
-      for (const ParticleVarFn fn : fn_) std::fprintf(f_, " %.6E", fn(m, p));
-      std::fprintf(f_, "\n");
+      for (int d = 0; d < 3; ++d) {
+        if (d) out.put(' ');
+        out.sci(x[d], 6);
+      }
+      for (const ParticleVarFn fn : fn_) {
+        out.put(' ');
+        out.sci(fn(m, p), 6);
+      }
+      out.put('\n');
     }
   }
 

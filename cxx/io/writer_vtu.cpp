@@ -13,6 +13,7 @@
 #include <functional>
 #include <stdexcept>
 
+#include "io/ascii_out.hpp"
 #include "io/frame_fields.hpp"
 #include "io/output_writer.hpp"
 
@@ -77,24 +78,26 @@ void write_vtu(FILE* f, long long npoints, long long ncells, const std::vector<V
         continue;
       }
       std::fprintf(f, " format=\"ascii\">\n");
+      AsciiOut out(f);
       for (long long first = 0; first < v.values; first += kChunk) {
         const long long n = std::min(kChunk, v.values - first);
         v.fill(first, n, buf.data());
         for (long long i = 0; i < n; ++i) {
-          const char sep = (first + i + 1) % v.per_line == 0 ? '\n' : ' ';
           if (v.type == VtuType::f64) {
             double x;
             std::memcpy(&x, buf.data() + 8 * size_t(i), 8);
-            std::fprintf(f, "%.9E%c", x, sep);
+            out.sci(x, 9);
           } else if (v.type == VtuType::i32) {
             int32_t x;
             std::memcpy(&x, buf.data() + 4 * size_t(i), 4);
-            std::fprintf(f, "%d%c", int(x), sep);
+            out.integer(x);
           } else {
-            std::fprintf(f, "%d%c", int(buf[size_t(i)]), sep);
+            out.integer(buf[size_t(i)]);
           }
+          out.put((first + i + 1) % v.per_line == 0 ? '\n' : ' ');
         }
       }
+      out.flush();
       if (v.values % v.per_line != 0) std::fputc('\n', f);
       std::fprintf(f, "</DataArray>\n");
     }
