@@ -56,7 +56,8 @@ the book program's none of them; a script tells it in a line
 '# mpm3d-compare: program=book' (or current). --explain answers why a column is beyond the
 tolerance: mpm3d runs again with each rule in turn set to that program's value (to the
 value under --rules book or current where given), then with all of them, and a table gives
-each column's largest difference under each.
+each column's largest difference under each. It also prints what mpm3d knows it does
+differently on the deck with no rule to copy the original (mpm3d's summary, not_copied).
 
 Exit status: 0 every compared column within tolerance; 1 some column beyond it;
 2 bad input (a program missing or not executable, a missing deck, a deck either
@@ -363,16 +364,20 @@ def user_rule_args(args):
     return out
 
 
-def rules_in_force(mpm3d, deck_name, run_dir, rule_args):
+def rules_in_force(mpm3d, deck_name, run_dir, rule_args, not_copied=None):
     """{rule: value} that mpm3d resolves for the deck under rule_args (a run of 0 steps,
-    from its summary)."""
+    from its summary); the summary's not_copied (where mpm3d differs from the original by
+    design, with no rule) appended to the list not_copied where given."""
     summary = os.path.join(run_dir, "rules.json")
     argv = [mpm3d, "--threads", "1", "--quiet", "--no-output", "--steps", "0", "--summary",
             summary] + list(rule_args) + [deck_name]
     rc, _ = run(argv, run_dir)
     try:
         with open(summary) as f:
-            rules = json.load(f).get("rules")
+            js = json.load(f)
+        rules = js.get("rules")
+        if not_copied is not None:
+            not_copied.extend(js.get("not_copied") or [])
     except (OSError, ValueError):
         rules = None
     if rc != 0 or not isinstance(rules, dict):
@@ -390,7 +395,13 @@ def explain(deck_name, stem, dirs, args, mpm3d, rows, failed, until=None):
     os.makedirs(work, exist_ok=True)
     shutil.copy(os.path.join(dirs["mpm3d"], deck_name), os.path.join(work, deck_name))
     ours = rules_in_force(mpm3d, deck_name, work, base_args)
-    target = rules_in_force(mpm3d, deck_name, work, ["--rules", preset])
+    not_copied = []
+    target = rules_in_force(mpm3d, deck_name, work, ["--rules", preset], not_copied)
+    if not_copied:
+        print("  not copied (mpm3d differs from the original here by design, and no rule takes the "
+              "original's way):")
+        for text in not_copied:
+            print("    - " + text)
     if ours == target:
         print("  why: mpm3d already ran with the original program's rules (--rules %s): the "
               "difference is not one of mpm3d's rules\n" % preset)

@@ -533,6 +533,9 @@ int run_main(int argc, char** argv, Ranks* ranks) {
         js << (st ? ", " : "") << "\"" << kStageNames[st] << "\": " << json_number(sim.stage_seconds[st]);
       js << "},\n  \"warnings\": [";
       for (size_t i = 0; i < warnings.size(); ++i) js << (i ? ", " : "") << "\"" << json_escape(warnings[i]) << "\"";
+      js << "],\n  \"not_copied\": [";
+      const std::vector<std::string> not_copied = not_copied_text(m);
+      for (size_t i = 0; i < not_copied.size(); ++i) js << (i ? ", " : "") << "\"" << json_escape(not_copied[i]) << "\"";
       js << "]\n}\n";
       write_text_atomic(opt.summary, js.str());
     }

@@ -107,6 +107,10 @@ double deck_memory_budget();
 // instability stop repeats it.
 std::string sgmp_held_cells_text(const Model& m);
 
+// Where mpm3d differs on this deck from the original program by design and no rule takes the
+// original's behaviour (the summary's "not_copied", which mpm3d-compare --explain prints).
+std::vector<std::string> not_copied_text(const Model& m);
+
 Model read_deck(const std::string& path, double memory_budget = deck_memory_budget(),
                 const RuleRequest& rules = RuleRequest());
 Model read_deck_text(const std::string& text, const std::string& name, double memory_budget = deck_memory_budget(),
