@@ -36,6 +36,30 @@ inline void team_position(int& t, int& T) {
 #endif
 }
 
+// Whether the stages run on one thread (the time loop's choice or the run's --threads 1):
+// they then call their loop bodies directly. A parallel region, even of one thread, ends in
+// libgomp with a futex system call (10-16 a step: 12 % of a small deck's one-thread time on
+// this machine's virtual CPUs, in the kernel and libgomp); a barrier outside a region, none.
+inline bool one_thread() {
+#ifdef _OPENMP
+  return omp_get_max_threads() == 1;
+#else
+  return true;
+#endif
+}
+
+// body() by every thread of a parallel region, or once directly on one thread (one_thread:
+// team_position then gives 0 of 1, and barriers inside it are free).
+template <class F>
+inline void team_region(F&& body) {
+  if (one_thread()) {
+    body();
+    return;
+  }
+#pragma omp parallel
+  body();
+}
+
 // Patches [lo, hi) of thread t of T: the first patch whose list starts at or after the
 // thread's equal share of the binned particles, up to the next thread's (with patches at
 // rest, of the work: StepContext::patch_work).
@@ -55,13 +79,12 @@ inline void thread_patches(const StepContext* c, int t, int T, int& lo, int& hi)
 // f(q) for every patch q, each thread over its thread_patches run.
 template <class F>
 inline void for_patches(const StepContext* c, F&& f) {
-#pragma omp parallel
-  {
+  team_region([&] {
     int t, T, lo, hi;
     team_position(t, T);
     thread_patches(c, t, T, lo, hi);
     for (int q = lo; q < hi; ++q) f(q);
-  }
+  });
 }
 
 // Patch q is at rest this step (StepContext::at_rest): no stage touches it.
@@ -73,6 +96,10 @@ template <class F>
 inline void for_list_chunks(const StepContext* c, F&& f) {
   const int total = c->patch.patch_start[c->patch.npatch];
   const int nchunk = (total + kListChunk - 1) / kListChunk;
+  if (one_thread()) {
+    for (int k = 0; k < nchunk; ++k) f(k * kListChunk, std::min(kListChunk, total - k * kListChunk));
+    return;
+  }
 #pragma omp parallel for schedule(static)
   for (int k = 0; k < nchunk; ++k) f(k * kListChunk, std::min(kListChunk, total - k * kListChunk));
 }

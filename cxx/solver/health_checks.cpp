@@ -3,6 +3,8 @@
 // that a run can break silently (warnings, or an error with --strict-energy).
 #include "solver/simulation.hpp"
 
+#include "core/patch_loops.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -140,12 +142,19 @@ void Simulation::health_check() {
     const int np = P.np;
     const double* ie = P.ie.data();
     int bad = kNone;  // the lowest deck number of a particle out of bounds
-#pragma omp parallel for schedule(static) reduction(min : bad, ie_min)
-    for (int p = 0; p < np; ++p) {
+    // The lowest deck number out of bounds and the least internal energy: the same for any
+    // thread count; on one thread without a region (one_thread, patch_loops.hpp).
+    auto check = [&](int p, int& bad_here, double& ie_min_here) {
       const double r0v = mats[mat[p]].rho0 * vol[p];
       const bool ok = vol[p] > 0.0 && mass[p] >= kDensityRatioMin * r0v && mass[p] <= kDensityRatioMax * r0v;
-      if (!ok && P.deck_number(p) < bad) bad = P.deck_number(p);
-      if (ie[p] < ie_min) ie_min = ie[p];
+      if (!ok && P.deck_number(p) < bad_here) bad_here = P.deck_number(p);
+      if (ie[p] < ie_min_here) ie_min_here = ie[p];
+    };
+    if (one_thread()) {
+      for (int p = 0; p < np; ++p) check(p, bad, ie_min);
+    } else {
+#pragma omp parallel for schedule(static) reduction(min : bad, ie_min)
+      for (int p = 0; p < np; ++p) check(p, bad, ie_min);
     }
     bad = lowest(bad);
     if (ranks) ie_min = ranks->min(ie_min);

@@ -3,6 +3,7 @@
 // every step: health_checks.cpp).
 #include "solver/simulation.hpp"
 
+#include "core/patch_loops.hpp"
 #include "materials/constitution.hpp"
 
 #include <algorithm>
@@ -434,8 +435,12 @@ double Simulation::velocity_time_step() {
   const double* v = model.particles.v.data();
   const long n = 3L * model.particles.np;
   double vmax = 0.0;  // a max: the same bits for any thread count
+  if (one_thread()) {  // no region: its end costs a system call (patch_loops.hpp)
+    for (long i = 0; i < n; ++i) vmax = std::max(vmax, std::fabs(v[i]));
+  } else {
 #pragma omp parallel for reduction(max : vmax)
-  for (long i = 0; i < n; ++i) vmax = std::max(vmax, std::fabs(v[i]));
+    for (long i = 0; i < n; ++i) vmax = std::max(vmax, std::fabs(v[i]));
+  }
   if (ranks) vmax = ranks->max(vmax);
   double dt = std::numeric_limits<double>::infinity();
   for (const MaterialParams& mp : model.mats) dt = std::min(dt, model.dcell / (mp.wave_speed + vmax));
@@ -471,13 +476,18 @@ void Simulation::quiet_patches(std::vector<unsigned char>& quiet) const {
   const unsigned char* still = still_.data();
   unsigned char* out = quiet.data();
   const double t = c->clock.time;
-#pragma omp parallel for schedule(static)
-  for (int q = 0; q < npatch; ++q) {
+  auto quiet_patch = [&](int q) {
     bool all = true;
     for (int e = c->patch.patch_start[q]; all && e < c->patch.patch_start[q + 1]; ++e)
       all = particle_quiet(c, still, c->patch.patch_part[e], t);
     out[q] = all ? 1 : 0;
+  };
+  if (one_thread()) {
+    for (int q = 0; q < npatch; ++q) quiet_patch(q);
+    return;
   }
+#pragma omp parallel for schedule(static)
+  for (int q = 0; q < npatch; ++q) quiet_patch(q);
 }
 
 void Simulation::mark_rest() {

@@ -38,8 +38,7 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
   // them by patch; then a stable counting sort with those runs as its chunks. The runs are
   // consecutive and ascending, so each patch lists its particles in ascending index
   // whatever the number of threads: the lists do not depend on it.
-#pragma omp parallel num_threads(team) reduction(+ : outside)
-  {
+  auto bin = [&](int& outside_here) {
     int t, T;
     team_position(t, T);
     const int lo = int(int64_t(c->part.np) * t / T), hi = int(int64_t(c->part.np) * (t + 1) / T);
@@ -47,7 +46,7 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
     std::fill(cnt, cnt + npatch, 0);
     // Cells, local coordinates, patches (transfer_lanes.hpp), unless prebinned.
     if (!pre)
-      outside += avx2 ? bin_range_avx2(c, lo, hi, patch_of) : bin_range<VectorLane<kLanes>>(c, lo, hi, patch_of);
+      outside_here += avx2 ? bin_range_avx2(c, lo, hi, patch_of) : bin_range<VectorLane<kLanes>>(c, lo, hi, patch_of);
     // Each thread counts (and below fills) a run of the particles in their canonical order:
     // the arrays' own, or c->ranks.order's (every particle binned first). The patch of particle p
     // in this context: prebinned patches are those of every particle, of either component.
@@ -60,7 +59,7 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
     for (int i = lo; i < hi; ++i) {
       const int p = particle(i), q = patch(p);
       if (q >= 0) ++cnt[q];
-      else if (pre && c->part.cell[p] < 0 && !(filter && other_component(c, p))) ++outside;
+      else if (pre && c->part.cell[p] < 0 && !(filter && other_component(c, p))) ++outside_here;
     }
 #pragma omp barrier
     // Patch starts, buffer slots, and each run's fill pointer into every patch's list: a
@@ -109,6 +108,12 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
       const int p = particle(i), q = patch(p);
       if (q >= 0) c->patch.patch_part[cnt[q]++] = p;
     }
+  };
+  if (team == 1) {  // no region: its end costs a system call (one_thread, patch_loops.hpp)
+    bin(outside);
+  } else {
+#pragma omp parallel num_threads(team) reduction(+ : outside)
+    bin(outside);
   }
   c->patch.nslot = nslot;
   c->out.noutside = outside;

@@ -170,8 +170,7 @@ __attribute__((always_inline)) inline void visit_entry(const StepContext* c, int
 template <class F>
 void for_contributions_in_order(const StepContext* c, int first_field, int nfield, F&& f) {
   static const CornerPatches corners;
-#pragma omp parallel
-  {
+  team_region([&] {
     int t, T, lo, hi;
     team_position(t, T);
     thread_patches(c, t, T, lo, hi);
@@ -202,7 +201,7 @@ void for_contributions_in_order(const StepContext* c, int first_field, int nfiel
         visit_entry(c, e, mask, f);
       }
     }
-  }
+  });
 }
 
 // Fields first..first+count-1 of every centre set to zero, then add(p, cell[8], w[8], mask)
