@@ -150,7 +150,7 @@ TEST(DataOut, AsciiOutWritesPrintfsText) {
         out.put(' ');
       }
       out.integer(-12);
-      out.text(" ");
+      out.put(' ');
       out.integer(0);
       out.put(' ');
       out.integer(2147483647);

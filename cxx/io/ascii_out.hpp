@@ -5,8 +5,8 @@
 #pragma once
 #include <charconv>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
-#include <cstring>
 
 namespace mpm3d {
 
@@ -40,16 +40,6 @@ class AsciiOut {
   void put(char c) {
     room(1);
     buf_[used_++] = c;
-  }
-  void text(const char* s) {
-    const size_t n = std::strlen(s);
-    room(n);
-    if (n > sizeof buf_) {
-      std::fwrite(s, 1, n, f_);
-      return;
-    }
-    std::memcpy(buf_ + used_, s, n);
-    used_ += n;
   }
   void flush() {
     if (used_) std::fwrite(buf_, 1, used_, f_);
