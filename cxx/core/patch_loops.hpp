@@ -60,6 +60,18 @@ inline void team_region(F&& body) {
   body();
 }
 
+// f(i) for i in [0, n), in one contiguous run per thread (OpenMP's static schedule), or in
+// order directly on one thread (one_thread).
+template <class F>
+inline void team_for(int n, F&& f) {
+  if (one_thread()) {
+    for (int i = 0; i < n; ++i) f(i);
+    return;
+  }
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) f(i);
+}
+
 // Patches [lo, hi) of thread t of T: the first patch whose list starts at or after the
 // thread's equal share of the binned particles, up to the next thread's (with patches at
 // rest, of the work: StepContext::patch_work).
@@ -96,12 +108,7 @@ template <class F>
 inline void for_list_chunks(const StepContext* c, F&& f) {
   const int total = c->patch.patch_start[c->patch.npatch];
   const int nchunk = (total + kListChunk - 1) / kListChunk;
-  if (one_thread()) {
-    for (int k = 0; k < nchunk; ++k) f(k * kListChunk, std::min(kListChunk, total - k * kListChunk));
-    return;
-  }
-#pragma omp parallel for schedule(static)
-  for (int k = 0; k < nchunk; ++k) f(k * kListChunk, std::min(kListChunk, total - k * kListChunk));
+  team_for(nchunk, [&](int k) { f(k * kListChunk, std::min(kListChunk, total - k * kListChunk)); });
 }
 
 // f(first, count) over the patch lists for the stress stage: with patches at rest the list

@@ -476,18 +476,12 @@ void Simulation::quiet_patches(std::vector<unsigned char>& quiet) const {
   const unsigned char* still = still_.data();
   unsigned char* out = quiet.data();
   const double t = c->clock.time;
-  auto quiet_patch = [&](int q) {
+  team_for(npatch, [&](int q) {
     bool all = true;
     for (int e = c->patch.patch_start[q]; all && e < c->patch.patch_start[q + 1]; ++e)
       all = particle_quiet(c, still, c->patch.patch_part[e], t);
     out[q] = all ? 1 : 0;
-  };
-  if (one_thread()) {
-    for (int q = 0; q < npatch; ++q) quiet_patch(q);
-    return;
-  }
-#pragma omp parallel for schedule(static)
-  for (int q = 0; q < npatch; ++q) quiet_patch(q);
+  });
 }
 
 void Simulation::mark_rest() {

@@ -66,17 +66,11 @@ void stress_particles(StepContext* c, MakeGradient&& make_gradient) {
   }
   constexpr int kChunk = 256;
   const int nchunk = (c->part.np + kChunk - 1) / kChunk;
-  auto chunk = [&](int ch) {
+  team_for(nchunk, [&](int ch) {
     const int first = ch * kChunk, end = std::min(c->part.np, first + kChunk);
     auto gradient = make_gradient(nullptr, end);
     stress_run(c, dec, args, nullptr, first, end - first, gradient);
-  };
-  if (one_thread()) {  // no region: its end costs a system call (patch_loops.hpp)
-    for (int ch = 0; ch < nchunk; ++ch) chunk(ch);
-    return;
-  }
-#pragma omp parallel for schedule(static)
-  for (int ch = 0; ch < nchunk; ++ch) chunk(ch);
+  });
 }
 
 }  // namespace
