@@ -57,7 +57,8 @@ the book program's none of them; a script tells it in a line
 tolerance: mpm3d runs again with each rule in turn set to that program's value (to the
 value under --rules book or current where given), then with all of them, and a table gives
 each column's largest difference under each. It also prints what mpm3d knows it does
-differently on the deck with no rule to copy the original (mpm3d's summary, not_copied).
+differently on the deck with no rule to copy the original (mpm3d's summary, not_copied),
+and where the original's own results turn on the last digits (sensitive).
 
 Exit status: 0 every compared column within tolerance; 1 some column beyond it;
 2 bad input (a program missing or not executable, a missing deck, a deck either
@@ -364,10 +365,11 @@ def user_rule_args(args):
     return out
 
 
-def rules_in_force(mpm3d, deck_name, run_dir, rule_args, not_copied=None):
+def rules_in_force(mpm3d, deck_name, run_dir, rule_args, not_copied=None, sensitive=None):
     """{rule: value} that mpm3d resolves for the deck under rule_args (a run of 0 steps,
     from its summary); the summary's not_copied (where mpm3d differs from the original by
-    design, with no rule) appended to the list not_copied where given."""
+    design, with no rule) appended to the list not_copied where given, its sensitive (where
+    the original's own results turn on the last digits) to the list sensitive."""
     summary = os.path.join(run_dir, "rules.json")
     argv = [mpm3d, "--threads", "1", "--quiet", "--no-output", "--steps", "0", "--summary",
             summary] + list(rule_args) + [deck_name]
@@ -378,6 +380,8 @@ def rules_in_force(mpm3d, deck_name, run_dir, rule_args, not_copied=None):
         rules = js.get("rules")
         if not_copied is not None:
             not_copied.extend(js.get("not_copied") or [])
+        if sensitive is not None:
+            sensitive.extend(js.get("sensitive") or [])
     except (OSError, ValueError):
         rules = None
     if rc != 0 or not isinstance(rules, dict):
@@ -395,12 +399,17 @@ def explain(deck_name, stem, dirs, args, mpm3d, rows, failed, until=None):
     os.makedirs(work, exist_ok=True)
     shutil.copy(os.path.join(dirs["mpm3d"], deck_name), os.path.join(work, deck_name))
     ours = rules_in_force(mpm3d, deck_name, work, base_args)
-    not_copied = []
-    target = rules_in_force(mpm3d, deck_name, work, ["--rules", preset], not_copied)
+    not_copied, sensitive = [], []
+    target = rules_in_force(mpm3d, deck_name, work, ["--rules", preset], not_copied, sensitive)
     if not_copied:
         print("  not copied (mpm3d differs from the original here by design, and no rule takes the "
               "original's way):")
         for text in not_copied:
+            print("    - " + text)
+    if sensitive:
+        print("  sensitive (the original's own results here turn on the last digits, so mpm3d's differ "
+              "within that spread):")
+        for text in sensitive:
             print("    - " + text)
     if ours == target:
         print("  why: mpm3d already ran with the original program's rules (--rules %s): the "

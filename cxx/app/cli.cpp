@@ -536,6 +536,9 @@ int run_main(int argc, char** argv, Ranks* ranks) {
       js << "],\n  \"not_copied\": [";
       const std::vector<std::string> not_copied = not_copied_text(m);
       for (size_t i = 0; i < not_copied.size(); ++i) js << (i ? ", " : "") << "\"" << json_escape(not_copied[i]) << "\"";
+      js << "],\n  \"sensitive\": [";
+      const std::vector<std::string> sensitive = sensitive_text(m);
+      for (size_t i = 0; i < sensitive.size(); ++i) js << (i ? ", " : "") << "\"" << json_escape(sensitive[i]) << "\"";
       js << "]\n}\n";
       write_text_atomic(opt.summary, js.str());
     }

@@ -111,6 +111,11 @@ std::string sgmp_held_cells_text(const Model& m);
 // original's behaviour (the summary's "not_copied", which mpm3d-compare --explain prints).
 std::vector<std::string> not_copied_text(const Model& m);
 
+// Where the original's own results on this deck turn on differences in the last digits, so
+// that mpm3d's, by either rule set, can differ as much as the original's differ from
+// themselves (the summary's "sensitive", which mpm3d-compare --explain prints).
+std::vector<std::string> sensitive_text(const Model& m);
+
 Model read_deck(const std::string& path, double memory_budget = deck_memory_budget(),
                 const RuleRequest& rules = RuleRequest());
 Model read_deck_text(const std::string& text, const std::string& name, double memory_budget = deck_memory_budget(),
