@@ -6,8 +6,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -71,6 +74,12 @@ std::string deck_path(const std::string& rel) { return std::string(MPM3D_SOURCE_
 
 double pressure(const mpm3d::Model& m, int p) { return mpm3d::particle_variable(m, "pres", p); }
 
+uint64_t bits_of(double x) {
+  uint64_t b;
+  std::memcpy(&b, &x, sizeof b);
+  return b;
+}
+
 }  // namespace
 
 // ------------------------------------------------------------------ programmed burn
@@ -91,6 +100,34 @@ TEST(Burn, FractionRampsOverOneAndAHalfCells) {
   MaterialParams other = m;
   other.type = MAT_NULL;
   EXPECT_EQ(mpm3d::burn_fraction(other, tl, 0.0), 1.0);
+}
+
+TEST(Burn, FractionSkipsTheDivisionOnlyWhereItsResultIsKnown) {
+  // burn_fraction skips x / w where x <= 0 or x >= w; the result must be that of the
+  // plain formula (what fortran_ref computes) bit for bit, here on random times spread
+  // over the ramp and its ends, and on x exactly at and one ulp either side of 0 and w.
+  const MaterialParams m = tnt();
+  auto plain = [&](double tl, double t) {
+    const double f = ((t - tl) * m.det_vel) / m.burn_width;
+    if (!(f > 0.0)) return 0.0;
+    return f < 1.0 ? f : 1.0;
+  };
+  const double tl = 1.0e-3, ramp = m.burn_width / m.det_vel;
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-0.5, 1.5);
+  long checked = 0;
+  for (int i = 0; i < 200000; ++i) {
+    const double t = tl + u(rng) * ramp;
+    ASSERT_EQ(bits_of(mpm3d::burn_fraction(m, tl, t)), bits_of(plain(tl, t))) << t;
+    ++checked;
+  }
+  for (double t0 : {tl, tl + ramp}) {
+    double t = t0;
+    for (int k = 0; k < 64; ++k) t = std::nextafter(t, -1.0);
+    for (int k = 0; k < 128; ++k, t = std::nextafter(t, 2.0), ++checked)
+      ASSERT_EQ(bits_of(mpm3d::burn_fraction(m, tl, t)), bits_of(plain(tl, t))) << t;
+  }
+  EXPECT_EQ(checked, 200256);
 }
 
 TEST(Burn, StepRuleLightsAllPastTheSinglePrecisionLightingTime) {

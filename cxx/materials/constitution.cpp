@@ -27,14 +27,6 @@ void eos_coefficients(const MaterialParams& m, double mu, double* a, double* b) 
   *b = c[4] / V;
 }
 
-double burn_fraction(const MaterialParams& m, double t_light, double time, bool step) {
-  if (m.type != MAT_HIEX) return 1.0;
-  if (step) return time > double(float(t_light)) ? 1.0 : 0.0;
-  const double f = ((time - t_light) * m.det_vel) / m.burn_width;
-  if (!(f > 0.0)) return 0.0;
-  return f < 1.0 ? f : 1.0;
-}
-
 double bulk_viscosity(double rho, double len, double c, double rate, double q1, double q2) {
   return Scalar::Ops::bulk_viscosity(rho, len, c, rate, q1, q2);
 }

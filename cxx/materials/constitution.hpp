@@ -69,8 +69,21 @@ bool lanes_use_avx2();
 // Programmed burn of hiex: F = min(1, max(0, (time - t_light) D / (1.5 h))), with
 // m.burn_width = 1.5 h; with step (rule burn=step) the original's F = 1 once time (the end
 // of the step) is past the lighting time, which it holds in single precision, else 0.
-// 1 for every other material.
-double burn_fraction(const MaterialParams& m, double t_light, double time, bool step = false);
+// 1 for every other material. Inline: the stress stage and the rest check call it for
+// every explosive particle each step. The ramp's quotient f = x / w (w = 1.5 h > 0) is
+// above 0 only where x is, and at least 1 where x >= w (division rounds monotonically):
+// those ends skip the division with the same result; between them f may still round to 0
+// or 1, which the tests after it keep.
+inline double burn_fraction(const MaterialParams& m, double t_light, double time, bool step = false) {
+  if (m.type != MAT_HIEX) return 1.0;
+  if (step) return time > double(float(t_light)) ? 1.0 : 0.0;
+  const double x = (time - t_light) * m.det_vel;
+  if (!(x > 0.0)) return 0.0;
+  if (x >= m.burn_width) return 1.0;
+  const double f = x / m.burn_width;
+  if (!(f > 0.0)) return 0.0;
+  return f < 1.0 ? f : 1.0;
+}
 
 // Artificial bulk viscosity q = rho l (q1 l d^2 - q2 c d) for a volumetric strain rate
 // d = tr(D) < 0 (compression), 0 otherwise.

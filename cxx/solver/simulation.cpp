@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -45,16 +46,25 @@ constexpr int kMovingWork = 32;
 // Skipping begins at most this many steps later than it could; the results are the same.
 constexpr long kRestProbeSteps = 16;
 
+inline uint64_t bits_of(double x) {
+  uint64_t b;
+  std::memcpy(&b, &x, sizeof b);
+  return b;
+}
+
 // Particle p, as it stands, would be left as it is by a step whose grid values near it are
 // all zero: its last G2P and stress update changed no bit of it (still bits 0 and 1),
 // its velocity and stress are zero (either sign) and, an explosive, it is unlit at time t.
 inline bool particle_quiet(const StepContext* c, const unsigned char* still, int p, double t) {
   if (still[p] != 3) return false;
+  // Velocity and stress all +-0: their bits less the sign bits are all clear (a NaN's are
+  // not), tested at once rather than nine compares with a branch each.
+  uint64_t bits = 0;
   const double* v = c->part.v + 3 * p;
-  if (v[0] != 0.0 || v[1] != 0.0 || v[2] != 0.0) return false;
   const double* s = c->part.sig + 6 * size_t(p);
-  for (int k = 0; k < 6; ++k)
-    if (s[k] != 0.0) return false;
+  for (int k = 0; k < 3; ++k) bits |= bits_of(v[k]);
+  for (int k = 0; k < 6; ++k) bits |= bits_of(s[k]);
+  if ((bits << 1) != 0) return false;
   const MaterialParams& mp = c->part.mats[c->part.mat[p]];
   return !(c->part.tlight && mp.type == MAT_HIEX) || burn_fraction(mp, c->part.tlight[p], t, c->rules.burn != 0) == 0.0;
 }
