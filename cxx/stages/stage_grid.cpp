@@ -52,101 +52,85 @@ static void reached_nodes(const StepContext* c, int lo[3], int hi[3]) {
   }
 }
 
+// Components mask of a node run cleared in one pass (bit d: component d), one instance per
+// mask so that adjacent components go out as one store.
+template <unsigned kMask>
+static void clear_run(double* row, long i0, long i1) {
+  for (long i = i0; i < i1; ++i) {
+    double* v = row + 3 * i;
+    if (kMask & 1u) v[0] = 0.0;
+    if (kMask & 2u) v[1] = 0.0;
+    if (kMask & 4u) v[2] = 0.0;
+  }
+}
+
+static void clear_run(double* row, long i0, long i1, unsigned m) {
+  switch (m) {
+    case 1: clear_run<1>(row, i0, i1); break;
+    case 2: clear_run<2>(row, i0, i1); break;
+    case 3: clear_run<3>(row, i0, i1); break;
+    case 4: clear_run<4>(row, i0, i1); break;
+    case 5: clear_run<5>(row, i0, i1); break;
+    case 6: clear_run<6>(row, i0, i1); break;
+    case 7: clear_run<7>(row, i0, i1); break;
+    default: break;
+  }
+}
+
 void apply_bc(const StepContext* c, double* a) {
   const int layers = c->grid.fix_layers > 1 ? c->grid.fix_layers : 1;  // 0 (unset) means 1
-  const long stride[3] = {1, c->grid.nn[0], long(c->grid.nn[0]) * c->grid.nn[1]};
   int lo[3], hi[3];
   reached_nodes(c, lo, hi);
-  // A face's node plane within the reached box as rows: the outer of the two other axes
-  // over the inner (the one of smaller stride), each row a run of nodes `stride[inner]`
-  // apart. Clearing is the same in any order: only the loop's shape differs between the
-  // team and one thread.
-  struct Plane {
-    int kind, axis, o_lo, o_hi, i_lo, i_hi;
-    long s_outer, s_inner;
-  };
-  auto plane = [&](int face) {
-    const int axis = face / 2, o1 = axis == 0 ? 1 : 0, o2 = axis == 2 ? 1 : 2;
-    return Plane{c->grid.fix[face], axis, lo[o2], hi[o2], lo[o1], hi[o1], stride[o2], stride[o1]};
-  };
-  // The node index of a face's layer along its axis.
-  auto layer_index = [&](int face, int layer) {
-    const int axis = face / 2;
-    return (face % 2 == 0) ? layer : c->grid.nn[axis] - 1 - layer;
-  };
-  auto clear_row = [&](const Plane& f, long first) {
-    if (f.kind == 1) {
-      for (int i = f.i_lo; i < f.i_hi; ++i) {
-        double* v = a + 3 * (first + i * f.s_inner);
-        v[0] = 0.0;
-        v[1] = 0.0;
-        v[2] = 0.0;
-      }
-    } else {
-      for (int i = f.i_lo; i < f.i_hi; ++i) a[3 * (first + i * f.s_inner) + f.axis] = 0.0;
-    }
-  };
-  long held = 0;
+  unsigned comps[6];  // the components face f holds: all (fixed) or its normal one
+  for (int face = 0; face < 6; ++face)
+    comps[face] = c->grid.fix[face] == 0 ? 0u : (c->grid.fix[face] == 1 ? 7u : 1u << (face / 2));
+  const int n0 = c->grid.nn[0], n1 = c->grid.nn[1], n2 = c->grid.nn[2];
+  const int b0 = hi[0] - lo[0], b1 = hi[1] - lo[1];
+  const long nodes = long(b0) * b1 * (hi[2] - lo[2]);
+  if (nodes <= 0) return;
+  long held = 0;  // the nodes of the held faces' planes within the box (a bound: edges twice)
   for (int face = 0; face < 6; ++face) {
     if (c->grid.fix[face] == 0) continue;
-    const Plane f = plane(face);
-    held += layers * long(f.o_hi - f.o_lo) * (f.i_hi - f.i_lo);
+    const int axis = face / 2;
+    held += layers * (nodes / (hi[axis] - lo[axis]));
   }
+  // The box's nodes [first, last) in its node order, as rows along x: each row's y and z
+  // faces' components in one pass (clear_run), then its x faces' nodes. Clearing is the
+  // same in any order and clearing twice is clearing, so the threads of a team each take
+  // one run, with no barrier between the faces.
+  auto clear_range = [&](long first, long last) {
+    for (long r = first / b0; r * b0 < last; ++r) {
+      const int j = lo[1] + int(r % b1), k = lo[2] + int(r / b1);
+      unsigned m = 0;  // the y and z faces holding the row
+      if (j < layers) m |= comps[2];
+      if (j >= n1 - layers) m |= comps[3];
+      if (k < layers) m |= comps[4];
+      if (k >= n2 - layers) m |= comps[5];
+      const long i0 = first > r * b0 ? first - r * b0 : 0;  // within the box's row
+      const long i1 = last < (r + 1) * b0 ? last - r * b0 : b0;
+      double* row = a + 3 * (lo[0] + long(n0) * (j + long(n1) * k));
+      clear_run(row, i0, i1, m);
+      for (long l = 0; l < layers; ++l) {  // the x faces' nodes of the row
+        const long lx = l - lo[0], hx = n0 - 1 - l - lo[0];
+        if (lx >= i0 && lx < i1) clear_run(row + 3 * lx, 0, 1, comps[0]);
+        if (hx >= i0 && hx < i1) clear_run(row + 3 * hx, 0, 1, comps[1]);
+      }
+    }
+  };
   int threads = 1;
 #ifdef _OPENMP
   threads = omp_get_max_threads();
 #endif
   if (threads > 1 && held > kParallelBcNodes) {
-    // Each thread one run of the box's node order, every face's components in it: no
-    // thread writes another's nodes, so no barrier between the faces (clearing twice is
-    // clearing).
-    unsigned comps[6];  // the components face f holds: all (fixed) or its normal one
-    for (int face = 0; face < 6; ++face)
-      comps[face] = c->grid.fix[face] == 0 ? 0u : (c->grid.fix[face] == 1 ? 7u : 1u << (face / 2));
-    const int n0 = c->grid.nn[0], n1 = c->grid.nn[1], n2 = c->grid.nn[2];
-    const int b0 = hi[0] - lo[0], b1 = hi[1] - lo[1];
-    const long nodes = long(b0) * b1 * (hi[2] - lo[2]);
-    auto clear = [&](double* v, unsigned m) {
-      for (int d = 0; d < 3; ++d)
-        if (m >> d & 1u) v[d] = 0.0;
-    };
 #pragma omp parallel
     {
       int t, T;
       team_position(t, T);
-      const long first = nodes * t / T, last = nodes * (t + 1) / T;
-      for (long r = first / b0; r * b0 < last; ++r) {  // the box's node rows along x
-        const int j = lo[1] + int(r % b1), k = lo[2] + int(r / b1);
-        unsigned m = 0;  // the y and z faces holding the row
-        if (j < layers) m |= comps[2];
-        if (j >= n1 - layers) m |= comps[3];
-        if (k < layers) m |= comps[4];
-        if (k >= n2 - layers) m |= comps[5];
-        const long i0 = first > r * b0 ? first - r * b0 : 0;  // within the box's row
-        const long i1 = last < (r + 1) * b0 ? last - r * b0 : b0;
-        double* row = a + 3 * (lo[0] + long(n0) * (j + long(n1) * k));
-        for (int d = 0; d < 3; ++d)
-          if (m >> d & 1u)
-            for (long i = i0; i < i1; ++i) row[3 * i + d] = 0.0;
-        for (long l = 0; l < layers; ++l) {  // the x faces' nodes of the row
-          const long lx = l - lo[0], hx = n0 - 1 - l - lo[0];
-          if (lx >= i0 && lx < i1) clear(row + 3 * lx, comps[0]);
-          if (hx >= i0 && hx < i1) clear(row + 3 * hx, comps[1]);
-        }
-      }
+      clear_range(nodes * t / T, nodes * (t + 1) / T);
     }
     return;
   }
-  for (int face = 0; face < 6; ++face) {
-    if (c->grid.fix[face] == 0) continue;
-    const Plane f = plane(face);
-    for (int layer = 0; layer < layers; ++layer) {
-      const int li = layer_index(face, layer);
-      if (li < lo[f.axis] || li >= hi[f.axis]) continue;  // a layer no stencil reaches
-      const long base = stride[f.axis] * li;
-      for (int o = f.o_lo; o < f.o_hi; ++o) clear_row(f, base + o * f.s_outer);
-    }
-  }
+  clear_range(0, nodes);
 }
 
 namespace {
