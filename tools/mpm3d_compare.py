@@ -365,11 +365,19 @@ def user_rule_args(args):
     return out
 
 
-def rules_in_force(mpm3d, deck_name, run_dir, rule_args, not_copied=None, sensitive=None):
+# The summary's notes on the original programs that --explain prints: key, heading.
+SUMMARY_NOTES = (
+    ("not_copied", "not copied (mpm3d differs from the original here by design, and no rule takes the "
+                   "original's way)"),
+    ("sensitive", "sensitive (the original's own results here turn on the last digits, so mpm3d's differ "
+                  "within that spread)"),
+)
+
+
+def rules_in_force(mpm3d, deck_name, run_dir, rule_args, notes=None):
     """{rule: value} that mpm3d resolves for the deck under rule_args (a run of 0 steps,
-    from its summary); the summary's not_copied (where mpm3d differs from the original by
-    design, with no rule) appended to the list not_copied where given, its sensitive (where
-    the original's own results turn on the last digits) to the list sensitive."""
+    from its summary); where notes (a dict) is given, the summary's lists of SUMMARY_NOTES
+    by key."""
     summary = os.path.join(run_dir, "rules.json")
     argv = [mpm3d, "--threads", "1", "--quiet", "--no-output", "--steps", "0", "--summary",
             summary] + list(rule_args) + [deck_name]
@@ -378,10 +386,9 @@ def rules_in_force(mpm3d, deck_name, run_dir, rule_args, not_copied=None, sensit
         with open(summary) as f:
             js = json.load(f)
         rules = js.get("rules")
-        if not_copied is not None:
-            not_copied.extend(js.get("not_copied") or [])
-        if sensitive is not None:
-            sensitive.extend(js.get("sensitive") or [])
+        if notes is not None:
+            for key, _ in SUMMARY_NOTES:
+                notes[key] = js.get(key) or []
     except (OSError, ValueError):
         rules = None
     if rc != 0 or not isinstance(rules, dict):
@@ -399,18 +406,13 @@ def explain(deck_name, stem, dirs, args, mpm3d, rows, failed, until=None):
     os.makedirs(work, exist_ok=True)
     shutil.copy(os.path.join(dirs["mpm3d"], deck_name), os.path.join(work, deck_name))
     ours = rules_in_force(mpm3d, deck_name, work, base_args)
-    not_copied, sensitive = [], []
-    target = rules_in_force(mpm3d, deck_name, work, ["--rules", preset], not_copied, sensitive)
-    if not_copied:
-        print("  not copied (mpm3d differs from the original here by design, and no rule takes the "
-              "original's way):")
-        for text in not_copied:
-            print("    - " + text)
-    if sensitive:
-        print("  sensitive (the original's own results here turn on the last digits, so mpm3d's differ "
-              "within that spread):")
-        for text in sensitive:
-            print("    - " + text)
+    notes = {}
+    target = rules_in_force(mpm3d, deck_name, work, ["--rules", preset], notes)
+    for key, heading in SUMMARY_NOTES:
+        if notes.get(key):
+            print("  %s:" % heading)
+            for text in notes[key]:
+                print("    - " + text)
     if ours == target:
         print("  why: mpm3d already ran with the original program's rules (--rules %s): the "
               "difference is not one of mpm3d's rules\n" % preset)
