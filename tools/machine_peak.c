@@ -36,6 +36,31 @@ int main(void) {
     sink += b[0];
   }
   printf("add+mul, 256-bit, no FMA: %.2f GFLOP/s (%g)\n", rounds * kChains * 2.0 * 4 / t / 1e9, sink);
+  // Divides and square roots, 256-bit, independent chains (the stress returns' and the
+  // G2P's w / m): their own rate, far under the add and multiply one.
+  __m256d dv[kChains], sq[kChains];
+  const __m256d divisor = _mm256_set1_pd(1.000000001);
+  for (int i = 0; i < kChains; i++) {
+    dv[i] = _mm256_set1_pd(1.0 + i);
+    sq[i] = _mm256_set1_pd(2.0 + i);
+  }
+  const long drounds = rounds / 8;
+  t0 = now();
+  for (long k = 0; k < drounds; k++)
+    for (int i = 0; i < kChains; i++) dv[i] = _mm256_div_pd(dv[i], divisor);
+  t = now() - t0;
+  const double div_rate = drounds * kChains * 4.0 / t / 1e9;
+  t0 = now();
+  for (long k = 0; k < drounds; k++)
+    for (int i = 0; i < kChains; i++) sq[i] = _mm256_sqrt_pd(sq[i]);
+  t = now() - t0;
+  for (int i = 0; i < kChains; i++) {
+    double b[4];
+    _mm256_storeu_pd(b, _mm256_add_pd(dv[i], sq[i]));
+    sink += b[0];
+  }
+  printf("divide, 256-bit: %.2f G/s; square root, 256-bit: %.2f G/s (%g)\n", div_rate,
+         drounds * kChains * 4.0 / t / 1e9, sink);
   const size_t sizes[] = {1u << 14, 1u << 17, 1u << 20, 1u << 23};
   for (int z = 0; z < 4; z++) {
     const size_t n = sizes[z];

@@ -1,8 +1,7 @@
 #!/usr/bin/env python3
 """Threads that pay, idle and busy (docs/PERFORMANCE.md): whole-process wall time of mpm3d
-on one thread, on two with every step on both (--team fixed), on two with the time loop
-choosing (--team adaptive, the default) and on two with OMP_WAIT_POLICY=passive, on an idle
-machine and next to one other busy process (a one-thread mpm3d run of the coarse Taylor bar,
+on one thread, on two with every step on both (--team fixed) and on two with the time loop
+choosing (--team adaptive, the default), on an idle machine and next to one other busy process (a one-thread mpm3d run of the coarse Taylor bar,
 restarted as it ends). The variants run one after the other, the order reversed every round;
 the figure is the median over the rounds of each variant's time over the one-thread run's
 time of the same round.
@@ -31,7 +30,6 @@ VARIANTS = [
     ("one", ["--threads", "1", "--team", "fixed"], {}),
     ("two_fixed", ["--threads", "2", "--team", "fixed"], {}),
     ("two_adaptive", ["--threads", "2", "--team", "adaptive"], {}),
-    ("two_fixed_passive", ["--threads", "2", "--team", "fixed"], {"OMP_WAIT_POLICY": "passive"}),
 ]
 
 

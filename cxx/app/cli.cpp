@@ -20,6 +20,7 @@
 #include "io/data_out.hpp"
 #include "io/json_text.hpp"
 #include "mpm3d.hpp"
+#include "core/team_pool.hpp"
 #include "solver/checkpoint.hpp"
 
 #ifdef _OPENMP
@@ -505,7 +506,8 @@ int run_main(int argc, char** argv, Ranks* ranks) {
             }() << "}"
          << ",\n  \"dt_min\": " << json_number(dt_min) << ",\n  \"dt_max\": " << json_number(dt_max) << ",\n  \"threads\": " << threads
          << ",\n  \"team\": {\"adaptive\": " << (sim.team.adaptive ? "true" : "false")
-         << ", \"steps_on_one_thread\": " << sim.team.steps_on_one << ", \"probes\": " << sim.team.probes << "}"
+         << ", \"steps_on_one_thread\": " << sim.team.steps_on_one << ", \"probes\": " << sim.team.probes
+         << ", \"regions\": " << team_runs() << "}"
          << ",\n  \"ranks\": " << (ranks ? ranks->size() : 1)
          << ",\n  \"rank_imbalance\": " << json_number(ranks ? ranks->imbalance() : 1.0)
          << ",\n  \"rank_bytes_sent_per_step\": " << json_number(rank_bytes)

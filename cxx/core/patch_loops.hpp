@@ -17,29 +17,37 @@
 #include <omp.h>
 #endif
 
+#include <type_traits>
+#include <vector>
+
 #include "core/step_state.hpp"
+#include "core/team_pool.hpp"
 
 namespace mpm3d {
+
+// The thread count the stages use: OpenMP's (--threads, OMP_NUM_THREADS, the time loop's
+// per-step choice).
+inline int omp_threads() {
+#ifdef _OPENMP
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
 
 // The stress update reads no patch buffer; it takes the patch lists in chunks of this many
 // entries: runs of whole lane groups.
 constexpr int kListChunk = 64;
 
 // The calling thread's number t in its team and the team's size T (0 and 1 outside a
-// parallel region).
+// team_region).
 inline void team_position(int& t, int& T) {
-  t = 0;
-  T = 1;
-#ifdef _OPENMP
-  t = omp_get_thread_num();
-  T = omp_get_num_threads();
-#endif
+  t = team_thread();
+  T = team_size();
 }
 
 // Whether the stages run on one thread (the time loop's choice or the run's --threads 1):
-// they then call their loop bodies directly. A parallel region, even of one thread, ends in
-// libgomp with a futex system call (10-16 a step: 12 % of a small deck's one-thread time on
-// this machine's virtual CPUs, in the kernel and libgomp); a barrier outside a region, none.
+// they then call their loop bodies directly, with no team to meet.
 inline bool one_thread() {
 #ifdef _OPENMP
   return omp_get_max_threads() == 1;
@@ -48,28 +56,58 @@ inline bool one_thread() {
 #endif
 }
 
-// body() by every thread of a parallel region, or once directly on one thread (one_thread:
-// team_position then gives 0 of 1, and barriers inside it are free).
+// body() by every thread of the team (team_pool.hpp: the OpenMP thread count, persistent
+// threads that meet on one cache line instead of a parallel region's fork and join), or
+// once directly on one thread (one_thread: team_position then gives 0 of 1, and
+// team_barrier is free).
 template <class F>
 inline void team_region(F&& body) {
   if (one_thread()) {
     body();
     return;
   }
-#pragma omp parallel
-  body();
+  using Body = typename std::remove_reference<F>::type;
+  team_run(omp_threads(), [](void* b) { (*static_cast<Body*>(b))(); }, static_cast<void*>(&body));
 }
 
-// f(i) for i in [0, n), in one contiguous run per thread (OpenMP's static schedule), or in
-// order directly on one thread (one_thread).
+// f(i) for i in [0, n), in one contiguous run per thread (OpenMP's static schedule: the
+// first n % T threads one more), or in order directly on one thread (one_thread).
 template <class F>
 inline void team_for(int n, F&& f) {
   if (one_thread()) {
     for (int i = 0; i < n; ++i) f(i);
     return;
   }
-#pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) f(i);
+  team_region([&] {
+    int t, T;
+    team_position(t, T);
+    const int q = n / T, r = n % T;
+    const int lo = t * q + (t < r ? t : r), hi = lo + q + (t < r ? 1 : 0);
+    for (int i = lo; i < hi; ++i) f(i);
+  });
+}
+
+// body(lo, hi, acc) over [0, n) in one contiguous run per thread, each with its own
+// accumulator started at init; the accumulators combined in thread order (combine(a, b)
+// into a). One thread: body(0, n, acc) directly.
+template <class A, class F, class C>
+inline A team_reduce(long n, A init, F&& body, C&& combine) {
+  A acc = init;
+  if (one_thread()) {
+    body(0L, n, acc);
+    return acc;
+  }
+  struct alignas(64) Slot {
+    A v;
+  };
+  std::vector<Slot> part(static_cast<size_t>(omp_threads()), Slot{init});
+  team_region([&] {
+    int t, T;
+    team_position(t, T);
+    body(n * t / T, n * (t + 1) / T, part[size_t(t)].v);
+  });
+  for (const Slot& s : part) combine(acc, s.v);
+  return acc;
 }
 
 // Patches [lo, hi) of thread t of T: the first patch whose list starts at or after the

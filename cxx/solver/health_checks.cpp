@@ -150,12 +150,23 @@ void Simulation::health_check() {
       if (!ok && P.deck_number(p) < bad_here) bad_here = P.deck_number(p);
       if (ie[p] < ie_min_here) ie_min_here = ie[p];
     };
-    if (one_thread()) {
-      for (int p = 0; p < np; ++p) check(p, bad, ie_min);
-    } else {
-#pragma omp parallel for schedule(static) reduction(min : bad, ie_min)
-      for (int p = 0; p < np; ++p) check(p, bad, ie_min);
-    }
+    struct Least {
+      int bad;
+      double ie_min;
+    };
+    const Least least = team_reduce(
+        long(np), Least{bad, ie_min},
+        [&](long lo, long hi, Least& l) {
+          Least here = l;  // locals: l may alias the particle arrays for all the compiler knows
+          for (long p = lo; p < hi; ++p) check(int(p), here.bad, here.ie_min);
+          l = here;
+        },
+        [](Least& a, const Least& b) {
+          a.bad = std::min(a.bad, b.bad);
+          a.ie_min = std::min(a.ie_min, b.ie_min);
+        });
+    bad = least.bad;
+    ie_min = least.ie_min;
     bad = lowest(bad);
     if (ranks) ie_min = ranks->min(ie_min);
     if (bad != kNone) {

@@ -444,13 +444,15 @@ void Simulation::step() {
 double Simulation::velocity_time_step() {
   const double* v = model.particles.v.data();
   const long n = 3L * model.particles.np;
-  double vmax = 0.0;  // a max: the same bits for any thread count
-  if (one_thread()) {  // no region: its end costs a system call (patch_loops.hpp)
-    for (long i = 0; i < n; ++i) vmax = std::max(vmax, std::fabs(v[i]));
-  } else {
-#pragma omp parallel for reduction(max : vmax)
-    for (long i = 0; i < n; ++i) vmax = std::max(vmax, std::fabs(v[i]));
-  }
+  // A max: the same bits for any thread count.
+  double vmax = team_reduce(
+      n, 0.0,
+      [&](long lo, long hi, double& m) {
+        double here = m;  // a local: m may alias v for all the compiler knows
+        for (long i = lo; i < hi; ++i) here = std::max(here, std::fabs(v[i]));
+        m = here;
+      },
+      [](double& a, double b) { a = std::max(a, b); });
   if (ranks) vmax = ranks->max(vmax);
   double dt = std::numeric_limits<double>::infinity();
   for (const MaterialParams& mp : model.mats) dt = std::min(dt, model.dcell / (mp.wave_speed + vmax));

@@ -53,15 +53,13 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
     const int* order = c->ranks.order;
     auto particle = [&](int i) { return order ? order[i] : i; };
     auto patch = [&](int p) { return pre && filter && other_component(c, p) ? -1 : patch_of[p]; };
-    if (order) {
-#pragma omp barrier
-    }
+    if (order) team_barrier();
     for (int i = lo; i < hi; ++i) {
       const int p = particle(i), q = patch(p);
       if (q >= 0) ++cnt[q];
       else if (pre && c->part.cell[p] < 0 && !(filter && other_component(c, p))) ++outside_here;
     }
-#pragma omp barrier
+    team_barrier();
     // Patch starts, buffer slots, and each run's fill pointer into every patch's list: a
     // prefix sum over the patches in two passes, each thread over an equal run of patches
     // (a serial pass would cost T x npatch steps on one thread, about 1 % of a step of the
@@ -79,7 +77,7 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
       }
       run_sums[size_t(t)] = {particles, nonempty};
     }
-#pragma omp barrier
+    team_barrier();
     {
       int offset = 0, slot = 0;
       for (int u = 0; u < t; ++u) {
@@ -103,17 +101,18 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
         nslot = slot;
       }
     }
-#pragma omp barrier
+    team_barrier();
     for (int i = lo; i < hi; ++i) {
       const int p = particle(i), q = patch(p);
       if (q >= 0) c->patch.patch_part[cnt[q]++] = p;
     }
   };
-  if (team == 1) {  // no region: its end costs a system call (one_thread, patch_loops.hpp)
+  if (team == 1) {  // no team to meet (one_thread, patch_loops.hpp)
     bin(outside);
   } else {
-#pragma omp parallel num_threads(team) reduction(+ : outside)
-    bin(outside);
+    std::vector<int> outside_of(static_cast<size_t>(team), 0);
+    team_region([&] { bin(outside_of[size_t(team_thread())]); });
+    for (int n : outside_of) outside += n;
   }
   c->patch.nslot = nslot;
   c->out.noutside = outside;

@@ -122,12 +122,11 @@ void apply_bc(const StepContext* c, double* a) {
   threads = omp_get_max_threads();
 #endif
   if (threads > 1 && held > kParallelBcNodes) {
-#pragma omp parallel
-    {
+    team_region([&] {
       int t, T;
       team_position(t, T);
       clear_range(nodes * t / T, nodes * (t + 1) / T);
-    }
+    });
     return;
   }
   clear_range(0, nodes);
