@@ -1,13 +1,18 @@
 // Whole-solver physics through read_deck_text / read_deck and Simulation.
 #include <gtest/gtest.h>
 
+#include <omp.h>
+
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <string>
 #include <vector>
 
 #include "input/data_in.hpp"
+#include "core/patch_loops.hpp"
+#include "core/team_pool.hpp"
 #include "mpm3d.hpp"
 #include "transfer/transfer_common.hpp"
 #include "test_util.hpp"
@@ -790,4 +795,87 @@ TEST(EnergyBalance, RampedLoadsAndTheFortranStageAgree) {
   if (!mpm3d::have_fortran_stages()) GTEST_SKIP() << "no Fortran reference kernels in this build";
   const double wf = load_work_of(deck, true, &balance_f);
   EXPECT_EQ(std::memcmp(&w, &wf, sizeof w), 0) << w << " " << wf;
+}
+
+// The stages' thread team (core/team_pool.hpp): every job runs once on each of its threads,
+// also while the team grows and shrinks between jobs (a new worker must not take a job
+// that ran before it, nor a job whose fields are being written), with more threads than
+// CPUs, and its barrier keeps the threads' phases apart.
+TEST(TeamPool, EveryThreadRunsEachJobOnce) {
+  struct Job {
+    std::atomic<int> hits[5];
+    std::atomic<int> wrong_size{0};
+    int size = 0;
+  } job;
+  auto fn = [](void* a) {
+    Job& j = *static_cast<Job*>(a);
+    j.hits[mpm3d::team_thread()].fetch_add(1);
+    if (mpm3d::team_size() != j.size) j.wrong_size.fetch_add(1);
+  };
+  for (int size : {2, 3, 2, 5, 4, 2, 5, 3}) {
+    for (int k = 0; k < 400; ++k) {
+      for (auto& h : job.hits) h.store(0);
+      job.size = size;
+      mpm3d::team_run(size, fn, &job);
+      for (int t = 0; t < 5; ++t) ASSERT_EQ(job.hits[t].load(), t < size ? 1 : 0) << "thread " << t << " of " << size;
+      ASSERT_EQ(mpm3d::team_thread(), 0);
+      ASSERT_EQ(mpm3d::team_size(), 1);
+    }
+  }
+  EXPECT_EQ(job.wrong_size.load(), 0);
+}
+
+TEST(TeamPool, BarrierKeepsThePhasesApart) {
+  for (int size : {2, 3}) {
+    struct Job {
+      std::atomic<int> value[3];
+      std::atomic<int> wrong{0};
+      int size = 0;
+    } job;
+    job.size = size;
+    for (auto& v : job.value) v.store(-1);
+    mpm3d::team_run(size, [](void* a) {
+      Job& j = *static_cast<Job*>(a);
+      for (int round = 0; round < 2000; ++round) {
+        j.value[mpm3d::team_thread()].store(round);
+        mpm3d::team_barrier();  // every thread's value of this round is written ...
+        for (int t = 0; t < j.size; ++t)
+          if (j.value[t].load() != round) j.wrong.fetch_add(1);
+        mpm3d::team_barrier();  // ... and read before the next round writes
+      }
+    }, &job);
+    EXPECT_EQ(job.wrong.load(), 0) << size << " threads";
+  }
+}
+
+TEST(TeamPool, ANestedRunStaysOnItsThread) {
+  struct Job {
+    std::atomic<int> inner_runs{0}, wrong{0};
+  } job;
+  mpm3d::team_run(2, [](void* a) {
+    Job& j = *static_cast<Job*>(a);
+    const int me = mpm3d::team_thread();
+    mpm3d::team_run(2, [](void* b) {
+      Job& k = *static_cast<Job*>(b);
+      k.inner_runs.fetch_add(1);
+      if (mpm3d::team_thread() != 0 || mpm3d::team_size() != 1) k.wrong.fetch_add(1);
+    }, &j);
+    if (mpm3d::team_thread() != me || mpm3d::team_size() != 2) j.wrong.fetch_add(1);
+  }, &job);
+  EXPECT_EQ(job.inner_runs.load(), 2);  // once on each outer thread
+  EXPECT_EQ(job.wrong.load(), 0);
+}
+
+TEST(TeamPool, ReductionCombinesTheRunsInThreadOrder) {
+  omp_set_num_threads(3);
+  const std::vector<long> order = mpm3d::team_reduce(
+      10L, std::vector<long>{},
+      [](long lo, long hi, std::vector<long>& part) {
+        for (long i = lo; i < hi; ++i) part.push_back(i);
+      },
+      [](std::vector<long>& a, const std::vector<long>& b) { a.insert(a.end(), b.begin(), b.end()); });
+  omp_set_num_threads(1);
+  std::vector<long> want(10);
+  for (long i = 0; i < 10; ++i) want[size_t(i)] = i;
+  EXPECT_EQ(order, want);
 }

@@ -1,9 +1,11 @@
 // The stages' thread team (team_pool.hpp).
 //
-// A job is published by bumping `generation` after writing its fields; a worker that sees
-// a new generation reads the job and checks the generation again (a worker that took no
-// part in the last job may still be reading when the next is published), runs it if its
-// number is below the job's size, and counts itself out. The caller runs its own share and
+// A job is published as a sequence lock: `generation` goes odd while the caller writes the
+// job's fields and even again once they are written; a worker that sees a new even
+// generation reads the job and checks the generation again (a worker that took no part in
+// the last job may still be reading when the next is written), runs it if its number is
+// below the job's size, and counts itself out. A worker starts at the generation of its
+// creation, so it never takes a job that ran before it. The caller runs its own share and
 // waits until every other taker has counted out, so a job's fields are never rewritten while
 // a taker reads them. Waiting spins on one cache line with a pause, then gives the core away:
 // workers sleep on a condition variable after about a millisecond without a job, the caller
@@ -79,7 +81,7 @@ class Team {
     {
       std::lock_guard<std::mutex> lock(mutex_);
       stop_.store(true);
-      generation_.fetch_add(1);
+      generation_.fetch_add(2);
     }
     wake_.notify_all();
     for (std::thread& w : workers_) w.join();
@@ -88,14 +90,18 @@ class Team {
   void run(int threads, void (*fn)(void*), void* arg) {
     while (int(workers_.size()) < threads - 1) {
       const int number = int(workers_.size()) + 1;
-      workers_.emplace_back([this, number] { work(number); });
+      const unsigned now = generation_.load(std::memory_order_relaxed);
+      workers_.emplace_back([this, number, now] { work(number, now); });
       workers_count_.store(int(workers_.size()), std::memory_order_relaxed);
     }
+    const unsigned g = generation_.load(std::memory_order_relaxed);  // even: no job being written
+    generation_.store(g + 1, std::memory_order_seq_cst);  // odd: the fields change
+    std::atomic_thread_fence(std::memory_order_release);  // ... only after it is seen
     fn_.store(fn, std::memory_order_relaxed);
     arg_.store(arg, std::memory_order_relaxed);
     size_.store(threads, std::memory_order_relaxed);
     pending_.store(threads - 1, std::memory_order_relaxed);
-    generation_.fetch_add(1, std::memory_order_seq_cst);  // publishes the fields above
+    generation_.store(g + 2, std::memory_order_seq_cst);  // publishes the fields above
     if (sleepers_.load(std::memory_order_seq_cst) > 0) {
       std::lock_guard<std::mutex> lock(mutex_);
       wake_.notify_all();
@@ -125,10 +131,12 @@ class Team {
   long runs() const { return runs_; }
 
  private:
-  void work(int number) {
-    unsigned seen = 0;
+  void work(int number, unsigned seen) {
     for (;;) {
-      auto fresh = [&] { return generation_.load(std::memory_order_acquire) != seen; };
+      auto fresh = [&] {
+        const unsigned g = generation_.load(std::memory_order_acquire);
+        return g != seen && (g & 1u) == 0;
+      };
       const bool spin = may_spin(int(workers_count_.load(std::memory_order_relaxed)) + 1);
       if (!(spin && spin_until(fresh, std::chrono::milliseconds(1))) && !fresh()) {
         sleepers_.fetch_add(1, std::memory_order_seq_cst);
@@ -140,6 +148,7 @@ class Team {
       }
       const unsigned g = generation_.load(std::memory_order_acquire);
       if (stop_.load()) return;
+      if ((g & 1u) != 0) continue;  // a job being written
       void (*fn)(void*) = fn_.load(std::memory_order_relaxed);
       void* arg = arg_.load(std::memory_order_relaxed);
       const int size = size_.load(std::memory_order_relaxed);
