@@ -25,8 +25,9 @@ Timings on a loaded machine are not worth much: compare rows measured side by si
 rerun on a quiet machine.
 
 usage: bench.py BUILD_DIR CSV [max_threads] [deck ...]
-Also, per deck, the parallel regions of a step and the step's time outside them at 1 thread
-(regions.csv beside CSV; the LD_PRELOAD counter BUILD_DIR/tools/mpm3d_omp_regions.so).
+Also, per deck, the thread team's loops a step and the step's time outside them on 2 threads
+against its time on 1 (regions.csv beside CSV; the summary's team.regions and
+team.seconds_in_regions).
 
 environment: BENCH_STEPS (default 100), BENCH_REPEATS (3), BENCH_ROUNDS (5), BENCH_REGRID (20),
              BENCH_FINE=1 adds taylor_fine.mpm
@@ -66,37 +67,39 @@ def run_once(exe, deck, threads, steps, regrid, tmp, cpu=None):
     return s, rss_kb * 1024, load
 
 
-def regions_once(exe, counter, deck, steps, tmp):
-    """One 1-thread run under the region counter (tools/omp_regions.c), the set-up's regions
-    left out: (summary, parallel regions in the step loop, seconds inside them)."""
-    out, summary = os.path.join(tmp, "regions.txt"), os.path.join(tmp, "r.json")
+def regions_once(exe, deck, steps, tmp):
+    """The team's loops of the step loop on 2 threads, every step on both (--team fixed), the
+    set-up's left out (the summary's team.regions and team.seconds_in_regions): (summary of the
+    run, loops, seconds inside them)."""
+    summary = os.path.join(tmp, "r.json")
 
-    def counted(n, skip):
-        env = dict(os.environ, LD_PRELOAD=counter, OMP_REGIONS_OUT=out, OMP_REGIONS_SKIP=str(skip))
-        subprocess.run([exe, "--threads", "1", "--steps", str(n), "--no-output", "--quiet",
-                        "--summary", summary, deck], check=True, env=env)
-        with open(out) as f:
-            r, inside = f.read().split()
-        return int(r), float(inside)
+    def counted(n):
+        subprocess.run([exe, "--threads", "2", "--team", "fixed", "--steps", str(n), "--no-output", "--quiet",
+                        "--summary", summary, deck], check=True)
+        with open(summary) as f:
+            s = json.load(f)
+        return s, s["team"]["regions"], s["team"]["seconds_in_regions"]
 
-    setup, _ = counted(0, 0)
-    regions, inside = counted(steps, setup)
-    with open(summary) as f:
-        return json.load(f), regions, inside
+    _, setup, setup_inside = counted(0)
+    s, regions, inside = counted(steps)
+    return s, regions - setup, inside - setup_inside
 
 
-def serial_profile(exe, counter, deck, steps, repeats, tmp):
-    """Regions per step and the step's time outside them at 1 thread (the best of the
-    repeats), with the speedup that serial part alone would allow at 8 and 16 threads."""
+def serial_profile(exe, deck, steps, repeats, tmp):
+    """The team's loops per step and the step's time outside them on 2 threads (the best of
+    the repeats), against the step's time on 1 thread, with the speedup that serial part
+    alone would allow at 8 and 16 threads."""
     best = None
     for _ in range(repeats):
-        s, regions, inside = regions_once(exe, counter, deck, steps, tmp)
+        s, regions, inside = regions_once(exe, deck, steps, tmp)
         step_s = s["ns_per_particle_step"] * 1e-9 * s["particles"] * steps
-        if best is None or step_s < best[1]:
-            best = (s, step_s, regions, inside)
-    s, step_s, regions, inside = best
-    serial = max(0.0, step_s - inside)
-    f = serial / step_s
+        serial = max(0.0, step_s - inside)
+        if best is None or serial < best[1]:
+            best = (s, serial, regions)
+    s, serial, regions = best
+    one = run_once(exe, deck, 1, steps, 0, tmp)[0]
+    step_s = one["ns_per_particle_step"] * 1e-9 * one["particles"] * steps
+    f = min(1.0, serial / step_s)
     row = {"deck": os.path.basename(deck), "particles": s["particles"], "steps": steps,
            "regions_per_step": f"{regions / steps:g}", "step_us_1thread": f"{1e6 * step_s / steps:.1f}",
            "serial_us_per_step": f"{1e6 * serial / steps:.2f}", "serial_fraction": f"{f:.5f}"}
@@ -204,23 +207,20 @@ def main():
                           f"speedup {row['speedup']} eff {row['efficiency']} {row['peak_rss_bytes_per_particle']} B/p "
                           f"(load {loads[0]:.2f})" + extra, flush=True)
 
-    # The serial part of a step and its parallel regions (1 thread), measured
-    # from outside the program by the LD_PRELOAD counter tools/omp_regions.c.
-    counter = os.path.join(build, "tools", "mpm3d_omp_regions.so")
-    if os.path.isfile(counter):
-        out = os.path.join(os.path.dirname(out_csv) or ".", "regions.csv")
-        with tempfile.TemporaryDirectory() as tmp, open(out, "w", newline="") as f:
-            w = None
-            for deck in decks:
-                row = serial_profile(exe, counter, deck, steps, repeats, tmp)
-                if w is None:
-                    w = csv.DictWriter(f, fieldnames=list(row))
-                    w.writeheader()
-                w.writerow(row)
-                print(f"{row['deck']:24s} 1 thread: {row['regions_per_step']} parallel regions a step, "
-                      f"{row['serial_us_per_step']} us of {row['step_us_1thread']} us outside them (serial "
-                      f"fraction {row['serial_fraction']}); that alone allows {row['amdahl_speedup_8']} at 8 "
-                      f"threads, {row['amdahl_speedup_16']} at 16", flush=True)
+    # The serial part of a step and the team's loops (2 threads), from the summary.
+    out = os.path.join(os.path.dirname(out_csv) or ".", "regions.csv")
+    with tempfile.TemporaryDirectory() as tmp, open(out, "w", newline="") as f:
+        w = None
+        for deck in decks:
+            row = serial_profile(exe, deck, steps, repeats, tmp)
+            if w is None:
+                w = csv.DictWriter(f, fieldnames=list(row))
+                w.writeheader()
+            w.writerow(row)
+            print(f"{row['deck']:24s} {row['regions_per_step']} team loops a step; on 2 threads "
+                  f"{row['serial_us_per_step']} us a step outside them, of {row['step_us_1thread']} us on 1 (serial "
+                  f"fraction {row['serial_fraction']}); that alone allows {row['amdahl_speedup_8']} at 8 "
+                  f"threads, {row['amdahl_speedup_16']} at 16", flush=True)
 
 
 if __name__ == "__main__":

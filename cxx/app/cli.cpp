@@ -507,7 +507,7 @@ int run_main(int argc, char** argv, Ranks* ranks) {
          << ",\n  \"dt_min\": " << json_number(dt_min) << ",\n  \"dt_max\": " << json_number(dt_max) << ",\n  \"threads\": " << threads
          << ",\n  \"team\": {\"adaptive\": " << (sim.team.adaptive ? "true" : "false")
          << ", \"steps_on_one_thread\": " << sim.team.steps_on_one << ", \"probes\": " << sim.team.probes
-         << ", \"regions\": " << team_runs() << "}"
+         << ", \"regions\": " << team_runs() << ", \"seconds_in_regions\": " << json_number(team_seconds()) << "}"
          << ",\n  \"ranks\": " << (ranks ? ranks->size() : 1)
          << ",\n  \"rank_imbalance\": " << json_number(ranks ? ranks->imbalance() : 1.0)
          << ",\n  \"rank_bytes_sent_per_step\": " << json_number(rank_bytes)

@@ -107,6 +107,7 @@ class Team {
       wake_.notify_all();
     }
     ++runs_;
+    const auto start = std::chrono::steady_clock::now();
     tl_thread = 0;
     tl_size = threads;
     tl_team = this;
@@ -114,6 +115,7 @@ class Team {
     spin_then_yield([&] { return pending_.load(std::memory_order_acquire) == 0; }, may_spin(threads));
     tl_size = 1;
     tl_team = nullptr;
+    seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
 
   void barrier() {
@@ -129,6 +131,7 @@ class Team {
   }
 
   long runs() const { return runs_; }
+  double seconds() const { return seconds_; }
 
  private:
   void work(int number, unsigned seen) {
@@ -182,6 +185,7 @@ class Team {
   std::condition_variable wake_;
   std::vector<std::thread> workers_;  // touched by the caller's thread only
   long runs_ = 0;
+  double seconds_ = 0.0;
 };
 
 // One team for each thread that runs stages (two simulations in two threads of a program
@@ -213,5 +217,6 @@ void team_barrier() {
 int team_thread() { return tl_thread; }
 int team_size() { return tl_size; }
 long team_runs() { return team().runs(); }
+double team_seconds() { return team().seconds(); }
 
 }  // namespace mpm3d

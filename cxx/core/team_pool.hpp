@@ -22,8 +22,10 @@ void team_barrier();
 int team_thread();
 int team_size();
 
-// team_run calls with more than one thread since the program started (the regions-a-step
-// test, tests/omp_regions.sh).
+// team_run calls with more than one thread by the calling thread since it started, and the
+// wall time it spent in them (the regions-a-step test, tests/omp_regions.sh; the serial part
+// of a step, tools/bench.py).
 long team_runs();
+double team_seconds();
 
 }  // namespace mpm3d
