@@ -16,11 +16,11 @@
 #include <iostream>
 #include <sstream>
 
+#include "core/team_pool.hpp"
 #include "input/ffi.hpp"
 #include "io/data_out.hpp"
 #include "io/json_text.hpp"
 #include "mpm3d.hpp"
-#include "core/team_pool.hpp"
 #include "solver/checkpoint.hpp"
 
 #ifdef _OPENMP

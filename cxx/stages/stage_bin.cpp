@@ -7,9 +7,6 @@
 #include <memory>
 #include <vector>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 #include "transfer/transfer_lanes.hpp"
 #include "stages/update_step.hpp"
@@ -20,10 +17,7 @@ extern "C" void mpm3d_cxx_bin(StepContext* c) {
   const int npatch = c->patch.npatch;
   int* patch_of = c->patch.pscratch;  // patch of each particle, -1 outside
   int outside = 0, nslot = 0;
-  int team = 1;
-#ifdef _OPENMP
-  team = omp_get_max_threads();
-#endif
+  const int team = omp_threads();
   // One row of patch counts per thread, each zeroed by its thread.
   std::unique_ptr<int[]> counts(new int[size_t(team) * size_t(npatch)]);
   // Particles and non-empty patches of each thread's run of patches (own cache lines).

@@ -3,9 +3,6 @@
 #include <cmath>
 #include <cstddef>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 #include "stages/update_step.hpp"
 #include "transfer/transfer.hpp"
@@ -117,10 +114,7 @@ void apply_bc(const StepContext* c, double* a) {
       }
     }
   };
-  int threads = 1;
-#ifdef _OPENMP
-  threads = omp_get_max_threads();
-#endif
+  const int threads = omp_threads();
   if (threads > 1 && held > kParallelBcNodes) {
     team_region([&] {
       int t, T;

@@ -25,9 +25,6 @@
 #include <cstdint>
 #include <cstring>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 #include "core/step_state.hpp"
 #include "transfer/smoothed_gradient.hpp"
@@ -209,10 +206,7 @@ void for_contributions_in_order(const StepContext* c, int first_field, int nfiel
 // pass on one thread, the owners' passes on more.
 template <class F>
 void scatter_in_order(StepContext* c, int first_field, int nfield, F&& add) {
-  int threads = 1;
-#ifdef _OPENMP
-  threads = omp_get_max_threads();
-#endif
+  const int threads = omp_threads();
   const bool masked = threads > 1 || c->rest.at_rest;  // one thread's pass skips no centre
   sg_ensure_weights(c, masked);
   if (masked) {
