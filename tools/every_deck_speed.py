@@ -25,6 +25,13 @@ wall time and peak resident memory (wait4). Per deck and thread count the ratio 
 of the per-round ratios original / mpm3d: this machine is noisy, and a ratio of two runs
 seconds apart is what it can measure. Writes the rows to --csv and the table between the
 EVERY_DECK markers of --doc.
+
+With 1 and 2 threads in --threads, each round also measures what the machine's two cores
+deliver on that deck (issue 56 scales its 2-thread floor with it): two one-thread runs of
+mpm3d at once, pinned to CPUs 0 and 1 (`taskset`), capacity = t1/ta + t1/tb with t1 the
+round's one-thread run alone (2.0 where the cores do not slow each other). The floors:
+4x serially (`Taylor.mpm` against the book program 5x), and at 2 threads 6x times
+min(1, capacity / 1.9), capacity the deck's median.
 """
 import argparse
 import csv
@@ -111,6 +118,31 @@ def run_mpm3d(exe, deck, threads, work, steps=None):
     return rc, wall, peak, info
 
 
+def run_pair(exe, deck, tmp):
+    """Wall seconds of two one-thread mpm3d runs of deck started together, pinned to CPUs 0 and
+    1 where taskset is there; None if one failed."""
+    procs = []
+    for cpu in (0, 1):
+        work = os.path.join(tmp, "pair%d" % cpu)
+        name = fresh(work, deck)
+        pin = ["taskset", "-c", str(cpu)] if shutil.which("taskset") else []
+        cmd = pin + [exe, "--threads", "1", "--quiet", "--out-dir", ".", name]
+        procs.append((subprocess.Popen(cmd, cwd=work, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                                       stderr=subprocess.DEVNULL), time.perf_counter()))
+    walls = [None, None]
+    while None in walls:
+        for i, (proc, t0) in enumerate(procs):
+            if walls[i] is None and proc.poll() is not None:
+                walls[i] = time.perf_counter() - t0
+        time.sleep(0.002)
+    return None if any(proc.returncode != 0 for proc, _ in procs) else walls
+
+
+def floor_2(capacity):
+    """Issue 56's 2-thread floor on a machine whose two cores deliver `capacity` times one."""
+    return 6.0 * min(1.0, capacity / 1.9)
+
+
 def full_end_time(deck):
     with open(deck, errors="replace") as f:
         for line in f:
@@ -149,6 +181,8 @@ def measure(name, src, exe_orig, mpm3d, threads, rounds, target, tmp):
     ratio = {t: [] for t in threads}
     peak = {t: 0 for t in threads}
     peak_orig, particles, our_steps = 0, None, None
+    pairs = 1 in threads and 2 in threads and (os.cpu_count() or 1) >= 2
+    capacity = []
     for r in range(rounds):
         order = ["orig"] + threads if r % 2 == 0 else threads[::-1] + ["orig"]
         walls = {}
@@ -164,6 +198,11 @@ def measure(name, src, exe_orig, mpm3d, threads, rounds, target, tmp):
                     return {"refused": "mpm3d: exit %d" % rc}
                 peak[who] = max(peak[who], pk)
                 particles, our_steps = info["particles"], info["steps"]
+        if pairs:
+            pair = run_pair(mpm3d, deck, tmp)
+            if pair is None:
+                return {"refused": "mpm3d: a run of the pair failed"}
+            capacity.append(walls[1] / pair[0] + walls[1] / pair[1])
         orig.append(walls["orig"])
         for t in threads:
             ours[t].append(walls[t])
@@ -173,29 +212,60 @@ def measure(name, src, exe_orig, mpm3d, threads, rounds, target, tmp):
             "ours_s": {t: statistics.median(ours[t]) for t in threads},
             "ratio": {t: statistics.median(ratio[t]) for t in threads},
             "ratio_range": {t: (min(ratio[t]), max(ratio[t])) for t in threads},
-            "peak": peak}
+            "peak": peak, "capacity": statistics.median(capacity) if capacity else None}
+
+
+def serial_floor(r):
+    return 5.0 if r["name"] == "Taylor" and r["program"] == "book" else 4.0
+
+
+def floors_met(results):
+    """(runs measured, at the serial floor, at the 2-thread floor or None) over the results."""
+    done = [r for r in results if "refused" not in r]
+    serial = sum(1 for r in done if r["ratio"].get(1, 0.0) >= serial_floor(r))
+    two = None
+    if all(r.get("capacity") and 2 in r["ratio"] for r in done) and done:
+        two = sum(1 for r in done if r["ratio"][2] >= floor_2(r["capacity"]))
+    return len(done), serial, two
 
 
 def table(results, threads, rounds, target, when):
     t_hdr = " | ".join(f"{t} thr" for t in threads)
+    with_capacity = any(r.get("capacity") for r in results)
     out = [BEGIN, f"`tools/every_deck_speed.py` ({'make bench'} with the originals given), {when}, "
            f"{platform.machine()}, {os.cpu_count()} cores: every public deck cut so that the original runs "
            f"about {target:g} s, whole process, wall time; the ratio original / mpm3d is the median of "
            f"{rounds} interleaved rounds (range in brackets). Book decks against the book program, "
            "current decks against the current program, the newest decks against the newest program, all "
            "gfortran 12 `-O2`, serial. Memory: mpm3d's "
-           "peak resident bytes per particle at the highest thread count (the original's in brackets).", "",
-           f"| deck | program | particles | steps | original s | {t_hdr} | bytes/particle |",
-           "|---|---|---|---|---|" + "---|" * len(threads) + "---|"]
+           "peak resident bytes per particle at the highest thread count (the original's in brackets)."
+           + (" Capacity: what the two cores deliver on the deck, two one-thread runs at once (2.0: no "
+              "slowing), the median over the rounds; a ratio in bold meets issue 56's floor (4x serially, "
+              "`Taylor.mpm` against the book program 5x; at 2 threads 6x times min(1, capacity / 1.9))."
+              if with_capacity else ""), "",
+           f"| deck | program | particles | steps | original s | {t_hdr} | "
+           + ("capacity | " if with_capacity else "") + "bytes/particle |",
+           "|---|---|---|---|---|" + "---|" * len(threads) + ("---|" if with_capacity else "") + "---|"]
     for r in results:
         if "refused" in r:
             out.append(f"| {r['name']} | {r['program']} | - | - | - | " + " | ".join("-" for _ in threads)
-                       + f" | refused: {r['refused']} |")
+                       + (" | -" if with_capacity else "") + f" | refused: {r['refused']} |")
             continue
-        cells = " | ".join("%.2fx (%.2f-%.2f)" % ((r["ratio"][t],) + r["ratio_range"][t]) for t in threads)
+
+        def cell(t):
+            text = "%.2fx (%.2f-%.2f)" % ((r["ratio"][t],) + r["ratio_range"][t])
+            floor = serial_floor(r) if t == 1 else (floor_2(r["capacity"]) if t == 2 and r.get("capacity") else None)
+            return f"**{text}**" if floor is not None and r["ratio"][t] >= floor else text
+
+        cells = " | ".join(cell(t) for t in threads)
+        cap = ("%.2f | " % r["capacity"] if r.get("capacity") else "- | ") if with_capacity else ""
         tmax = threads[-1]
         out.append(f"| {r['name']} | {r['program']} | {r['particles']} | {r['steps']} | {r['orig_s']:.2f} | "
-                   f"{cells} | {r['peak'][tmax] / r['particles']:.0f} ({r['peak_orig'] / r['particles']:.0f}) |")
+                   f"{cells} | {cap}{r['peak'][tmax] / r['particles']:.0f} ({r['peak_orig'] / r['particles']:.0f}) |")
+    n, serial, two = floors_met(results)
+    if with_capacity:
+        out += ["", f"Floors met: serially {serial} of {n} runs" + ("" if two is None else f", at 2 threads {two} of {n}")
+                + "."]
     out.append(END)
     return out
 
@@ -243,14 +313,15 @@ def main():
             print(f"every_deck_speed: {name}: refused: {r['refused']}", flush=True)
         else:
             print(f"every_deck_speed: {name}: original {r['orig_s']:.2f} s, "
-                  + ", ".join("%d thr %.2fx" % (t, r["ratio"][t]) for t in threads), flush=True)
+                  + ", ".join("%d thr %.2fx" % (t, r["ratio"][t]) for t in threads)
+                  + (", capacity %.2f" % r["capacity"] if r.get("capacity") else ""), flush=True)
     os.makedirs(os.path.dirname(a.csv), exist_ok=True)
     with open(a.csv, "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["deck", "program", "particles", "steps", "end_time", "original_s"]
                    + [f"mpm3d_s_{t}" for t in threads] + [f"ratio_{t}" for t in threads]
                    + [f"ratio_min_{t}" for t in threads] + [f"ratio_max_{t}" for t in threads]
-                   + ["peak_bytes_original"] + [f"peak_bytes_{t}" for t in threads])
+                   + ["peak_bytes_original"] + [f"peak_bytes_{t}" for t in threads] + ["capacity"])
         for r in results:
             if "refused" in r:
                 w.writerow([r["name"], r["program"], "refused: " + r["refused"]])
@@ -260,10 +331,14 @@ def main():
                        + ["%.3f" % r["ratio"][t] for t in threads]
                        + ["%.3f" % r["ratio_range"][t][0] for t in threads]
                        + ["%.3f" % r["ratio_range"][t][1] for t in threads]
-                       + [r["peak_orig"]] + [r["peak"][t] for t in threads])
+                       + [r["peak_orig"]] + [r["peak"][t] for t in threads]
+                       + ["%.3f" % r["capacity"] if r.get("capacity") else ""])
     when = datetime.datetime.utcnow().strftime("%Y-%m-%d")
     if not wanted:
         public.write(a.doc, table(results, threads, a.rounds, a.target, when), BEGIN, END)
+    n, serial, two = floors_met(results)
+    print(f"every_deck_speed: floors met: serially {serial} of {n}"
+          + ("" if two is None else f", at 2 threads {two} of {n}"))
     print(f"every_deck_speed: wrote {a.csv}" + ("" if wanted else f" and the table in {a.doc}"))
     return 0
 

@@ -4,7 +4,9 @@
 1. the cut deck: end time set, `tecp`, `para` and `QuLo` taken out, every other line kept;
 2. a whole pass on one public deck name (`Taylor`, both programs), a small deck of ours in its
    place: exit 0, one CSV row per program, positive times, ratios and peak memory, the
-   steps mpm3d took to the cut end time.
+   steps mpm3d took to the cut end time, and (on 2 CPUs or more) the two cores' capacity;
+3. issue 56's floors: 5x serially for `Taylor.mpm` against the book program, 4x elsewhere,
+   6x at 2 threads scaled by min(1, capacity / 1.9), counted over a set of results.
 
 usage: every_deck_test.py MPM3D_EXE DECK    (prints PASS or the failures; exit 0 or 1)
 """
@@ -78,12 +80,31 @@ def test_pass(mpm3d, deck, work):
         check(all(v > 0 for v in values), "non-positive figure in %r" % r)
         check(0 < float(r["end_time"]) <= tool.full_end_time(deck), "end time %s" % r["end_time"])
         check(int(r["steps"]) > 0, "steps %s" % r["steps"])
+        if (os.cpu_count() or 1) >= 2:
+            check(r.get("capacity") and 0.3 < float(r["capacity"]) < 4.0, "capacity %r" % r.get("capacity"))
+
+
+def test_floors():
+    check(tool.floor_2(1.9) == 6.0 and tool.floor_2(2.2) == 6.0, "2-thread floor at capacity >= 1.9")
+    check(abs(tool.floor_2(0.95) - 3.0) < 1e-12, "2-thread floor at capacity 0.95: %r" % tool.floor_2(0.95))
+    results = [
+        {"name": "Taylor", "program": "book", "ratio": {1: 4.5, 2: 7.0}, "capacity": 2.0},
+        {"name": "Taylor (current program)", "program": "current", "ratio": {1: 4.5, 2: 5.0}, "capacity": 1.5},
+        {"name": "Deto1k", "program": "book", "ratio": {1: 3.9, 2: 6.1}, "capacity": 1.95},
+        {"name": "X", "program": "current", "refused": "mpm3d: exit 1"},
+    ]
+    # serially only the current program's Taylor (4.5 >= 4; the book's needs 5); at 2 threads the
+    # book's Taylor (7 >= 6), the current one's (5 >= 6 * 1.5 / 1.9 = 4.74) and Deto1k (6.1 >= 6).
+    check(tool.floors_met(results) == (3, 1, 3), "floors met: %r" % (tool.floors_met(results),))
+    results[1]["capacity"] = None
+    check(tool.floors_met(results)[2] is None, "no 2-thread count without every capacity")
 
 
 def main():
     mpm3d, deck = sys.argv[1], sys.argv[2]
     with tempfile.TemporaryDirectory() as work:
         test_cut_deck(work)
+        test_floors()
         test_pass(mpm3d, deck, work)
     if failures:
         print("FAIL\n" + "\n".join(failures))
