@@ -21,7 +21,8 @@ programs past the end time to t = 100). Both programs read the same cut deck and
 
 Each round runs the original (serial, as it is built) and mpm3d once at each thread count, one
 after the other, the order reversed every other round; every figure is the whole process's
-wall time and peak resident memory (wait4). Per deck and thread count the ratio is the median
+wall time and peak resident memory (wait4); the original and the one-thread run of a round on
+the same CPU (`taskset`, CPU 0 and CPU 1 in turn). Per deck and thread count the ratio is the median
 of the per-round ratios original / mpm3d: this machine is noisy, and a ratio of two runs
 seconds apart is what it can measure. Writes the rows to --csv and the table between the
 EVERY_DECK markers of --doc.
@@ -100,14 +101,19 @@ def fresh(work, deck):
     return os.path.basename(deck)
 
 
-def run_original(exe, deck, work):
-    name = fresh(work, deck)
-    return timed([exe, name], work)
+def pinned(cpu):
+    """The command prefix that keeps a run on one CPU (none without taskset or a CPU)."""
+    return ["taskset", "-c", str(cpu)] if cpu is not None and shutil.which("taskset") else []
 
 
-def run_mpm3d(exe, deck, threads, work, steps=None):
+def run_original(exe, deck, work, cpu=None):
     name = fresh(work, deck)
-    cmd = [exe, "--threads", str(threads), "--quiet", "--out-dir", ".", "--summary", "summary.json"]
+    return timed(pinned(cpu) + [exe, name], work)
+
+
+def run_mpm3d(exe, deck, threads, work, steps=None, cpu=None):
+    name = fresh(work, deck)
+    cmd = pinned(cpu) + [exe, "--threads", str(threads), "--quiet", "--out-dir", ".", "--summary", "summary.json"]
     if steps:
         cmd += ["--no-output", "--steps", str(steps)]
     rc, wall, peak = timed(cmd + [name], work)
@@ -125,8 +131,7 @@ def run_pair(exe, deck, tmp):
     for cpu in (0, 1):
         work = os.path.join(tmp, "pair%d" % cpu)
         name = fresh(work, deck)
-        pin = ["taskset", "-c", str(cpu)] if shutil.which("taskset") else []
-        cmd = pin + [exe, "--threads", "1", "--quiet", "--out-dir", ".", name]
+        cmd = pinned(cpu) + [exe, "--threads", "1", "--quiet", "--out-dir", ".", name]
         procs.append((subprocess.Popen(cmd, cwd=work, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
                                        stderr=subprocess.DEVNULL), time.perf_counter()))
     walls = [None, None]
@@ -185,15 +190,18 @@ def measure(name, src, exe_orig, mpm3d, threads, rounds, target, tmp):
     capacity = []
     for r in range(rounds):
         order = ["orig"] + threads if r % 2 == 0 else threads[::-1] + ["orig"]
+        # The serial runs of a round share one CPU, the other one in the next round: the
+        # two vCPUs of the 2-core VM have run one program at up to 1.45 times the other's speed.
+        cpu = r % 2 if (os.cpu_count() or 1) >= 2 else None
         walls = {}
         for who in order:
             if who == "orig":
-                rc, walls[who], pk = run_original(exe_orig, deck, work)
+                rc, walls[who], pk = run_original(exe_orig, deck, work, cpu)
                 if rc != 0:
                     return {"refused": "the original: exit %d" % rc}
                 peak_orig = max(peak_orig, pk)
             else:
-                rc, walls[who], pk, info = run_mpm3d(mpm3d, deck, who, work)
+                rc, walls[who], pk, info = run_mpm3d(mpm3d, deck, who, work, cpu=cpu if who == 1 else None)
                 if rc != 0:
                     return {"refused": "mpm3d: exit %d" % rc}
                 peak[who] = max(peak[who], pk)
