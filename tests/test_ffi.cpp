@@ -1,5 +1,12 @@
 // FFI: the free-format deck tokenizer (DECK_FORMAT.md "Reading rules").
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <thread>
 
 #include <string>
 #include <vector>
@@ -199,6 +206,38 @@ TEST(Ffi, MissingFileIsAnErrorNamingTheFile) {
     EXPECT_EQ(e.line(), 0);
     EXPECT_NE(std::string(e.what()).find("/nonexistent/dir/none.mpm"), std::string::npos);
   }
+}
+
+// A regular file is read in one piece of its size, a pipe as a stream: both give the same
+// tokens and lines (a pipe's size reads 0).
+TEST(Ffi, FileAndPipeReadAlike) {
+  const std::string text = "mpm3d *** title\nnbmp 2 ! two\n\nendt 1.5e-3\r\nlast line without newline";
+  char dir[] = "/tmp/ffi_read_XXXXXX";
+  ASSERT_NE(mkdtemp(dir), nullptr);
+  const std::string file = std::string(dir) + "/deck.mpm", fifo = std::string(dir) + "/pipe.mpm";
+  {
+    std::ofstream out(file, std::ios::binary);
+    out << text;
+  }
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  std::thread writer([&] {
+    std::ofstream out(fifo, std::ios::binary);
+    out << text;
+  });
+  TokenStream from_pipe = TokenStream::from_file(fifo);
+  writer.join();
+  TokenStream from_file = TokenStream::from_file(file), from_text = TokenStream::from_string(text, "t");
+  for (TokenStream* ts : {&from_file, &from_pipe}) {
+    std::vector<std::string> got, want;
+    while (!ts->at_end()) got.push_back(ts->next().text + "@" + std::to_string(ts->line()));
+    while (!from_text.at_end()) want.push_back(from_text.next().text + "@" + std::to_string(from_text.line()));
+    from_text = TokenStream::from_string(text, "t");
+    EXPECT_EQ(got, want);
+    EXPECT_EQ(got.size(), 9u);
+  }
+  std::remove(file.c_str());
+  std::remove(fifo.c_str());
+  rmdir(dir);
 }
 
 TEST(Ffi, CommentsAndTheTitleMayHoldAnyText) {

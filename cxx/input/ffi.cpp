@@ -26,10 +26,18 @@ TokenStream TokenStream::from_file(const std::string& path) {
   if (S_ISDIR(st.st_mode)) throw DeckError(path, 0, "cannot read the deck (is a directory)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw DeckError(path, 0, "cannot open the deck");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw DeckError(path, 0, "cannot read the deck");
-  return from_string(ss.str(), path);
+  if (!S_ISREG(st.st_mode)) {  // a pipe: its size is not known before it is read
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    if (in.bad()) throw DeckError(path, 0, "cannot read the deck");
+    return from_string(ss.str(), path);
+  }
+  // One read into a string of the file's size (a deck of particle lines is megabytes; a
+  // stream copy grew and copied it twice).
+  std::string text(size_t(st.st_size), '\0');
+  in.read(&text[0], std::streamsize(text.size()));
+  if (in.bad() || size_t(in.gcount()) != text.size()) throw DeckError(path, 0, "cannot read the deck");
+  return from_string(text, path);
 }
 
 TokenStream TokenStream::from_string(const std::string& text, const std::string& name) {

@@ -17,6 +17,16 @@ void ParticleAppender::check_room(int line, double count, const char* what) cons
                    std::to_string(nbmp_));
 }
 
+void ParticleAppender::set_limit(int nbmp) {
+  nbmp_ = nbmp;
+  Particles& P = P_;
+  const size_t n = size_t(std::max(nbmp, 0));
+  for (auto* v : {&P.x, &P.v}) v->reserve(3 * n);
+  P.sig.reserve(6 * n);
+  for (auto* v : {&P.mass, &P.vol, &P.epeff, &P.ie}) v->reserve(n);
+  for (auto* v : {&P.mat, &P.body}) v->reserve(n);
+}
+
 void ParticleAppender::add(int line, int body, int mat, double mass, double vol, double x, double y, double z) {
   if (count_ >= nbmp_)
     fail(line, "more particles than 'nbmp' = " + std::to_string(nbmp_));

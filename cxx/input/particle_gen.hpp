@@ -16,7 +16,9 @@ namespace mpm3d {
 class ParticleAppender {
  public:
   ParticleAppender(Particles& P, std::string file) : P_(P), file_(std::move(file)) {}
-  void set_limit(int nbmp) { nbmp_ = nbmp; }  // 'nbmp': no particle beyond it
+  // 'nbmp': no particle beyond it. The arrays' room for it is reserved (address space, not
+  // touched until used), so that growing them never copies them.
+  void set_limit(int nbmp);
   int limit() const { return nbmp_; }
   int count() const { return count_; }  // particles appended so far, all cards together
 
