@@ -19,12 +19,8 @@ void ParticleAppender::check_room(int line, double count, const char* what) cons
 
 void ParticleAppender::set_limit(int nbmp) {
   nbmp_ = nbmp;
-  Particles& P = P_;
   const size_t n = size_t(std::max(nbmp, 0));
-  for (auto* v : {&P.x, &P.v}) v->reserve(3 * n);
-  P.sig.reserve(6 * n);
-  for (auto* v : {&P.mass, &P.vol, &P.epeff, &P.ie}) v->reserve(n);
-  for (auto* v : {&P.mat, &P.body}) v->reserve(n);
+  for_each_array([n](auto& a, size_t per_particle) { a.reserve(per_particle * n); });
 }
 
 void ParticleAppender::add(int line, int body, int mat, double mass, double vol, double x, double y, double z) {
@@ -35,12 +31,8 @@ void ParticleAppender::add(int line, int body, int mat, double mass, double vol,
   if (count_ >= P.np) {  // grow the arrays (contents kept) up to 'nbmp'
     const int n = int(std::min<long>(nbmp_, std::max<long>(1024, 2L * P.np)));
     P.np = n;
-    P.x.resize(3 * size_t(n), 0.0);
-    P.v.resize(3 * size_t(n), 0.0);
+    for_each_array([n](auto& a, size_t per_particle) { a.resize(per_particle * size_t(n)); });  // zeros
     if (!P.fext.empty()) P.fext.resize(3 * size_t(n), 0.0);
-    P.sig.resize(6 * size_t(n), 0.0);
-    for (auto* v : {&P.mass, &P.vol, &P.epeff, &P.ie}) v->resize(size_t(n), 0.0);
-    for (auto* v : {&P.mat, &P.body}) v->resize(size_t(n), 0);
   }
   const int p = count_++;
   P.mass[p] = mass;

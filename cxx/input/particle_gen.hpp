@@ -30,6 +30,14 @@ class ParticleAppender {
   [[noreturn]] void fail(int line, const std::string& what) const;
 
  private:
+  // f(array, its values per particle) for each array that add() fills and grows.
+  template <class F>
+  void for_each_array(F&& f) {
+    Particles& P = P_;
+    f(P.x, 3), f(P.v, 3), f(P.sig, 6);
+    f(P.mass, 1), f(P.vol, 1), f(P.epeff, 1), f(P.ie, 1), f(P.mat, 1), f(P.body, 1);
+  }
+
   Particles& P_;
   std::string file_;
   int nbmp_ = 0;

@@ -7,7 +7,6 @@
 #include <memory>
 #include <vector>
 
-
 #include "transfer/transfer_lanes.hpp"
 #include "stages/update_step.hpp"
 

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <cstddef>
 
-
 #include "stages/update_step.hpp"
 #include "transfer/transfer.hpp"
 #include "transfer/transfer_common.hpp"

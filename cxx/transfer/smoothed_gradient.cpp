@@ -25,7 +25,6 @@
 #include <cstdint>
 #include <cstring>
 
-
 #include "core/step_state.hpp"
 #include "transfer/smoothed_gradient.hpp"
 #include "transfer/stress_loop.hpp"
