@@ -19,10 +19,16 @@ using mpm3d::TokenStream;
 
 namespace {
 
-std::vector<mpm3d::Token> all_tokens(const std::string& text) {
-  TokenStream ts = TokenStream::from_string(text, "t.mpm");
-  std::vector<mpm3d::Token> v;
-  while (!ts.at_end()) v.push_back(ts.next());
+// The tokens view their stream's text: the stream goes with them.
+struct AllTokens : std::vector<mpm3d::Token> {
+  TokenStream source;
+};
+
+AllTokens all_tokens(const std::string& text) {
+  AllTokens v;
+  v.source = TokenStream::from_string(text, "t.mpm");
+  TokenStream reader = v.source;  // a copy shares the text
+  while (!reader.at_end()) v.push_back(reader.next());
   return v;
 }
 
@@ -251,3 +257,16 @@ TEST(Ffi, CommentsAndTheTitleMayHoldAnyText) {
   EXPECT_EQ(m.nbmp, 1);
 }
 
+
+// A token views its stream's text, which stays put when the stream is moved or copied, also
+// where the text is short enough to live inside a std::string.
+TEST(Ffi, TokensStayValidWhenTheStreamMoves) {
+  TokenStream a = TokenStream::from_string("spx 0 4\n", "m.mpm");
+  const mpm3d::Token t = a.peek();
+  TokenStream b = std::move(a);
+  TokenStream c = b;
+  b = TokenStream::from_string("dcel 1\n", "n.mpm");
+  EXPECT_EQ(std::string(t.text), "spx");
+  EXPECT_EQ(std::string(c.next().text), "spx");
+  EXPECT_EQ(std::string(b.next().text), "dcel");
+}

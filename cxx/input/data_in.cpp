@@ -67,7 +67,7 @@ Model DeckReader::read() {
     if (k == "mpm3") {
       m_.title = ts_.rest_of_line(key);
     } else if (k == "nbmp" || k == "nbco" || k == "nbbo" || k == "nmat") {
-      const long n = ts_.integer(key.text.c_str());
+      const long n = ts_.integer(std::string(key.text).c_str());
       if (n < 1 || n > kMaxParticles)
         fail(key.line, "'" + key.text + "' must be a count in 1.." + std::to_string(kMaxParticles) + ", got " + std::to_string(n));
       if (k == "nbmp") {

@@ -37,25 +37,27 @@ TokenStream TokenStream::from_file(const std::string& path) {
   std::string text(size_t(st.st_size), '\0');
   in.read(&text[0], std::streamsize(text.size()));
   if (in.bad() || size_t(in.gcount()) != text.size()) throw DeckError(path, 0, "cannot read the deck");
-  return from_string(text, path);
+  return from_string(std::move(text), path);
 }
 
-TokenStream TokenStream::from_string(const std::string& text, const std::string& name) {
+TokenStream TokenStream::from_string(std::string deck, const std::string& name) {
   TokenStream ts;
   ts.name_ = name;
-  std::string line;
+  ts.text_ = std::make_shared<const std::string>(std::move(deck));
+  const std::string& text = *ts.text_;
   int lineno = 0;
   size_t i = 0;
-  // A deck of particle lines holds about one token in 8 bytes: no regrowth on the way.
   ts.lines_.reserve(size_t(std::count(text.begin(), text.end(), '\n')) + 1);
-  ts.tokens_.reserve(text.size() / 8 + 16);
+  // A token takes at least two bytes (one and a separator), a particle line's some four to
+  // ten: room for a quarter of the bytes regrows on no deck of particle lines.
+  ts.tokens_.reserve(text.size() / 4 + 16);
   while (i < text.size() || (i == 0 && text.empty())) {
     size_t j = text.find('\n', i);
     if (j == std::string::npos) j = text.size();
-    line.assign(text, i, j - i);
+    std::string_view line(text.data() + i, j - i);
     i = j + 1;
     ++lineno;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     if (line.size() > kMaxLine)
       throw DeckError(name, lineno, "line longer than 4096 characters");
     ts.lines_.push_back(line);
@@ -73,7 +75,7 @@ TokenStream TokenStream::from_string(const std::string& text, const std::string&
           throw DeckError(name, lineno, "unexpected binary character (code " + std::to_string(b) + ")");
         ++e;
       }
-      ts.tokens_.push_back({line.substr(k, e - k), lineno});
+      ts.tokens_.push_back({TokenText(line.substr(k, e - k)), lineno});
       // The title card (mpm3...) takes the rest of its line as free text, any bytes.
       if (first && key4(ts.tokens_.back().text) == "mpm3") break;
       first = false;
@@ -101,9 +103,9 @@ int TokenStream::line() const {
 }
 
 std::string TokenStream::rest_of_line(const Token& after) {
-  const std::string& l = lines_.at(after.line - 1);
+  const std::string_view l = lines_.at(after.line - 1);
   size_t p = l.find(after.text);
-  std::string rest = p == std::string::npos ? std::string() : l.substr(p + after.text.size());
+  std::string rest = p == std::string::npos ? std::string() : std::string(l.substr(p + after.text.size()));
   size_t b = rest.find_first_not_of(" \t");
   rest = b == std::string::npos ? std::string() : rest.substr(b);
   while (!rest.empty() && (rest.back() == ' ' || rest.back() == '\t')) rest.pop_back();
@@ -130,7 +132,7 @@ double TokenStream::real(const char* what) {
     fail(t.line, std::string("Non Numeric Field '") + t.text + "' where " + what + " was expected");
   }
   if (single_reals_) {  // the decimal text rounded once to single precision (strtof), as a Fortran read
-    std::string e = t.text;
+    std::string e(t.text);
     for (char& ch : e)
       if (ch == 'd' || ch == 'D') ch = 'e';
     v = double(std::strtof(e.c_str(), nullptr));
@@ -153,15 +155,15 @@ std::string TokenStream::word(const char* what) {
   return next().text;
 }
 
-std::string key4(const std::string& token) {
-  std::string k = token.substr(0, 4);
+std::string key4(std::string_view token) {
+  std::string k(token.substr(0, 4));
   for (char& c : k) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return k;
 }
 
-bool parse_real(const std::string& token, double& value) {
+bool parse_real(std::string_view token, double& value) {
   if (token.empty() || token.size() > 64) return false;
-  std::string s = token;
+  std::string s(token);
   // Fortran exponent letters d/D/q become e; a bare sign-less exponent such as 1.0-3 is not accepted.
   bool seen_digit = false, seen_exp = false, seen_dot = false;
   for (size_t i = 0; i < s.size(); ++i) {
@@ -186,13 +188,13 @@ bool parse_real(const std::string& token, double& value) {
   return std::isfinite(value);
 }
 
-bool parse_integer(const std::string& token, long& value) {
+bool parse_integer(std::string_view token, long& value) {
   if (token.empty() || token.size() > 18) return false;
   size_t i = (token[0] == '+' || token[0] == '-') ? 1 : 0;
   if (i == token.size()) return false;
   for (size_t k = i; k < token.size(); ++k)
     if (!std::isdigit(static_cast<unsigned char>(token[k]))) return false;
-  value = std::strtol(token.c_str(), nullptr, 10);
+  value = std::strtol(std::string(token).c_str(), nullptr, 10);
   return true;
 }
 

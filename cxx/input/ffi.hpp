@@ -3,8 +3,10 @@
 // tokens separated by blanks and/or commas, keywords recognised by their first four
 // characters case-insensitively, Fortran list-directed numbers (d/D exponents).
 #pragma once
+#include <memory>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace mpm3d {
@@ -20,8 +22,22 @@ class DeckError : public std::runtime_error {
   int line_;
 };
 
+// A token's characters: a view into its stream's deck text, which stays where it is while
+// any copy of the stream lives (a deck of particle lines is millions of tokens: a string
+// each cost a third of the set-up). Converts to std::string and joins strings with +, as
+// the messages that quote a token need; it is not NUL-terminated (no c_str).
+struct TokenText : std::string_view {
+  TokenText() = default;
+  TokenText(std::string_view v) : std::string_view(v) {}
+  operator std::string() const { return std::string(data(), size()); }
+};
+inline std::string operator+(std::string a, TokenText b) { return a.append(b.data(), b.size()); }
+inline std::string operator+(const char* a, TokenText b) { return std::string(a).append(b.data(), b.size()); }
+inline std::string operator+(TokenText a, const std::string& b) { return std::string(a) + b; }
+inline std::string operator+(TokenText a, const char* b) { return std::string(a) + b; }
+
 struct Token {
-  std::string text;
+  TokenText text;
   int line = 0;
 };
 
@@ -29,7 +45,7 @@ class TokenStream {
  public:
   // Reads and tokenizes a whole deck; throws DeckError when it cannot be read.
   static TokenStream from_file(const std::string& path);
-  static TokenStream from_string(const std::string& text, const std::string& name = "<string>");
+  static TokenStream from_string(std::string text, const std::string& name = "<string>");
 
   bool at_end() const { return pos_ >= tokens_.size(); }
   const Token& peek() const;
@@ -57,8 +73,9 @@ class TokenStream {
 
  private:
   std::string name_;
+  std::shared_ptr<const std::string> text_;  // the deck, which tokens_ and lines_ view
   std::vector<Token> tokens_;
-  std::vector<std::string> lines_;
+  std::vector<std::string_view> lines_;  // without their line ends
   size_t pos_ = 0;
   bool single_reals_ = false;
   int card_line_ = 0;
@@ -66,9 +83,9 @@ class TokenStream {
 };
 
 // First four characters, lower case: the keyword as the original recognises it.
-std::string key4(const std::string& token);
+std::string key4(std::string_view token);
 // Fortran list-directed real; false when the token is not a complete number.
-bool parse_real(const std::string& token, double& value);
-bool parse_integer(const std::string& token, long& value);
+bool parse_real(std::string_view token, double& value);
+bool parse_integer(std::string_view token, long& value);
 
 }  // namespace mpm3d
