@@ -109,6 +109,8 @@ TEST(Ffi, FortranNumbersParse) {
   EXPECT_EQ(i, 12);
   EXPECT_TRUE(mpm3d::parse_integer("21172", i));
   EXPECT_EQ(i, 21172);
+  EXPECT_TRUE(mpm3d::parse_integer("-99999999999999999", i));  // 18 characters, the most accepted
+  EXPECT_EQ(i, -99999999999999999L);
 }
 
 TEST(Ffi, GarbageNumbersAreRefused) {

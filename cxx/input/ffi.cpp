@@ -192,9 +192,14 @@ bool parse_integer(std::string_view token, long& value) {
   if (token.empty() || token.size() > 18) return false;
   size_t i = (token[0] == '+' || token[0] == '-') ? 1 : 0;
   if (i == token.size()) return false;
-  for (size_t k = i; k < token.size(); ++k)
+  // At most 18 characters: the value fits a long, so it is summed digit by digit (exact, as
+  // strtol) without a NUL-terminated copy of the view.
+  long v = 0;
+  for (size_t k = i; k < token.size(); ++k) {
     if (!std::isdigit(static_cast<unsigned char>(token[k]))) return false;
-  value = std::strtol(std::string(token).c_str(), nullptr, 10);
+    v = 10 * v + (token[k] - '0');
+  }
+  value = token[0] == '-' ? -v : v;
   return true;
 }
 
