@@ -76,6 +76,14 @@ add_test(NAME health.advice_fits_the_deck
 set_tests_properties(health.advice_fits_the_deck PROPERTIES
   PASS_REGULAR_EXPRESSION "numerical instability at step [0-9]+ .*\\(reduce dtscale\\)"
   FAIL_REGULAR_EXPRESSION "use MUSL")
+# A non-finite stress says what to change: inputs/methods/neoh_linear.mpm on USL breaks down
+# within 13 steps (a NaN before the energy check sees the growth); the stop names the field
+# and advises reducing dtscale or MUSL, as the energy-growth stop does.
+add_test(NAME health.non_finite_advice
+         COMMAND sh -c "sed 's/^musl on/usl on/' '${CMAKE_SOURCE_DIR}/inputs/methods/neoh_linear.mpm' > neoh_usl.mpm && $<TARGET_FILE:mpm3d> --no-output --quiet --threads 2 --steps 25 neoh_usl.mpm"
+         WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+set_tests_properties(health.non_finite_advice PROPERTIES
+  PASS_REGULAR_EXPRESSION "numerical breakdown at step [0-9]+ .*particle [0-9]+ \\(body 1\\) has a non-finite [a-z ]+ \\(reduce dtscale, or use MUSL \\('musl on'\\)\\)")
 # Explosive products expanded past the density bound among water (tests/decks/
 # charge_in_water.mpm): the stop gives the charge's volume and names contact as the remedy.
 add_test(NAME health.products_advice

@@ -206,6 +206,17 @@ TEST_F(Cli, BadOptions) {
   }
 }
 
+// An adaptive grid asked of a method whose grid cannot move: one line naming the deck once.
+TEST_F(Cli, RegridRefusedWhereTheGridCannotMove) {
+  for (const auto& [deck, method] : {std::pair<std::string, std::string>{"null_sgmp.mpm", "'sgmp'"},
+                                     {"neoh_TLmp.mpm", "'TLmp'"}}) {
+    const std::string d = std::string(MPM3D_INPUTS) + "/methods/" + deck;
+    const RunResult r = run({"--quiet", "--regrid-every", "3", "--out-dir", out, d});
+    expect_refused(r, d + ": --regrid-every with " + method, {"grid"});
+    EXPECT_EQ(r.err.find(d), r.err.rfind(d)) << "the deck named twice: " << r.err;
+  }
+}
+
 // ------------------------------------------------------------ summary JSON and state file
 
 namespace {

@@ -235,13 +235,13 @@ int run_main(int argc, char** argv, Ranks* ranks) {
     Model model = read_deck(opt.deck, deck_memory_budget(), opt.rules);
     if (opt.regrid_every >= 0) model.regrid_every = int(opt.regrid_every);
     if (model.sg && model.regrid_every > 0)
-      throw std::runtime_error(opt.deck + ": --regrid-every with 'sgmp': the cell-centre grid of sgmp does not move");
+      throw std::runtime_error("--regrid-every with 'sgmp': the cell-centre grid of sgmp does not move");
     if (model.tl && model.regrid_every > 0)
-      throw std::runtime_error(opt.deck + ": --regrid-every with 'TLmp': the reference grid of TLmp cannot move");
+      throw std::runtime_error("--regrid-every with 'TLmp': the reference grid of TLmp cannot move");
     if (ranks) {
       const std::string no = not_distributed(opt, model);
       if (!no.empty())
-        throw std::runtime_error(opt.deck + ": " + no + " cannot run on several MPI ranks yet (run on one rank, with --threads)");
+        throw std::runtime_error(no + " cannot run on several MPI ranks yet (run on one rank, with --threads)");
     }
     {  // --out-dir: created (with its parents) when missing
       std::error_code ec;

@@ -129,7 +129,7 @@ void Simulation::health_check() {
       throw HealthError(about_particle(first, [&](int p) {
         std::ostringstream os;
         os << "numerical breakdown at step " << steps << " (t = " << time << "): particle " << first + 1 << " ("
-           << body_and_rank(p) << ") has a non-finite " << non_finite(p);
+           << body_and_rank(p) << ") has a non-finite " << non_finite(p) << " (" << instability_advice() << ")";
         return os.str();
       }));
   }
