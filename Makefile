@@ -7,6 +7,8 @@ DEB_PACKAGES = g++ gfortran cmake make libeigen3-dev libhdf5-dev hdf5-tools goog
 DECK ?= inputs/taylor/taylor_coarse.mpm
 # `make fuzz` only (docs/RELIABILITY.md): libFuzzer comes with Debian's clang.
 FUZZ_PACKAGES = clang libclang-rt-dev
+# `make report` only: its contact and granular studies read the runs' HDF5 files in Python.
+REPORT_PACKAGES = python3-h5py
 FUZZ_TIME ?= 600
 SAN_BUILD ?= $(BUILD)-sanitize
 # ASan/UBSan run: every report is fatal, leaks included.
@@ -29,7 +31,7 @@ SAN_CTEST_ARGS ?= -E '^bindings\.install_example$$|_stage_|^paraview\.|_landslid
 PYTHON ?= $(shell test -x /usr/bin/python3 && echo /usr/bin/python3 || echo python3)
 REPORT_ARGS ?=
 
-.PHONY: all deps build run test bench report clean fuzz fuzz-deps test-sanitize
+.PHONY: all deps build run test bench report report-deps clean fuzz fuzz-deps test-sanitize
 
 all: build
 
@@ -71,7 +73,10 @@ fuzz: fuzz-deps
 bench: build
 	tools/bench.sh $(BUILD)
 
-report: build
+report-deps:
+	@$(MAKE) --no-print-directory deps DEB_PACKAGES="$(REPORT_PACKAGES)"
+
+report: build report-deps
 	$(PYTHON) tools/report.py $(BUILD) --threads 2 $(REPORT_ARGS)
 	$(PYTHON) tools/current_decks.py $(BUILD) --threads 2
 
