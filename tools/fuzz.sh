@@ -28,7 +28,7 @@ if [ ! -x "$BIN" ] || [ "$newest" -nt "$BIN" ]; then
   rm -rf "$OBJ"; mkdir -p "$OBJ"
   FLAGS="-g -O1 -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all -ffp-contract=off"
   INC="-Icxx $(pkg-config --cflags eigen3 2>/dev/null || echo -I/usr/include/eigen3) $HDF5_INC"
-  ${CC:-clang} $FLAGS -Icxx -c cxx/stages/step_order.c -o "$OBJ/step_order.o"
+  ${FUZZ_CC:-clang} $FLAGS -Icxx -c cxx/stages/step_order.c -o "$OBJ/step_order.o"
   # shellcheck disable=SC2086
   printf '%s\n' $SRC tests/fuzz/fuzz_deck.cpp | xargs -P "$(nproc)" -I{} sh -c \
     'f={}; o="'"$OBJ"'/$(echo "$f" | tr / _).o"; case "$f" in *_avx2.cpp) x=-mavx2;; *) x=;; esac
