@@ -18,7 +18,8 @@ HDF5_INC=$(pkg-config --cflags hdf5 2>/dev/null || echo -I/usr/include/hdf5/seri
 HDF5_LIB=$(pkg-config --libs hdf5 2>/dev/null || echo -lhdf5_serial)
 # The core library's sources (cxx/CMakeLists.txt's mpm3d_core: every unit of these folders),
 # found here rather than listed, so that a new unit cannot leave the fuzzer unlinkable; the
-# *_avx2 units with -mavx2 as in the CMake build, the C step table with clang.
+# *_avx2 units with -mavx2 as in the CMake build, the C step table with clang; one at a time
+# (about a minute and a half), so that the first failing unit stops the script.
 SRC=$(ls cxx/{core,materials,transfer,stages,input,io,solver}/*.cpp)
 BIN="$OUT/fuzz_deck"
 OBJ="$OUT/obj"
@@ -29,10 +30,11 @@ if [ ! -x "$BIN" ] || [ "$newest" -nt "$BIN" ]; then
   FLAGS="-g -O1 -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all -ffp-contract=off"
   INC="-Icxx $(pkg-config --cflags eigen3 2>/dev/null || echo -I/usr/include/eigen3) $HDF5_INC"
   ${FUZZ_CC:-clang} $FLAGS -Icxx -c cxx/stages/step_order.c -o "$OBJ/step_order.o"
-  # shellcheck disable=SC2086
-  printf '%s\n' $SRC tests/fuzz/fuzz_deck.cpp | xargs -P "$(nproc)" -I{} sh -c \
-    'f={}; o="'"$OBJ"'/$(echo "$f" | tr / _).o"; case "$f" in *_avx2.cpp) x=-mavx2;; *) x=;; esac
-     exec '"$CXX"' -std=c++17 '"$FLAGS"' $x -Wno-unknown-pragmas '"$INC"' -c "$f" -o "$o"'
+  for f in $SRC tests/fuzz/fuzz_deck.cpp; do
+    case "$f" in *_avx2.cpp) isa=-mavx2 ;; *) isa= ;; esac
+    # shellcheck disable=SC2086
+    $CXX -std=c++17 $FLAGS $isa -Wno-unknown-pragmas $INC -c "$f" -o "$OBJ/$(echo "$f" | tr / _).o"
+  done
   # shellcheck disable=SC2086
   $CXX -fsanitize=fuzzer,address,undefined "$OBJ"/*.o $HDF5_LIB -lpthread -o "$BIN"
 fi
